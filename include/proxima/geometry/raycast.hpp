@@ -1,0 +1,54 @@
+#pragma once
+/// @file raycast.hpp
+/// Ray (and segment) intersection with geometric primitives, in the primitives' frame.
+///
+/// All functions follow the conventions of ray.hpp: points origin + t*direction with
+/// 0 <= t <= max_t; direction need not be unit; a ray starting inside a solid primitive
+/// hits at t = 0 with normal -direction/|direction|; the returned normal is unit.
+/// A segment pq is the ray {p, q - p} with max_t = 1. Degenerate rays (zero direction)
+/// and rays parallel to a face give a defined answer, never NaN.
+
+#include <proxima/core/math.hpp>
+#include <proxima/geometry/aabb.hpp>
+#include <proxima/geometry/ray.hpp>
+
+#include <optional>
+
+namespace proxima::geometry {
+
+/// Solid sphere (centre, radius > 0). Analytic quadratic, cancellation-safe form.
+std::optional<RayHit> ray_sphere(const Ray& ray, Real max_t, const Vec3& center, Real radius);
+
+/// Solid axis-aligned box, slab method (Kay-Kajiya / Williams et al.); robust to direction
+/// components of +-0 and to flat boxes.
+std::optional<RayHit> ray_aabb(const Ray& ray, Real max_t, const Aabb& box);
+
+/// Solid oriented box: centre, `axes` (columns = unit box axes in this frame), half extents.
+std::optional<RayHit> ray_obb(const Ray& ray, Real max_t, const Vec3& center, const Mat3& axes,
+                              const Vec3& half_extents);
+
+/// Solid capsule: the points within `radius` of segment p0p1 (p0 == p1 gives a sphere).
+std::optional<RayHit> ray_capsule(const Ray& ray, Real max_t, const Vec3& p0, const Vec3& p1, Real radius);
+
+/// Solid capped cylinder with axis p0p1 (p0 != p1) and `radius` > 0.
+std::optional<RayHit> ray_cylinder(const Ray& ray, Real max_t, const Vec3& p0, const Vec3& p1, Real radius);
+
+/// Solid capped cone: `apex`, the centre of its base disc `base_center` (!= apex) and
+/// the base radius > 0.
+std::optional<RayHit> ray_cone(const Ray& ray, Real max_t, const Vec3& apex, const Vec3& base_center,
+                               Real base_radius);
+
+/// The plane n.x = d as a two-sided surface (`normal` unit). A ray lying in the plane hits
+/// at t = 0. The returned normal faces the ray origin.
+std::optional<RayHit> ray_plane(const Ray& ray, Real max_t, const Vec3& normal, Real offset);
+
+/// The solid half-space n.x <= d (`normal` unit); inside origin hits at t = 0.
+std::optional<RayHit> ray_halfspace(const Ray& ray, Real max_t, const Vec3& normal, Real offset);
+
+/// Two-sided triangle abc, watertight (Woop, Benthin, Wald, "Watertight Ray/Triangle
+/// Intersection", JCGT 2013): a ray through a shared edge or vertex of a closed mesh hits
+/// at least one of the triangles. Degenerate triangles are never hit. The normal faces
+/// the ray origin.
+std::optional<RayHit> ray_triangle(const Ray& ray, Real max_t, const Vec3& a, const Vec3& b, const Vec3& c);
+
+}  // namespace proxima::geometry
