@@ -1,0 +1,154 @@
+#pragma once
+/// @file convex_hull.hpp
+/// ConvexHull: the convex hull of a point set, built once with qhull and stored as a
+/// polygonal boundary (merged coplanar faces, not triangulated) with vertex adjacency for
+/// hill-climbing support queries.
+
+#include <proxima/core/math.hpp>
+#include <proxima/core/result.hpp>
+#include <proxima/core/transform.hpp>
+#include <proxima/geometry/aabb.hpp>
+#include <proxima/geometry/ray.hpp>
+#include <proxima/shapes/mass_properties.hpp>
+#include <proxima/shapes/shape_type.hpp>
+#include <proxima/shapes/surface_point.hpp>
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <span>
+#include <utility>
+#include <vector>
+
+namespace proxima {
+
+/// A planar polygonal face of a ConvexHull.
+///
+/// Its vertex indices are `face_indices()[first_index .. first_index + index_count)`, in
+/// counter-clockwise order seen from outside the hull. Its plane is `normal . x = offset`
+/// (local frame) with `normal` unit and pointing out of the hull.
+struct HullFace {
+  std::uint32_t first_index = 0;           ///< first entry of the face's loop in face_indices()
+  std::uint32_t index_count = 0;           ///< number of vertices of the loop (>= 3)
+  Vec3 normal{Real(0), Real(0), Real(1)};  ///< unit outward plane normal, local frame
+  Real offset = Real(0);                   ///< plane offset: normal . x = offset (length)
+};
+
+/// An edge of a ConvexHull, listed once, with the two faces that share it.
+///
+/// Seen from outside, the edge runs v0 -> v1 in the loop of `face0` and v1 -> v0 in the
+/// loop of `face1` (face0 != face1).
+struct HullEdge {
+  std::uint32_t v0 = 0;     ///< first vertex index (into vertices())
+  std::uint32_t v1 = 0;     ///< second vertex index
+  std::uint32_t face0 = 0;  ///< face whose CCW loop traverses v0 -> v1
+  std::uint32_t face1 = 0;  ///< face whose CCW loop traverses v1 -> v0
+};
+
+/// Solid convex polyhedron: the convex hull of a set of points, in its local frame.
+///
+/// Built by `create` with qhull (Barber, Dobkin, Huhdanpaa, "The Quickhull Algorithm for
+/// Convex Hulls", ACM TOMS 1996) in double precision; coplanar facets are merged into
+/// polygonal faces. Interior and duplicate input points are dropped. The hull data is
+/// immutable and shared: copies are cheap (one reference count).
+///
+/// Members as every shape (see Sphere): support, core_support + core_radius (the core is
+/// the hull itself, core_radius is 0), local_aabb, world_aabb, raycast, contains,
+/// closest_point, mass_properties — all in the local frame unless the name says world.
+class ConvexHull {
+ public:
+  /// Dispatch tag.
+  static constexpr ShapeType kType = ShapeType::ConvexHull;
+
+  /// Hulls with at most this many vertices answer support_index by a linear scan; larger
+  /// ones hill-climb over vertex_neighbors() from the start vertex.
+  static constexpr std::uint32_t kLinearScanMaxVertices = 16;
+
+  /// Validated construction from a point cloud (local frame).
+  ///
+  /// Errors: TooFew (fewer than 4 points, field "points"); NotFinite / OutOfRange
+  /// ("points[i].x" etc.); Degenerate (all points coincident, collinear or coplanar within
+  /// tolerance, field "points"); Internal (qhull failed, message says so). O(n log n)
+  /// expected.
+  static Result<ConvexHull> create(std::span<const Vec3> points);
+
+  /// Hull vertices (local frame), each one an input point; interior and duplicate input
+  /// points are dropped.
+  std::span<const Vec3> vertices() const { return data_->vertices; }
+  /// The planar polygonal faces (coplanar facets merged).
+  std::span<const HullFace> faces() const { return data_->faces; }
+  /// Concatenated CCW vertex loops of every face (indices into vertices()).
+  std::span<const std::uint32_t> face_indices() const { return data_->face_indices; }
+  /// The vertex loop of face `face` (indices into vertices()), CCW seen from outside.
+  std::span<const std::uint32_t> face_vertices(std::uint32_t face) const {
+    const HullFace& f = data_->faces[face];
+    return std::span<const std::uint32_t>(data_->face_indices).subspan(f.first_index, f.index_count);
+  }
+  /// Every edge once, with the faces on its two sides. V - E + F = 2.
+  std::span<const HullEdge> edges() const { return data_->edges; }
+  /// Vertices joined to `vertex` by a hull edge (compressed sparse rows).
+  std::span<const std::uint32_t> vertex_neighbors(std::uint32_t vertex) const {
+    const std::uint32_t b = data_->neighbor_offsets[vertex];
+    const std::uint32_t e = data_->neighbor_offsets[vertex + 1];
+    return std::span<const std::uint32_t>(data_->neighbors).subspan(b, e - b);
+  }
+
+  /// Index of a vertex farthest in `direction` (local frame; any vector, zero gives a
+  /// valid vertex). Above kLinearScanMaxVertices it hill-climbs from `start_vertex`
+  /// (clamped to a valid index; pass the previous answer to warm-start), moving to a
+  /// neighbour with a strictly larger dot product until none exists, which cannot cycle
+  /// and is exact on a convex polyhedron. O(V) worst case, O(1) amortised when coherent.
+  std::uint32_t support_index(const Vec3& direction, std::uint32_t start_vertex = 0) const;
+
+  /// Farthest point of the hull in `direction` (local frame): a vertex.
+  Vec3 support(const Vec3& direction) const { return data_->vertices[support_index(direction)]; }
+  /// Farthest point of the core in `direction`: the hull is its own core.
+  Vec3 core_support(const Vec3& direction) const { return support(direction); }
+  /// Radius added around the core: 0.
+  Real core_radius() const { return Real(0); }
+
+  /// Tight box of the vertices in the local frame.
+  Aabb local_aabb() const { return data_->local_box; }
+  /// Tight box in the world frame under `pose`: the box of the transformed vertices. O(V).
+  Aabb world_aabb(const Transform& pose) const;
+
+  /// First hit of `ray` (local frame) with the solid hull within [0, max_t], by
+  /// Cyrus–Beck clipping against the face planes. Origin inside: t = 0, normal
+  /// -direction/|direction|.
+  std::optional<RayHit> raycast(const Ray& ray, Real max_t) const;
+  /// True when `point` (local) is inside or on the surface, within a tolerance of
+  /// kRelativeTolerance times the hull's size.
+  bool contains(const Vec3& point) const;
+  /// Nearest surface point to `point` (local) with signed distance: outside, the nearest
+  /// point over all faces; inside, the projection on the nearest face plane (negative
+  /// distance, normal = that face's normal).
+  SurfacePoint closest_point(const Vec3& point) const;
+  /// Volume, mass, centroid and inertia about the centroid for uniform `density`, by the
+  /// divergence theorem over a tetrahedral decomposition (Tonon 2004; Eberly, "Polyhedral
+  /// Mass Properties").
+  MassProperties mass_properties(Real density = Real(1)) const;
+
+  /// Length scale of the hull (largest extent of its box), used for its tolerances.
+  Real scale() const { return data_->scale; }
+
+  /// The immutable hull data shared between copies.
+  struct Data {
+    std::vector<Vec3> vertices;                   ///< hull vertices, local frame
+    std::vector<HullFace> faces;                  ///< polygonal faces
+    std::vector<std::uint32_t> face_indices;      ///< concatenated CCW face loops
+    std::vector<HullEdge> edges;                  ///< every edge once
+    std::vector<std::uint32_t> neighbor_offsets;  ///< CSR offsets, size vertices + 1
+    std::vector<std::uint32_t> neighbors;         ///< CSR adjacency over edges
+    Aabb local_box;                               ///< box of the vertices
+    Real scale = Real(1);                         ///< largest box extent
+    Real volume = Real(0);                        ///< volume (length^3)
+    Vec3 centroid{Real(0)};                       ///< centre of volume, local frame
+    Mat3 unit_inertia{Real(0)};                   ///< inertia about the centroid at density 1
+  };
+
+ private:
+  explicit ConvexHull(std::shared_ptr<const Data> data) : data_(std::move(data)) {}
+  std::shared_ptr<const Data> data_;  // immutable and shared: copies are cheap
+};
+
+}  // namespace proxima
