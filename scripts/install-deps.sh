@@ -1,0 +1,18 @@
+#!/usr/bin/env bash
+# Installs what building and testing Proxima needs on Debian 12, from Debian's packages.
+# Run as root or with sudo available.
+set -euo pipefail
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+export DEBIAN_FRONTEND=noninteractive
+packages=(
+  build-essential cmake ninja-build pkg-config git
+  libglm-dev libqhull-dev            # the library: math, convex hulls
+  libcli11-dev nlohmann-json3-dev    # the proxima tool
+  libgtest-dev libgmock-dev          # tests
+  libcgal-dev                        # exact reference computations in tests
+  libbenchmark-dev                   # benchmarks
+)
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends "${packages[@]}" >/dev/null
+echo "install-deps: ${#packages[@]} packages present"
