@@ -11,6 +11,7 @@ packages=(
   libcli11-dev nlohmann-json3-dev    # the proxima tool
   libgtest-dev libgmock-dev          # tests
   libcgal-dev                        # exact reference computations in tests
+  clang-format                       # the formatting test
   libbenchmark-dev                   # benchmarks
 )
 $SUDO apt-get update -qq
