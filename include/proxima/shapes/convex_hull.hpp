@@ -116,8 +116,7 @@ class ConvexHull {
   /// Cyrus–Beck clipping against the face planes. Origin inside: t = 0, normal
   /// -direction/|direction|.
   std::optional<RayHit> raycast(const Ray& ray, Real max_t) const;
-  /// True when `point` (local) is inside or on the surface, within a tolerance of
-  /// kRelativeTolerance times the hull's size.
+  /// True when `point` (local) is inside or on the surface, within tolerance(). O(F).
   bool contains(const Vec3& point) const;
   /// Nearest surface point to `point` (local) with signed distance: outside, the nearest
   /// point over all faces; inside, the projection on the nearest face plane (negative
@@ -128,8 +127,12 @@ class ConvexHull {
   /// Mass Properties").
   MassProperties mass_properties(Real density = Real(1)) const;
 
-  /// Length scale of the hull (largest extent of its box), used for its tolerances.
+  /// Length scale of the hull (largest extent of its box).
   Real scale() const { return data_->scale; }
+  /// Absolute distance below which a point counts as on the surface: kRelativeTolerance
+  /// times the larger of scale() and the largest |coordinate| of the box (rounding of
+  /// plane tests grows with the distance from the local origin).
+  Real tolerance() const { return data_->tolerance; }
 
   /// The immutable hull data shared between copies.
   struct Data {
@@ -141,6 +144,7 @@ class ConvexHull {
     std::vector<std::uint32_t> neighbors;         ///< CSR adjacency over edges
     Aabb local_box;                               ///< box of the vertices
     Real scale = Real(1);                         ///< largest box extent
+    Real tolerance = Real(0);                     ///< absolute tolerance of contains / on-surface tests
     Real volume = Real(0);                        ///< volume (length^3)
     Vec3 centroid{Real(0)};                       ///< centre of volume, local frame
     Mat3 unit_inertia{Real(0)};                   ///< inertia about the centroid at density 1

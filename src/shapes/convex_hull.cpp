@@ -1,0 +1,207 @@
+// ConvexHull queries (the hull itself is built in convex_hull_build.cpp).
+//
+//  - support_index: linear scan for small hulls; otherwise hill-climbing over the vertex
+//    adjacency (a local maximum of a linear function over the vertex graph of a convex
+//    polytope is global; moves only on a strictly larger dot product, so no cycle) — the
+//    "hill climbing" of van den Bergen, Collision Detection in Interactive 3D
+//    Environments, 2004, sec. 4.3.4, and Cameron's "enhanced GJK" (1997).
+//  - raycast: Cyrus–Beck clipping of the ray's parameter interval against every face
+//    half-space (Cyrus and Beck 1978; Ericson, Real-Time Collision Detection, 5.3.8).
+//  - contains: every face plane test within tolerance().
+//  - closest_point (Ericson 5.1): inside, the nearest face plane (for a convex solid the
+//    depth is the smallest plane distance and the projection lies on that face); outside,
+//    the nearest of the projections that fall inside their face polygon and the closest
+//    points on every edge.
+//  - world_aabb: box of the transformed vertices.
+
+#include <proxima/core/tolerance.hpp>
+#include <proxima/shapes/convex_hull.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace proxima {
+
+namespace {
+
+// Closest point to p on segment ab (a == b allowed).
+Vec3 closest_on_segment(const Vec3& p, const Vec3& a, const Vec3& b) {
+  const Vec3 ab = b - a;
+  const Real len2 = glm::dot(ab, ab);
+  if (!(len2 > Real(0))) return a;
+  const Real t = std::clamp(glm::dot(p - a, ab) / len2, Real(0), Real(1));
+  return a + t * ab;
+}
+
+}  // namespace
+
+std::uint32_t ConvexHull::support_index(const Vec3& direction, std::uint32_t start_vertex) const {
+  const std::vector<Vec3>& v = data_->vertices;
+  const auto n = static_cast<std::uint32_t>(v.size());
+  if (n <= kLinearScanMaxVertices) {
+    std::uint32_t best = 0;
+    Real best_dot = glm::dot(v[0], direction);
+    for (std::uint32_t i = 1; i < n; ++i) {
+      const Real d = glm::dot(v[i], direction);
+      if (d > best_dot) {
+        best_dot = d;
+        best = i;
+      }
+    }
+    return best;
+  }
+  std::uint32_t current = start_vertex < n ? start_vertex : 0;
+  Real current_dot = glm::dot(v[current], direction);
+  // Steepest ascent: each pass moves to the best strictly better neighbour. The dot
+  // product strictly increases, so a vertex is never revisited and the loop ends.
+  for (;;) {
+    std::uint32_t next = current;
+    Real next_dot = current_dot;
+    for (std::uint32_t nb : vertex_neighbors(current)) {
+      const Real d = glm::dot(v[nb], direction);
+      if (d > next_dot) {
+        next_dot = d;
+        next = nb;
+      }
+    }
+    if (next == current) return current;
+    current = next;
+    current_dot = next_dot;
+  }
+}
+
+Aabb ConvexHull::world_aabb(const Transform& pose) const {
+  const Mat3 r = pose.rotation_matrix();
+  Aabb box = Aabb::empty();
+  for (const Vec3& v : data_->vertices) box.grow(r * v);
+  box.min += pose.position;
+  box.max += pose.position;
+  return box;
+}
+
+bool ConvexHull::contains(const Vec3& point) const {
+  const Real tol = data_->tolerance;
+  for (const HullFace& f : data_->faces) {
+    if (glm::dot(f.normal, point) - f.offset > tol) return false;
+  }
+  return true;
+}
+
+std::optional<RayHit> ConvexHull::raycast(const Ray& ray, Real max_t) const {
+  if (!(max_t >= Real(0))) return std::nullopt;
+  Real t_enter = Real(0);
+  Real t_exit = max_t;
+  const HullFace* enter_face = nullptr;
+  const Real tol = data_->tolerance;
+  for (const HullFace& f : data_->faces) {
+    // Inside the face's half-space: t * denom <= dist.
+    const Real denom = glm::dot(f.normal, ray.direction);
+    const Real dist = f.offset - glm::dot(f.normal, ray.origin);
+    if (denom == Real(0)) {
+      if (dist < -tol) return std::nullopt;  // parallel and outside
+      continue;
+    }
+    const Real t = dist / denom;
+    if (denom < Real(0)) {
+      if (t > t_enter) {
+        t_enter = t;
+        enter_face = &f;
+      }
+    } else if (t < t_exit) {
+      t_exit = t;
+    }
+    if (t_enter > t_exit) return std::nullopt;
+  }
+  RayHit hit;
+  if (enter_face == nullptr) {
+    // The origin is inside (or on) the hull.
+    hit.t = Real(0);
+    hit.point = ray.origin;
+    const Real len2 = glm::dot(ray.direction, ray.direction);
+    if (len2 > Real(0) && std::isfinite(len2)) {
+      hit.normal = -ray.direction / std::sqrt(len2);
+    } else {
+      hit.normal = closest_point(ray.origin).normal;
+    }
+    return hit;
+  }
+  hit.t = t_enter;
+  hit.point = ray.at(t_enter);
+  hit.normal = enter_face->normal;
+  return hit;
+}
+
+SurfacePoint ConvexHull::closest_point(const Vec3& point) const {
+  const std::vector<HullFace>& faces = data_->faces;
+  const std::vector<Vec3>& v = data_->vertices;
+  // The face whose plane is farthest in front of (or least behind) the point.
+  std::size_t best_face = 0;
+  Real best_plane = -kRealMax;
+  for (std::size_t i = 0; i < faces.size(); ++i) {
+    const Real d = glm::dot(faces[i].normal, point) - faces[i].offset;
+    if (d > best_plane) {
+      best_plane = d;
+      best_face = i;
+    }
+  }
+  SurfacePoint r;
+  if (best_plane <= Real(0)) {
+    // Inside or on the surface: the nearest face plane.
+    r.normal = faces[best_face].normal;
+    r.point = point - best_plane * r.normal;
+    r.signed_distance = best_plane;
+    return r;
+  }
+  // Outside: the nearest point over every face polygon.
+  Real best_d2 = kRealMax;
+  Vec3 best_point = point;
+  for (std::size_t i = 0; i < faces.size(); ++i) {
+    const HullFace& f = faces[i];
+    const Real d = glm::dot(f.normal, point) - f.offset;
+    if (d <= Real(0) || d * d >= best_d2) continue;
+    const Vec3 q = point - d * f.normal;
+    bool inside = true;
+    for (std::uint32_t k = 0; k < f.index_count && inside; ++k) {
+      const Vec3& a = v[data_->face_indices[f.first_index + k]];
+      const Vec3& b = v[data_->face_indices[f.first_index + (k + 1) % f.index_count]];
+      inside = glm::dot(glm::cross(b - a, q - a), f.normal) >= Real(0);
+    }
+    if (inside) {
+      best_d2 = d * d;
+      best_point = q;
+    }
+  }
+  for (const HullEdge& e : data_->edges) {
+    const Vec3 q = closest_on_segment(point, v[e.v0], v[e.v1]);
+    const Vec3 pq = point - q;
+    const Real d2 = glm::dot(pq, pq);
+    if (d2 < best_d2) {
+      best_d2 = d2;
+      best_point = q;
+    }
+  }
+  const Real dist = std::sqrt(best_d2);
+  r.point = best_point;
+  r.signed_distance = dist;
+  // Normal from the offset when it is well defined, else the nearest face's normal.
+  if (dist > std::numeric_limits<Real>::min() * Real(1e6)) {
+    const Vec3 n = (point - best_point) / dist;
+    const Real nl = glm::length(n);
+    r.normal = (nl > Real(0.5) && nl < Real(1.5)) ? n / nl : faces[best_face].normal;
+  } else {
+    r.normal = faces[best_face].normal;
+  }
+  return r;
+}
+
+MassProperties ConvexHull::mass_properties(Real density) const {
+  MassProperties m;
+  m.volume = data_->volume;
+  m.mass = density * data_->volume;
+  m.centroid = data_->centroid;
+  m.inertia = data_->unit_inertia * density;
+  return m;
+}
+
+}  // namespace proxima
