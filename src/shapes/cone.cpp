@@ -38,6 +38,24 @@ Real robust_hypot(Real a, Real b) {
   return m * std::sqrt(sa * sa + sb * sb);
 }
 
+// The distance rho of (x, y) from the axis and the unit radial direction (ux, uy) towards
+// it ((1, 0) on the axis), computed from the scaled components so that denormal or huge
+// coordinates still give a unit direction.
+Real radial_direction(Real x, Real y, Real& ux, Real& uy) {
+  const Real m = std::max(std::abs(x), std::abs(y));
+  if (!(m > Real(0))) {
+    ux = Real(1);
+    uy = Real(0);
+    return Real(0);
+  }
+  const Real sx = x / m;
+  const Real sy = y / m;
+  const Real len = std::sqrt(sx * sx + sy * sy);
+  ux = sx / len;
+  uy = sy / len;
+  return m * len;
+}
+
 }  // namespace
 
 Result<Cone> Cone::create(Real radius, Real half_length) {
@@ -95,9 +113,9 @@ SurfacePoint Cone::closest_point(const Vec3& point) const {
   const Real r = radius_;
   const Real h = half_length_;
   // The half-plane through the axis and the point: radial unit (ux, uy) (any one on the axis).
-  const Real rho = robust_hypot(point.x, point.y);
-  const Real ux = rho > Real(0) ? point.x / rho : Real(1);
-  const Real uy = rho > Real(0) ? point.y / rho : Real(0);
+  Real ux;
+  Real uy;
+  const Real rho = radial_direction(point.x, point.y, ux, uy);
   const Real z = point.z;
 
   // Slant edge from the apex A = (0, h) to the rim B = (r, -h): E = (r, -2h).

@@ -35,6 +35,24 @@ Real robust_hypot(Real a, Real b) {
   return m * std::sqrt(sa * sa + sb * sb);
 }
 
+// The distance rho of (x, y) from the axis and the unit radial direction (ux, uy) towards
+// it ((1, 0) on the axis), computed from the scaled components so that denormal or huge
+// coordinates still give a unit direction.
+Real radial_direction(Real x, Real y, Real& ux, Real& uy) {
+  const Real m = std::max(std::abs(x), std::abs(y));
+  if (!(m > Real(0))) {
+    ux = Real(1);
+    uy = Real(0);
+    return Real(0);
+  }
+  const Real sx = x / m;
+  const Real sy = y / m;
+  const Real len = std::sqrt(sx * sx + sy * sy);
+  ux = sx / len;
+  uy = sy / len;
+  return m * len;
+}
+
 }  // namespace
 
 Result<Cylinder> Cylinder::create(Real radius, Real half_length) {
@@ -79,9 +97,9 @@ SurfacePoint Cylinder::closest_point(const Vec3& point) const {
   const Real r = radius_;
   const Real h = half_length_;
   // Radial unit vector of the half-plane holding the point (any one on the axis).
-  const Real rho = robust_hypot(point.x, point.y);
-  const Real ux = rho > Real(0) ? point.x / rho : Real(1);
-  const Real uy = rho > Real(0) ? point.y / rho : Real(0);
+  Real ux;
+  Real uy;
+  const Real rho = radial_direction(point.x, point.y, ux, uy);
   const Real sz = point.z < Real(0) ? Real(-1) : Real(1);
   const Real dr = rho - r;                // > 0 beyond the side
   const Real dz = std::abs(point.z) - h;  // > 0 beyond the cap
