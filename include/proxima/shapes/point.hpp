@@ -1,0 +1,62 @@
+#pragma once
+/// @file point.hpp
+/// Point: a shape reduced to its local origin (a sphere of radius zero), the simplest
+/// core for "core + radius" queries and a probe for distance tests.
+
+#include <proxima/core/math.hpp>
+#include <proxima/core/result.hpp>
+#include <proxima/core/transform.hpp>
+#include <proxima/geometry/aabb.hpp>
+#include <proxima/geometry/ray.hpp>
+#include <proxima/shapes/mass_properties.hpp>
+#include <proxima/shapes/shape_type.hpp>
+#include <proxima/shapes/surface_point.hpp>
+
+#include <optional>
+
+namespace proxima {
+
+/// The single point at the local origin. A shape without interior: its closest-point
+/// distances are never negative and `contains` accepts only points within
+/// `linear_tolerance(0)` (= kRelativeTolerance) of the origin.
+///
+/// Members as every shape (see Sphere), all in the local frame unless the name says world.
+class Point {
+ public:
+  /// Dispatch tag.
+  static constexpr ShapeType kType = ShapeType::Point;
+
+  /// Construction (nothing to validate; always succeeds).
+  static Result<Point> create();
+
+  /// Farthest point in `direction`: the origin, for every direction.
+  Vec3 support(const Vec3& /*direction*/) const { return Vec3(Real(0)); }
+  /// Farthest point of the core (the point itself): the origin.
+  Vec3 core_support(const Vec3& /*direction*/) const { return Vec3(Real(0)); }
+  /// Radius added around the core: 0.
+  Real core_radius() const { return Real(0); }
+
+  /// The degenerate box [0, 0] in the local frame.
+  Aabb local_aabb() const;
+  /// The degenerate box of the point `pose.position` in the world frame.
+  Aabb world_aabb(const Transform& pose) const;
+
+  /// First point of `ray` (local frame) within [0, max_t] that passes within
+  /// `linear_tolerance(|origin|)` of the point, or nothing. The hit is the nearest
+  /// approach of the ray to the point (t clamped to [0, max_t]) and its normal is
+  /// -direction/|direction| (+z for a zero direction, which hits only when the origin is on
+  /// the point).
+  std::optional<RayHit> raycast(const Ray& ray, Real max_t) const;
+  /// True when `point` (local) is within kRelativeTolerance of the origin.
+  bool contains(const Vec3& point) const;
+  /// The origin, its distance |point| (>= 0) and the unit direction from the origin towards
+  /// `point` (+z when `point` is on the origin).
+  SurfacePoint closest_point(const Vec3& point) const;
+  /// Zero volume, mass and inertia; centroid at the origin.
+  MassProperties mass_properties(Real density = Real(1)) const;
+
+ private:
+  Point() = default;
+};
+
+}  // namespace proxima

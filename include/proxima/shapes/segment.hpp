@@ -1,0 +1,76 @@
+#pragma once
+/// @file segment.hpp
+/// Segment: the line segment between two local points, a shape without interior and the
+/// core of the capsule.
+
+#include <proxima/core/math.hpp>
+#include <proxima/core/result.hpp>
+#include <proxima/core/transform.hpp>
+#include <proxima/geometry/aabb.hpp>
+#include <proxima/geometry/ray.hpp>
+#include <proxima/shapes/mass_properties.hpp>
+#include <proxima/shapes/shape_type.hpp>
+#include <proxima/shapes/surface_point.hpp>
+
+#include <optional>
+
+namespace proxima {
+
+/// Line segment ab, end points in local coordinates. A shape without interior: distances
+/// are never negative and `contains` accepts points within `tolerance()` of the segment.
+///
+/// Members as every shape (see Sphere), all in the local frame unless the name says world.
+class Segment {
+ public:
+  /// Dispatch tag.
+  static constexpr ShapeType kType = ShapeType::Segment;
+
+  /// Validated construction: finite end points (error fields "a.x" ... "b.z", NotFinite or
+  /// OutOfRange) that do not coincide: |b - a| must exceed kRelativeTolerance times the
+  /// largest end-point coordinate (ErrorCode::Degenerate, field "b").
+  static Result<Segment> create(const Vec3& a, const Vec3& b);
+
+  /// First end point (local frame).
+  const Vec3& a() const { return a_; }
+  /// Second end point (local frame).
+  const Vec3& b() const { return b_; }
+  /// Length |b - a| (> 0).
+  Real length() const { return glm::length(b_ - a_); }
+  /// Distance within which a point counts as on the segment: linear_tolerance of the
+  /// largest end-point coordinate (which bounds both the size and the coordinate rounding).
+  Real tolerance() const { return tolerance_; }
+
+  /// Farthest end point in `direction` (a for a zero direction or a tie).
+  Vec3 support(const Vec3& direction) const;
+  /// Farthest point of the core (the segment itself) in `direction`: support(direction).
+  Vec3 core_support(const Vec3& direction) const { return support(direction); }
+  /// Radius added around the core: 0.
+  Real core_radius() const { return Real(0); }
+
+  /// Box of the two end points in the local frame.
+  Aabb local_aabb() const;
+  /// Box of the two transformed end points in the world frame (exact).
+  Aabb world_aabb(const Transform& pose) const;
+
+  /// First point of `ray` (local frame) within [0, max_t] that passes within
+  /// max(tolerance(), linear_tolerance(|origin|)) of the segment, or nothing. A ray along
+  /// the segment's line hits where it enters the segment. The normal is orthogonal to the
+  /// segment and faces the ray origin (-direction/|direction| for a ray along the segment,
+  /// +z-like orthogonal vector for a zero direction on the segment).
+  std::optional<RayHit> raycast(const Ray& ray, Real max_t) const;
+  /// True when `point` (local) is within tolerance() of the segment.
+  bool contains(const Vec3& point) const;
+  /// Nearest point of the segment, its distance (>= 0) and the unit direction from it
+  /// towards `point` (a unit vector orthogonal to the segment when `point` is on it).
+  SurfacePoint closest_point(const Vec3& point) const;
+  /// Zero volume, mass and inertia; centroid at the midpoint (a + b) / 2.
+  MassProperties mass_properties(Real density = Real(1)) const;
+
+ private:
+  Segment(const Vec3& a, const Vec3& b, Real tolerance) : a_(a), b_(b), tolerance_(tolerance) {}
+  Vec3 a_;
+  Vec3 b_;
+  Real tolerance_;
+};
+
+}  // namespace proxima
