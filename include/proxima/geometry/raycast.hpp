@@ -35,8 +35,7 @@ std::optional<RayHit> ray_cylinder(const Ray& ray, Real max_t, const Vec3& p0, c
 
 /// Solid capped cone: `apex`, the centre of its base disc `base_center` (!= apex) and
 /// the base radius > 0.
-std::optional<RayHit> ray_cone(const Ray& ray, Real max_t, const Vec3& apex, const Vec3& base_center,
-                               Real base_radius);
+std::optional<RayHit> ray_cone(const Ray& ray, Real max_t, const Vec3& apex, const Vec3& base_center, Real base_radius);
 
 /// The plane n.x = d as a two-sided surface (`normal` unit). A ray lying in the plane hits
 /// at t = 0. The returned normal faces the ray origin.
@@ -49,6 +48,30 @@ std::optional<RayHit> ray_halfspace(const Ray& ray, Real max_t, const Vec3& norm
 /// Intersection", JCGT 2013): a ray through a shared edge or vertex of a closed mesh hits
 /// at least one of the triangles. Degenerate triangles are never hit. The normal faces
 /// the ray origin.
+///
+/// Edge and vertex hits count (the triangle is closed). Degenerate means collinear or
+/// coincident vertices, and also slivers whose smallest angle has a sine below about
+/// 16 epsilon of Real. A ray parallel to the triangle's plane (including one lying in it)
+/// misses, and a zero direction never hits. For many triangles against one ray (a mesh),
+/// prepare the ray once with TriangleRay. O(1).
 std::optional<RayHit> ray_triangle(const Ray& ray, Real max_t, const Vec3& a, const Vec3& b, const Vec3& c);
+
+/// A ray prepared for the watertight triangle test: the axis permutation and shear that
+/// map the direction to +z, with the direction scaled by a power of two so that the shear
+/// never overflows. Building it once per ray saves that work in mesh traversals; the
+/// answers are bit-identical to the plain ray_triangle.
+struct TriangleRay {
+  Ray ray;                     ///< the original ray (hit points are computed from it)
+  Vec3 shear{Real(0)};         ///< (Sx, Sy, Sz) of the paper, for the scaled direction
+  int kx = 0, ky = 1, kz = 2;  ///< axis permutation: kz is the dominant direction axis
+  int exponent = 0;            ///< direction = scaled direction * 2^exponent
+  bool valid = false;          ///< false for a zero or non-finite ray: nothing is hit
+
+  /// Prepares `ray` (any direction; zero or non-finite ones give valid == false).
+  static TriangleRay prepare(const Ray& ray);
+};
+
+/// Watertight ray-triangle test with a prepared ray; same answer as the overload above.
+std::optional<RayHit> ray_triangle(const TriangleRay& ray, Real max_t, const Vec3& a, const Vec3& b, const Vec3& c);
 
 }  // namespace proxima::geometry
