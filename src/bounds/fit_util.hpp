@@ -1,0 +1,63 @@
+#pragma once
+// Internal helpers shared by the fitters: input validation, a symmetric 3x3 eigen solver,
+// exact-containment finishing passes.
+
+#include <proxima/bounds/bounding_sphere.hpp>
+#include <proxima/bounds/obb.hpp>
+#include <proxima/core/math.hpp>
+#include <proxima/core/result.hpp>
+
+#include <glm/mat3x3.hpp>
+#include <glm/vec3.hpp>
+
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string>
+
+namespace proxima::detail {
+
+/// Non-empty set of finite points: TooFew "<field>" or the first bad "<field>[i].x".
+std::optional<Error> validate_points(std::span<const Vec3> points, const std::string& field = "points");
+
+/// Eigen decomposition of a symmetric 3x3 matrix by cyclic Jacobi rotations (Golub and
+/// Van Loan, 8.5): returns the eigenvectors as columns, sorted by decreasing eigenvalue,
+/// orthonormal and right-handed; `values` receives the eigenvalues.
+glm::dmat3 symmetric_eigen(const glm::dmat3& m, glm::dvec3& values);
+
+/// Orthonormal right-handed frame (double) whose first column is `axis` (normalised;
+/// zero gives the identity).
+glm::dmat3 frame_from_axis(const glm::dvec3& axis);
+
+/// Orthonormalises `frame` (Gram-Schmidt on columns 0, 1; column 2 = cross) in double.
+glm::dmat3 orthonormalize(const glm::dmat3& frame);
+
+/// The tightest box with axes `frame` (orthonormal columns) containing every point, in the
+/// exact sense of Obb::contains.
+Obb fit_obb_to_frame(std::span<const Vec3> points, const glm::dmat3& frame);
+
+/// Surface area of the box of `points` in `frame` (DiTO's quality measure) and its volume.
+struct FrameExtent {
+  double area = 0.0;    ///< half surface area (ex ey + ey ez + ez ex)
+  double volume = 0.0;  ///< ex ey ez
+};
+/// Extents of the points (any representation with operator[] -> dvec3) in `frame`.
+FrameExtent frame_extent(std::span<const glm::dvec3> points, const glm::dmat3& frame);
+
+/// Sphere centred at `center` whose radius is the smallest Real for which every point
+/// passes BoundingSphere::contains.
+BoundingSphere finish_sphere(std::span<const Vec3> points, const Vec3& center);
+
+/// splitmix64: the deterministic generator behind the fitters' fixed-seed shuffles.
+inline std::uint64_t splitmix64(std::uint64_t& state) {
+  std::uint64_t z = (state += 0x9E3779B97F4A7C15ull);
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+  return z ^ (z >> 31);
+}
+
+/// Minimal enclosing ball of points given in double (relative coordinates), by the
+/// move-to-front Welzl algorithm with pivoting; `center` and squared radius out.
+void minimal_ball(std::span<const glm::dvec3> points, glm::dvec3& center, double& radius_squared);
+
+}  // namespace proxima::detail
