@@ -13,8 +13,10 @@
 //    slant edge apex-rim and the base edge centre-rim of the triangle
 //    (0, h), (r, -h), (0, -h) (the axis edge is interior to the solid). The answer is the
 //    nearer of the two segments' closest points (Ericson, Real-Time Collision Detection,
-//    5.1.2, in 2-D). Points inside take the normal of the nearer face; the sign is taken
-//    from contains() so that the two queries always agree.
+//    5.1.2, in 2-D); distances to an edge's interior are taken from its line equation and
+//    distances to a vertex from the exact vertex, which keeps the normal accurate close to
+//    the surface. Points inside take the normal of the nearer face; the sign is taken from
+//    contains() so that the two queries always agree.
 //  - raycast: geometry::ray_cone.
 //  - mass_properties: the standard solid-cone formulas (centroid at a quarter of the height
 //    above the base, inertia about the centroid).
@@ -101,12 +103,10 @@ bool Cone::contains(const Vec3& point) const {
   if (!(point.z >= -h && point.z <= h)) return false;
   const Real rho2 = point.x * point.x + point.y * point.y;
   if (rho2 > radius_ * radius_) return false;
-  // rho 2h <= r (h - z), squared (both sides >= 0) after dividing both factors by
-  // max(2h, r) so that no product overflows whatever the aspect ratio.
-  const Real s = std::max(Real(2) * h, radius_);
-  const Real a = Real(2) * h / s;
-  const Real b = radius_ / s * (h - point.z);
-  return rho2 * (a * a) <= b * b;
+  // rho 2h <= r (h - z). With rho <= r no product overflows, and the boundary points that
+  // are exact in floating point (apex, rim, base, slant midpoints) test as inside:
+  // sqrt(r * r) == r and h - (-h) == 2h exactly.
+  return std::sqrt(rho2) * (Real(2) * h) <= radius_ * (h - point.z);
 }
 
 SurfacePoint Cone::closest_point(const Vec3& point) const {
@@ -118,39 +118,59 @@ SurfacePoint Cone::closest_point(const Vec3& point) const {
   const Real rho = radial_direction(point.x, point.y, ux, uy);
   const Real z = point.z;
 
-  // Slant edge from the apex A = (0, h) to the rim B = (r, -h): E = (r, -2h).
-  const Real ex = r;
-  const Real ez = Real(-2) * h;
-  const Real t = std::clamp((rho * ex + (z - h) * ez) / (ex * ex + ez * ez), Real(0), Real(1));
-  const Real p1x = t * r;
-  const Real p1z = h + t * ez;
-  const Real d1 = robust_hypot(rho - p1x, z - p1z);
-  // Base edge from the centre C = (0, -h) to the rim B.
-  const Real p2x = std::min(rho, r);
-  const Real p2z = -h;
-  const Real d2 = robust_hypot(rho - p2x, z - p2z);
+  // Slant edge from the apex A = (0, h) to the rim B = (r, -h): length len, unit tangent
+  // (tx, tz) from A, unit outward normal (sx, sz).
+  const Real len = robust_hypot(Real(2) * h, r);
+  const Real tx = r / len;
+  const Real tz = Real(-2) * h / len;
+  const Real sx = Real(2) * h / len;
+  const Real sz = r / len;
+  const Real along = rho * tx + (z - h) * tz;  // coordinate along the edge from A
+
+  // Nearest point of the slant edge: the apex, the rim or an interior point. Face-interior
+  // distances come from the face planes, vertex distances from the exact vertices, so that
+  // neither loses accuracy when the point is close to the surface.
+  enum class Feature { Face, Apex, Rim };
+  Real p1x;
+  Real p1z;
+  Real d1;
+  Feature f1;
+  if (along <= Real(0)) {
+    p1x = Real(0);
+    p1z = h;
+    d1 = robust_hypot(rho, z - h);
+    f1 = Feature::Apex;
+  } else if (along >= len) {
+    p1x = r;
+    p1z = -h;
+    d1 = robust_hypot(rho - r, z + h);
+    f1 = Feature::Rim;
+  } else {
+    p1x = along * tx;
+    p1z = h + along * tz;
+    d1 = std::abs(rho * sx + (z - h) * sz);
+    f1 = Feature::Face;
+  }
+  // Nearest point of the base edge from the centre C = (0, -h) to the rim B.
+  const bool base_face = rho <= r;
+  const Real p2x = base_face ? rho : r;
+  const Real d2 = base_face ? std::abs(z + h) : robust_hypot(rho - r, z + h);
 
   const bool inside = contains(point);
   const bool slant = d1 <= d2;
   const Real px = slant ? p1x : p2x;
-  const Real pz = slant ? p1z : p2z;
+  const Real pz = slant ? p1z : -h;
   const Real d = slant ? d1 : d2;
+  const bool at_vertex = slant ? f1 != Feature::Face : !base_face;
 
   SurfacePoint sp;
   sp.point = Vec3(px * ux, px * uy, pz);
-  Real nx;
-  Real nz;
-  if (!inside && d > Real(0)) {
+  // Face normal of the chosen edge; from a vertex, outside, the direction to the point.
+  Real nx = slant ? sx : Real(0);
+  Real nz = slant ? sz : Real(-1);
+  if (!inside && at_vertex && d > Real(0)) {
     nx = (rho - px) / d;
     nz = (z - pz) / d;
-  } else if (slant) {
-    // Outward normal of the slant face: (2h, r) / |(2h, r)|.
-    const Real len = robust_hypot(Real(2) * h, r);
-    nx = Real(2) * h / len;
-    nz = r / len;
-  } else {
-    nx = Real(0);
-    nz = Real(-1);
   }
   sp.normal = Vec3(nx * ux, nx * uy, nz);
   sp.signed_distance = inside ? -d : d;
