@@ -7,7 +7,8 @@
 //    Environments, 2004, sec. 4.3.4, and Cameron's "enhanced GJK" (1997).
 //  - raycast: Cyrus–Beck clipping of the ray's parameter interval against every face
 //    half-space (Cyrus and Beck 1978; Ericson, Real-Time Collision Detection, 5.3.8).
-//  - contains: every face plane test within tolerance().
+//  - contains: every face plane test; a point within tolerance() in front of some planes
+//    is decided by its exact distance (shifted planes would bulge out at sharp edges).
 //  - closest_point (Ericson 5.1): inside, the nearest face plane (for a convex solid the
 //    depth is the smallest plane distance and the projection lies on that face); outside,
 //    the nearest of the projections that fall inside their face polygon and the closest
@@ -82,10 +83,16 @@ Aabb ConvexHull::world_aabb(const Transform& pose) const {
 
 bool ConvexHull::contains(const Vec3& point) const {
   const Real tol = data_->tolerance;
+  Real worst = -kRealMax;
   for (const HullFace& f : data_->faces) {
-    if (glm::dot(f.normal, point) - f.offset > tol) return false;
+    const Real d = glm::dot(f.normal, point) - f.offset;
+    if (d > tol) return false;
+    worst = std::max(worst, d);
   }
-  return true;
+  if (worst <= Real(0)) return true;
+  // Within tolerance of some face planes: the planes shifted out by tol would meet far
+  // beyond a sharp edge of a thin hull, so decide by the true distance to the hull.
+  return closest_point(point).signed_distance <= tol;
 }
 
 std::optional<RayHit> ConvexHull::raycast(const Ray& ray, Real max_t) const {

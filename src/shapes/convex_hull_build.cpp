@@ -3,24 +3,31 @@
 // Steps:
 //  1. Validate: at least 4 points, every coordinate finite and within kMaxCoordinate.
 //  2. Normalise in double: translate to the centre of the points' box and divide by its
-//     largest extent, so that qhull's fixed tolerances see the same unit-size problem at
-//     1e-4 and at 1e4 scales and far from the origin.
+//     largest extent, so that qhull's tolerances see the same unit-size problem at 1e-4
+//     and at 1e4 scales and far from the origin.
 //  3. Flatness check: farthest pair, farthest point from their line, farthest point from
 //     the plane of the three (an O(n) approximation of the cloud's width); a cloud that is
 //     coincident, collinear or coplanar within tolerance is Degenerate.
 //  4. Run qhull (Barber, Dobkin, Huhdanpaa, "The Quickhull Algorithm for Convex Hulls",
-//     ACM TOMS 1996) in double with its default merging ('C-0'), which merges coplanar
-//     facets into convex polygons; 'Qs' searches every point for the initial simplex.
-//     Qhull's messages go to a temporary file, read back for the error message.
-//  5. For every qhull facet, order its vertices counter-clockwise seen from outside by a
-//     2-D convex hull (Andrew's monotone chain, Andrew 1979) in the facet plane, which also
-//     drops any vertex that is not a corner of the polygon.
-//  6. Free qhull's memory (on every path), then compact the vertex indices, recompute each
-//     face plane from its loop (Newell's method, offset = the largest vertex offset so
-//     every loop vertex lies on or below it), pair each directed edge with its reverse,
-//     and check the closed 2-manifold (each directed edge once with its reverse in another
-//     face, V - E + F = 2); build the vertex adjacency (CSR).
-//  7. Box, scale, tolerance, and mass properties (convex_hull_mass.cpp).
+//     ACM TOMS 1996) in double with pre-merging 'C-r', r = 4 epsilon of Real (relative to
+//     the hull's size), so that facets coplanar within the resolution of Real merge into
+//     convex polygons (a rotated box keeps six faces in float); 'Qs' searches every point
+//     for the initial simplex. Qhull's messages go to a temporary file, read back for the
+//     error message. Its memory is freed on every path.
+//  5. Each facet's vertex loop comes from qhull's own topology: the ridges of a merged
+//     facet are walked end to end (as qhull's qh_facet3vertex does), a simplicial facet's
+//     order follows its orientation flag, so every edge is traversed once in each
+//     direction by its two faces. The loops are turned to be counter-clockwise seen from
+//     outside (one global orientation, checked face by face against qhull's normals).
+//  6. Vertices shared by only two faces lie on a straight edge and are removed from both
+//     loops (they would stall hill-climbing). Compact the vertex indices, recompute each
+//     face plane from its loop (Newell's method, offset = the largest vertex offset),
+//     pair each directed edge with its reverse, check the closed 2-manifold (each directed
+//     edge once with its reverse in another face, V - E + F = 2), build the vertex
+//     adjacency (CSR). If qhull or any check fails, qhull runs again with only its own
+//     double-precision merging ('C-0') before Internal is reported.
+//  7. Box, scale, tolerance; the hull's width over its face normals must exceed the
+//     flatness tolerance; mass properties (convex_hull_mass.cpp).
 
 #include <proxima/core/tolerance.hpp>
 #include <proxima/core/validate.hpp>
@@ -61,11 +68,6 @@ double norm(const D3& a) { return std::sqrt(dot(a, a)); }
 // Relative width below which a cloud counts as flat: the resolution of Real, so that the
 // float and double builds reject what they cannot represent as a solid.
 constexpr double kFlatRelative = double(kRelativeTolerance);
-
-// A face as extracted from qhull: the input ids of its CCW loop.
-struct RawFace {
-  std::vector<int> ids;
-};
 
 // Owns a temporary FILE for qhull's messages and closes it on every path.
 class MessageFile {
@@ -123,54 +125,42 @@ class QhullSession {
   std::unique_ptr<qhT> qh_;
 };
 
-// Orders the points `ids` of a facet with outward normal `n` counter-clockwise seen from
-// outside, keeping only the strict corners (Andrew's monotone chain in the facet plane).
-std::vector<int> order_facet_loop(const std::vector<int>& ids, const D3& n, const std::vector<D3>& pts) {
-  // Orthonormal (u, w) with u x w = n.
-  const D3 helper = std::abs(n[0]) < 0.6 ? D3{1, 0, 0} : (std::abs(n[1]) < 0.6 ? D3{0, 1, 0} : D3{0, 0, 1});
-  D3 u = cross(helper, n);
-  const double ul = norm(u);
-  u = {u[0] / ul, u[1] / ul, u[2] / ul};
-  const D3 w = cross(n, u);
-
-  struct P2 {
-    double x, y;
-    int id;
-  };
-  std::vector<P2> p;
-  p.reserve(ids.size());
-  for (int id : ids) p.push_back({dot(pts[id], u), dot(pts[id], w), id});
-  std::sort(p.begin(), p.end(), [](const P2& a, const P2& b) { return a.x < b.x || (a.x == b.x && a.y < b.y); });
-  p.erase(std::unique(p.begin(), p.end(), [](const P2& a, const P2& b) { return a.x == b.x && a.y == b.y; }), p.end());
-  if (p.size() < 3) return {};
-  auto turn = [](const P2& o, const P2& a, const P2& b) {
-    return (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x);
-  };
-  std::vector<P2> h(2 * p.size());
-  std::size_t k = 0;
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    while (k >= 2 && turn(h[k - 2], h[k - 1], p[i]) <= 0) --k;
-    h[k++] = p[i];
-  }
-  for (std::size_t i = p.size() - 1, t = k + 1; i > 0; --i) {
-    while (k >= t && turn(h[k - 2], h[k - 1], p[i - 1]) <= 0) --k;
-    h[k++] = p[i - 1];
-  }
-  h.resize(k - 1);
-  std::vector<int> loop;
-  loop.reserve(h.size());
-  for (const P2& q : h) loop.push_back(q.id);
-  return loop;
-}
-
-// Result of running qhull: faces (CCW loops of input ids, outward) or an error.
+// What qhull produced: one vertex loop (input point ids) per facet with the facet's
+// outward unit normal, or an error.
 struct QhullOutcome {
-  std::vector<RawFace> faces;
+  std::vector<std::vector<int>> loops;
+  std::vector<D3> normals;
   int exit_code = 0;
   std::string message;
 };
 
-QhullOutcome run_qhull(const std::vector<D3>& pts) {
+// The next ridge around `facet` after `at`, and the vertex it leads to (the walk of
+// qhull's qh_nextridge3d, written without its error exits). nullptr when the ridges do
+// not close.
+ridgeT* next_ridge(ridgeT* at, facetT* facet, vertexT** vertex_out) {
+  vertexT* at_vertex = (at->top == facet) ? SETsecondt_(at->vertices, vertexT) : SETfirstt_(at->vertices, vertexT);
+  ridgeT* ridge = nullptr;
+  ridgeT** ridgep = nullptr;
+  FOREACHridge_(facet->ridges) {
+    if (ridge == at) continue;
+    vertexT* first = nullptr;
+    vertexT* other = nullptr;
+    if (ridge->top == facet) {
+      other = SETsecondt_(ridge->vertices, vertexT);
+      first = SETfirstt_(ridge->vertices, vertexT);
+    } else {
+      first = SETsecondt_(ridge->vertices, vertexT);
+      other = SETfirstt_(ridge->vertices, vertexT);
+    }
+    if (first == at_vertex) {
+      *vertex_out = other;
+      return ridge;
+    }
+  }
+  return nullptr;
+}
+
+QhullOutcome run_qhull(const std::vector<D3>& pts, double merge_radius) {
   QhullOutcome out;
   std::vector<coordT> coords(pts.size() * 3);
   for (std::size_t i = 0; i < pts.size(); ++i) {
@@ -181,32 +171,216 @@ QhullOutcome run_qhull(const std::vector<D3>& pts) {
   MessageFile messages;
   QhullSession session(messages.get());
   qhT* qh = session.get();
-  char command[] = "qhull Qs";
+  char command[64];
+  std::snprintf(command, sizeof command, "qhull Qs C-%.3g", merge_radius);
   out.exit_code =
       qh_new_qhull(qh, 3, static_cast<int>(pts.size()), coords.data(), False, command, nullptr, messages.get());
   if (out.exit_code != 0) {
     out.message = messages.first_line();
     return out;
   }
+  auto fail = [&](const char* why) {
+    out.exit_code = qh_ERRqhull;
+    out.message = why;
+    out.loops.clear();
+    return out;
+  };
+  auto point_id = [&](vertexT* v) {
+    const int id = qh_pointid(qh, v->point);
+    return (id >= 0 && static_cast<std::size_t>(id) < pts.size()) ? id : -1;
+  };
   facetT* facet = nullptr;
-  vertexT* vertex = nullptr;
-  vertexT** vertexp = nullptr;
-  std::vector<int> ids;
   FORALLfacets {
-    ids.clear();
-    FOREACHvertex_(facet->vertices) { ids.push_back(qh_pointid(qh, vertex->point)); }
-    const D3 n{facet->normal[0], facet->normal[1], facet->normal[2]};
-    bool valid_ids = true;
-    for (int id : ids) valid_ids = valid_ids && id >= 0 && static_cast<std::size_t>(id) < pts.size();
-    const double nl = norm(n);
-    if (!valid_ids || !(nl > 0.5)) {
-      out.exit_code = qh_ERRqhull;
-      out.message = "qhull returned a facet without a valid plane or with non-input vertices";
-      return out;
+    std::vector<int> loop;
+    const int count = qh_setsize(qh, facet->vertices);
+    if (facet->simplicial) {
+      // Vertex set sorted by decreasing id; the orientation flag says which way round.
+      if (count != 3) return fail("a simplicial facet without 3 vertices");
+      vertexT* v0 = SETfirstt_(facet->vertices, vertexT);
+      vertexT* v1 = SETsecondt_(facet->vertices, vertexT);
+      vertexT* v2 = SETelemt_(facet->vertices, 2, vertexT);
+      if (facet->toporient) {
+        loop = {point_id(v0), point_id(v1), point_id(v2)};
+      } else {
+        loop = {point_id(v1), point_id(v0), point_id(v2)};
+      }
+    } else {
+      if (facet->ridges == nullptr || qh_setsize(qh, facet->ridges) < 3) return fail("a facet without ridges");
+      ridgeT* first = SETfirstt_(facet->ridges, ridgeT);
+      ridgeT* ridge = first;
+      vertexT* vertex = nullptr;
+      while ((ridge = next_ridge(ridge, facet, &vertex)) != nullptr) {
+        loop.push_back(point_id(vertex));
+        if (static_cast<int>(loop.size()) > count || ridge == first) break;
+      }
+      if (ridge == nullptr || static_cast<int>(loop.size()) != count) return fail("the ridges of a facet do not close");
     }
-    out.faces.push_back({order_facet_loop(ids, {n[0] / nl, n[1] / nl, n[2] / nl}, pts)});
+    for (int id : loop) {
+      if (id < 0) return fail("a facet vertex is not an input point");
+    }
+    const D3 n{facet->normal[0], facet->normal[1], facet->normal[2]};
+    const double nl = norm(n);
+    if (!(nl > 0.5)) return fail("a facet without a valid plane");
+    out.loops.push_back(std::move(loop));
+    out.normals.push_back({n[0] / nl, n[1] / nl, n[2] / nl});
   }
   return out;
+}
+
+// Turns qhull's loops counter-clockwise seen from outside and removes the vertices that
+// only two faces share. With `require_convex`, a loop that turns the wrong way at some
+// vertex by more than the resolution of Real (which merging within a radius can leave
+// where neighbours are nearly coplanar) makes the loops unusable. Returns an empty
+// string, or why the loops are unusable.
+std::string orient_and_simplify(QhullOutcome& hull, const std::vector<D3>& pts, bool require_convex) {
+  // One orientation for all loops (the ridge walk is consistent between neighbours):
+  // the sign of the total area vector against qhull's outward normals.
+  std::vector<double> along(hull.loops.size());
+  std::vector<double> area(hull.loops.size());
+  double total = 0;
+  for (std::size_t f = 0; f < hull.loops.size(); ++f) {
+    const std::vector<int>& loop = hull.loops[f];
+    D3 a{0, 0, 0};
+    const D3& o = pts[loop[0]];
+    for (std::size_t k = 1; k + 1 < loop.size(); ++k) {
+      const D3 t = cross(sub(pts[loop[k]], o), sub(pts[loop[k + 1]], o));
+      a = {a[0] + t[0], a[1] + t[1], a[2] + t[2]};
+    }
+    along[f] = dot(a, hull.normals[f]);
+    area[f] = norm(a);
+    total += along[f];
+  }
+  const bool flip = total < 0;
+  for (std::size_t f = 0; f < hull.loops.size(); ++f) {
+    // A face of visible size must agree with the global orientation.
+    if (area[f] > 1e-9 && (flip ? -along[f] : along[f]) < 0.5 * area[f]) return "inconsistent facet orientation";
+    if (flip) std::reverse(hull.loops[f].begin(), hull.loops[f].end());
+  }
+
+  // Vertices of exactly two faces lie on the straight edge between them.
+  std::vector<int> face_count(pts.size(), 0);
+  for (const auto& loop : hull.loops) {
+    for (int id : loop) ++face_count[id];
+  }
+  for (auto& loop : hull.loops) {
+    loop.erase(std::remove_if(loop.begin(), loop.end(), [&](int id) { return face_count[id] == 2; }), loop.end());
+    if (loop.size() < 3) return "a facet collapsed to an edge";
+  }
+  if (require_convex) {
+    const double min_sine = -16.0 * double(kEpsilon);
+    for (std::size_t f = 0; f < hull.loops.size(); ++f) {
+      const std::vector<int>& loop = hull.loops[f];
+      for (std::size_t k = 0; k < loop.size(); ++k) {
+        const D3 ab = sub(pts[loop[(k + 1) % loop.size()]], pts[loop[k]]);
+        const D3 bc = sub(pts[loop[(k + 2) % loop.size()]], pts[loop[(k + 1) % loop.size()]]);
+        if (dot(cross(ab, bc), hull.normals[f]) < min_sine * norm(ab) * norm(bc)) return "a merged facet is not convex";
+      }
+    }
+  }
+  return {};
+}
+
+// Builds vertices, faces (planes by Newell's method), edges and adjacency from the
+// oriented loops, checking the closed 2-manifold. Returns an empty string, or why not.
+std::string assemble(std::span<const Vec3> points, const QhullOutcome& hull, ConvexHull::Data& data,
+                     std::vector<D3>& vd) {
+  std::vector<std::uint32_t> remap(points.size(), std::numeric_limits<std::uint32_t>::max());
+  vd.clear();
+  for (const std::vector<int>& ids : hull.loops) {
+    for (int id : ids) {
+      if (remap[id] == std::numeric_limits<std::uint32_t>::max()) {
+        remap[id] = static_cast<std::uint32_t>(data.vertices.size());
+        data.vertices.push_back(points[id]);
+        vd.push_back({double(points[id].x), double(points[id].y), double(points[id].z)});
+      }
+    }
+  }
+  const std::size_t nv = data.vertices.size();
+
+  data.faces.reserve(hull.loops.size());
+  for (const std::vector<int>& ids : hull.loops) {
+    HullFace face;
+    face.first_index = static_cast<std::uint32_t>(data.face_indices.size());
+    face.index_count = static_cast<std::uint32_t>(ids.size());
+    D3 c{0, 0, 0};
+    for (int id : ids) {
+      const D3& v = vd[remap[id]];
+      for (int a = 0; a < 3; ++a) c[a] += v[a];
+    }
+    for (int a = 0; a < 3; ++a) c[a] /= double(ids.size());
+    D3 n{0, 0, 0};  // Newell's method, relative to the loop centroid
+    for (std::size_t k = 0; k < ids.size(); ++k) {
+      const D3 p = sub(vd[remap[ids[k]]], c);
+      const D3 q = sub(vd[remap[ids[(k + 1) % ids.size()]]], c);
+      const D3 pq = cross(p, q);
+      for (int a = 0; a < 3; ++a) n[a] += pq[a];
+    }
+    const double nl = norm(n);
+    if (!(nl > 0)) return std::string("a merged facet has zero area");
+    n = {n[0] / nl, n[1] / nl, n[2] / nl};
+    double offset = -std::numeric_limits<double>::max();
+    for (int id : ids) {
+      offset = std::max(offset, dot(n, vd[remap[id]]));
+      data.face_indices.push_back(remap[id]);
+    }
+    face.normal = Vec3(Real(n[0]), Real(n[1]), Real(n[2]));
+    face.offset = Real(offset);
+    data.faces.push_back(face);
+  }
+
+  // Directed edges (a -> b, face), sorted by (a, b): each must meet its reverse once.
+  struct Directed {
+    std::uint64_t key;
+    std::uint32_t face;
+  };
+  std::vector<Directed> directed;
+  directed.reserve(data.face_indices.size());
+  for (std::uint32_t fi = 0; fi < data.faces.size(); ++fi) {
+    const HullFace& f = data.faces[fi];
+    for (std::uint32_t k = 0; k < f.index_count; ++k) {
+      const std::uint64_t a = data.face_indices[f.first_index + k];
+      const std::uint64_t b = data.face_indices[f.first_index + (k + 1) % f.index_count];
+      directed.push_back({(a << 32) | b, fi});
+    }
+  }
+  std::sort(directed.begin(), directed.end(), [](const Directed& x, const Directed& y) { return x.key < y.key; });
+  for (std::size_t k = 1; k < directed.size(); ++k) {
+    if (directed[k].key == directed[k - 1].key) return std::string("an edge is shared by more than two faces");
+  }
+  auto find_face = [&](std::uint64_t key) -> std::int64_t {
+    auto it = std::lower_bound(directed.begin(), directed.end(), key,
+                               [](const Directed& x, std::uint64_t k) { return x.key < k; });
+    if (it == directed.end() || it->key != key) return -1;
+    return it->face;
+  };
+  for (const Directed& d : directed) {
+    const std::uint32_t a = static_cast<std::uint32_t>(d.key >> 32);
+    const std::uint32_t b = static_cast<std::uint32_t>(d.key & 0xffffffffu);
+    const std::int64_t other = find_face((std::uint64_t(b) << 32) | a);
+    if (other < 0 || static_cast<std::uint32_t>(other) == d.face) {
+      return std::string("the merged facets do not form a closed surface");
+    }
+    if (a < b) data.edges.push_back({a, b, d.face, static_cast<std::uint32_t>(other)});
+  }
+  const std::int64_t euler = std::int64_t(nv) - std::int64_t(data.edges.size()) + std::int64_t(data.faces.size());
+  if (euler != 2) return std::string("the merged facets do not form a sphere (V - E + F != 2)");
+
+  data.neighbor_offsets.assign(nv + 1, 0);
+  for (const HullEdge& e : data.edges) {
+    ++data.neighbor_offsets[e.v0 + 1];
+    ++data.neighbor_offsets[e.v1 + 1];
+  }
+  for (std::size_t v = 0; v < nv; ++v) data.neighbor_offsets[v + 1] += data.neighbor_offsets[v];
+  data.neighbors.resize(data.neighbor_offsets[nv]);
+  {
+    std::vector<std::uint32_t> fill(data.neighbor_offsets.begin(), data.neighbor_offsets.end() - 1);
+    for (const HullEdge& e : data.edges) {
+      data.neighbors[fill[e.v0]++] = e.v1;
+      data.neighbors[fill[e.v1]++] = e.v0;
+    }
+  }
+
+  return {};
 }
 
 Error internal(const std::string& what) {
@@ -291,113 +465,27 @@ Result<ConvexHull> ConvexHull::create(std::span<const Vec3> points) {
     return degenerate("all points are coplanar (within tolerance)");
   }
 
-  // 4-5. qhull and the CCW face loops.
-  QhullOutcome hull = run_qhull(pts);
-  if (hull.exit_code == qh_ERRsingular) {
-    return degenerate("qhull found the points flat (" + hull.message + ")");
-  }
-  if (hull.exit_code != 0) {
-    return internal("exit code " + std::to_string(hull.exit_code) + (hull.message.empty() ? "" : ": " + hull.message));
-  }
-
-  // 6. Compact vertices, face planes, edges, adjacency.
+  // 4-6. qhull, oriented loops, the polyhedron. The first run merges facets that are
+  // coplanar within the rounding of Real at the hull's size (a rotated box keeps six
+  // faces in float); if that run or the checks of its output fail, qhull runs again with
+  // only its own double-precision merging ('C-0').
   auto data = std::make_shared<Data>();
-  std::vector<std::uint32_t> remap(points.size(), std::numeric_limits<std::uint32_t>::max());
-  std::vector<D3> vd;  // vertices in double, original frame
-  for (const RawFace& f : hull.faces) {
-    if (f.ids.size() < 3) return internal("a merged facet has fewer than 3 corners");
-    for (int id : f.ids) {
-      if (remap[id] == std::numeric_limits<std::uint32_t>::max()) {
-        remap[id] = static_cast<std::uint32_t>(data->vertices.size());
-        data->vertices.push_back(points[id]);
-        vd.push_back({double(points[id].x), double(points[id].y), double(points[id].z)});
-      }
+  std::vector<D3> vd;  // hull vertices in double, original frame
+  std::string failure;
+  for (const double radius : {4.0 * double(kEpsilon), 0.0}) {
+    QhullOutcome hull = run_qhull(pts, radius);
+    if (hull.exit_code == qh_ERRsingular) return degenerate("qhull found the points flat (" + hull.message + ")");
+    if (hull.exit_code != 0) {
+      failure = "exit code " + std::to_string(hull.exit_code) + (hull.message.empty() ? "" : ": " + hull.message);
+      continue;
     }
+    failure = orient_and_simplify(hull, pts, radius > 0);
+    if (!failure.empty()) continue;
+    *data = Data{};
+    failure = assemble(points, hull, *data, vd);
+    if (failure.empty()) break;
   }
-  const std::size_t nv = data->vertices.size();
-
-  data->faces.reserve(hull.faces.size());
-  for (const RawFace& f : hull.faces) {
-    HullFace face;
-    face.first_index = static_cast<std::uint32_t>(data->face_indices.size());
-    face.index_count = static_cast<std::uint32_t>(f.ids.size());
-    D3 c{0, 0, 0};
-    for (int id : f.ids) {
-      const D3& v = vd[remap[id]];
-      for (int a = 0; a < 3; ++a) c[a] += v[a];
-    }
-    for (int a = 0; a < 3; ++a) c[a] /= double(f.ids.size());
-    D3 n{0, 0, 0};  // Newell's method, relative to the loop centroid
-    for (std::size_t k = 0; k < f.ids.size(); ++k) {
-      const D3 p = sub(vd[remap[f.ids[k]]], c);
-      const D3 q = sub(vd[remap[f.ids[(k + 1) % f.ids.size()]]], c);
-      const D3 pq = cross(p, q);
-      for (int a = 0; a < 3; ++a) n[a] += pq[a];
-    }
-    const double nl = norm(n);
-    if (!(nl > 0)) return internal("a merged facet has zero area");
-    n = {n[0] / nl, n[1] / nl, n[2] / nl};
-    double offset = -std::numeric_limits<double>::max();
-    for (int id : f.ids) {
-      offset = std::max(offset, dot(n, vd[remap[id]]));
-      data->face_indices.push_back(remap[id]);
-    }
-    face.normal = Vec3(Real(n[0]), Real(n[1]), Real(n[2]));
-    face.offset = Real(offset);
-    data->faces.push_back(face);
-  }
-
-  // Directed edges (a -> b, face), sorted by (a, b): each must meet its reverse once.
-  struct Directed {
-    std::uint64_t key;
-    std::uint32_t face;
-  };
-  std::vector<Directed> directed;
-  directed.reserve(data->face_indices.size());
-  for (std::uint32_t fi = 0; fi < data->faces.size(); ++fi) {
-    const HullFace& f = data->faces[fi];
-    for (std::uint32_t k = 0; k < f.index_count; ++k) {
-      const std::uint64_t a = data->face_indices[f.first_index + k];
-      const std::uint64_t b = data->face_indices[f.first_index + (k + 1) % f.index_count];
-      directed.push_back({(a << 32) | b, fi});
-    }
-  }
-  std::sort(directed.begin(), directed.end(), [](const Directed& x, const Directed& y) { return x.key < y.key; });
-  for (std::size_t k = 1; k < directed.size(); ++k) {
-    if (directed[k].key == directed[k - 1].key) return internal("an edge is shared by more than two faces");
-  }
-  auto find_face = [&](std::uint64_t key) -> std::int64_t {
-    auto it = std::lower_bound(directed.begin(), directed.end(), key,
-                               [](const Directed& x, std::uint64_t k) { return x.key < k; });
-    if (it == directed.end() || it->key != key) return -1;
-    return it->face;
-  };
-  for (const Directed& d : directed) {
-    const std::uint32_t a = static_cast<std::uint32_t>(d.key >> 32);
-    const std::uint32_t b = static_cast<std::uint32_t>(d.key & 0xffffffffu);
-    const std::int64_t other = find_face((std::uint64_t(b) << 32) | a);
-    if (other < 0 || static_cast<std::uint32_t>(other) == d.face) {
-      return internal("the merged facets do not form a closed surface");
-    }
-    if (a < b) data->edges.push_back({a, b, d.face, static_cast<std::uint32_t>(other)});
-  }
-  const std::int64_t euler = std::int64_t(nv) - std::int64_t(data->edges.size()) + std::int64_t(data->faces.size());
-  if (euler != 2) return internal("the merged facets do not form a sphere (V - E + F != 2)");
-
-  data->neighbor_offsets.assign(nv + 1, 0);
-  for (const HullEdge& e : data->edges) {
-    ++data->neighbor_offsets[e.v0 + 1];
-    ++data->neighbor_offsets[e.v1 + 1];
-  }
-  for (std::size_t v = 0; v < nv; ++v) data->neighbor_offsets[v + 1] += data->neighbor_offsets[v];
-  data->neighbors.resize(data->neighbor_offsets[nv]);
-  {
-    std::vector<std::uint32_t> fill(data->neighbor_offsets.begin(), data->neighbor_offsets.end() - 1);
-    for (const HullEdge& e : data->edges) {
-      data->neighbors[fill[e.v0]++] = e.v1;
-      data->neighbors[fill[e.v1]++] = e.v0;
-    }
-  }
+  if (!failure.empty()) return internal(failure);
 
   // 7. Box, scale, tolerance; the hull's width over its face normals (each face against
   // its farthest vertex, found by hill-climbing in double) must exceed the flatness
@@ -407,7 +495,9 @@ Result<ConvexHull> ConvexHull::create(std::span<const Vec3> points) {
   const Vec3 ext = data->local_box.extents();
   data->scale = std::max({ext.x, ext.y, ext.z});
   const Vec3 far = glm::max(glm::abs(data->local_box.min), glm::abs(data->local_box.max));
-  data->tolerance = kRelativeTolerance * std::max({data->scale, far.x, far.y, far.z});
+  // Geometric tolerance at the hull's size plus the rounding of a plane test n . p - d at
+  // the hull's distance from the origin (a few ulps of the largest coordinate).
+  data->tolerance = kRelativeTolerance * data->scale + Real(16) * kEpsilon * std::max({far.x, far.y, far.z});
   double width = std::numeric_limits<double>::max();
   std::uint32_t start = 0;
   for (const HullFace& f : data->faces) {

@@ -116,7 +116,8 @@ class ConvexHull {
   /// Cyrus–Beck clipping against the face planes. Origin inside: t = 0, normal
   /// -direction/|direction|.
   std::optional<RayHit> raycast(const Ray& ray, Real max_t) const;
-  /// True when `point` (local) is inside or on the surface, within tolerance(). O(F).
+  /// True when `point` (local) is inside the hull or within tolerance() of it. O(F), or
+  /// O(F + E) for points within tolerance in front of a face.
   bool contains(const Vec3& point) const;
   /// Nearest surface point to `point` (local) with signed distance: outside, the nearest
   /// point over all faces; inside, the projection on the nearest face plane (negative
@@ -129,9 +130,9 @@ class ConvexHull {
 
   /// Length scale of the hull (largest extent of its box).
   Real scale() const { return data_->scale; }
-  /// Absolute distance below which a point counts as on the surface: kRelativeTolerance
-  /// times the larger of scale() and the largest |coordinate| of the box (rounding of
-  /// plane tests grows with the distance from the local origin).
+  /// Absolute distance below which a point counts as on the surface: kRelativeTolerance *
+  /// scale() plus 16 epsilon times the largest |coordinate| of the box (the rounding of a
+  /// plane test grows with the distance from the local origin).
   Real tolerance() const { return data_->tolerance; }
 
   /// The immutable hull data shared between copies.
