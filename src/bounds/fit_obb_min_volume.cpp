@@ -8,7 +8,8 @@
 //  3. For a candidate axis u: project the vertices on the plane orthogonal to u, take
 //     their 2-D convex hull (Andrew's monotone chain) and its minimum-area enclosing
 //     rectangle by rotating calipers (the rectangle has a side on a polygon edge:
-//     Freeman-Shapira); box volume = rectangle area * extent along u.
+//     Freeman-Shapira); box volume = rectangle area * extent along u (measured on the
+//     resulting frame).
 //  4. The smallest-volume frame is fitted to all the points.
 // Flat inputs (no hull): the normal of the points' plane (their smallest principal axis)
 // is the only candidate, so the result is the minimum-area rectangle in that plane;
@@ -38,20 +39,26 @@ double cross2(const glm::dvec2& o, const glm::dvec2& a, const glm::dvec2& b) {
   return (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x);
 }
 
-// Convex hull of 2-D points, counter-clockwise, without collinear points.
+// Convex hull of 2-D points, counter-clockwise, without collinear or nearly coincident
+// points (a turn must exceed a relative 1e-12 of the squared diameter: sliver edges would
+// give the calipers meaningless directions).
 std::vector<glm::dvec2> convex_hull_2d(std::vector<glm::dvec2> p) {
   std::sort(p.begin(), p.end(),
             [](const glm::dvec2& a, const glm::dvec2& b) { return a.x < b.x || (a.x == b.x && a.y < b.y); });
   p.erase(std::unique(p.begin(), p.end()), p.end());
   if (p.size() < 3) return p;
+  const glm::dvec2 span = p.back() - p.front();
+  double scale2 = glm::dot(span, span);
+  for (const glm::dvec2& q : p) scale2 = std::max(scale2, glm::dot(q - p.front(), q - p.front()));
+  const double eps = 1e-12 * scale2;
   std::vector<glm::dvec2> h(2 * p.size());
   std::size_t k = 0;
   for (std::size_t i = 0; i < p.size(); ++i) {
-    while (k >= 2 && cross2(h[k - 2], h[k - 1], p[i]) <= 0.0) --k;
+    while (k >= 2 && cross2(h[k - 2], h[k - 1], p[i]) <= eps) --k;
     h[k++] = p[i];
   }
   for (std::size_t i = p.size() - 1, t = k + 1; i-- > 0;) {
-    while (k >= t && cross2(h[k - 2], h[k - 1], p[i]) <= 0.0) --k;
+    while (k >= t && cross2(h[k - 2], h[k - 1], p[i]) <= eps) --k;
     h[k++] = p[i];
   }
   h.resize(k - 1);
@@ -64,15 +71,7 @@ glm::dmat3 min_area_frame_for_axis(std::span<const glm::dvec3> points, const glm
   const glm::dmat3 base = frame_from_axis(axis);
   std::vector<glm::dvec2> proj;
   proj.reserve(points.size());
-  double ulo = std::numeric_limits<double>::max();
-  double uhi = -std::numeric_limits<double>::max();
-  for (const glm::dvec3& p : points) {
-    proj.emplace_back(glm::dot(p, base[1]), glm::dot(p, base[2]));
-    const double s = glm::dot(p, base[0]);
-    ulo = std::min(ulo, s);
-    uhi = std::max(uhi, s);
-  }
-  const double depth = uhi - ulo;
+  for (const glm::dvec3& p : points) proj.emplace_back(glm::dot(p, base[1]), glm::dot(p, base[2]));
   const std::vector<glm::dvec2> h = convex_hull_2d(std::move(proj));
   glm::dvec2 best_dir(1.0, 0.0);
   double best_area = std::numeric_limits<double>::max();
@@ -111,7 +110,9 @@ glm::dmat3 min_area_frame_for_axis(std::span<const glm::dvec3> points, const glm
   f[0] = base[0];
   f[1] = glm::normalize(best_dir.x * base[1] + best_dir.y * base[2]);
   f[2] = glm::cross(f[0], f[1]);
-  volume = best_area * depth;
+  // The volume is measured on the frame itself, so a rounding slip of the calipers can
+  // only make this candidate worse, never make it look better than it is.
+  volume = frame_extent(points, f).volume;
   return f;
 }
 
