@@ -1,9 +1,94 @@
-// proxima: the command-line tool (demo, query protocol).
+// proxima: the command-line tool of the Proxima library.
+//   proxima --version          version and scalar precision
+//   proxima demo [options]     the billiard-break demo (statistics + SVG picture)
+//   proxima query [FILE|-]     the JSON query protocol, one request per line
 #include <proxima/core/config.hpp>
 
-#include <cstdio>
+#include <CLI/CLI.hpp>
 
-int main() {
-  std::printf("proxima %s (%s precision)\n", PROXIMA_VERSION_STRING, PROXIMA_DOUBLE ? "double" : "float");
-  return 0;
+#include <exception>
+#include <fstream>
+#include <iostream>
+#include <string>
+
+#include "demo_billiards.hpp"
+#include "json_shapes.hpp"
+#include "query.hpp"
+#include "query_operations.hpp"
+
+namespace {
+
+std::string version_line() {
+  return std::string("proxima ") + PROXIMA_VERSION_STRING + " (" + (PROXIMA_DOUBLE ? "double" : "float") +
+         " precision)";
+}
+
+std::string query_footer() {
+  std::string text = "\nOperations (\"op\"):\n";
+  for (const auto& op : proxima::tool::operations()) {
+    text += "  " + std::string(op.name) + ": " + std::string(op.synopsis) + "\n";
+  }
+  text += "Shape types: " + proxima::tool::shape_type_names() + "\n";
+  text +=
+      "Exit status: 0 when every line was answered, 2 when a line was rejected, 1 when the input\n"
+      "cannot be read. See docs/query-protocol.md.";
+  return text;
+}
+
+int run_query(const std::string& input) {
+  if (input.empty() || input == "-") {
+    return proxima::tool::exit_status(proxima::tool::run_queries(std::cin, std::cout));
+  }
+  std::ifstream file(input);
+  if (!file) {
+    std::cerr << "proxima query: cannot open " << input << "\n";
+    return 1;
+  }
+  return proxima::tool::exit_status(proxima::tool::run_queries(file, std::cout));
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::ios::sync_with_stdio(false);
+  CLI::App app{"proxima: collision detection from the command line (demo, JSON queries)", "proxima"};
+  app.set_version_flag("--version", version_line(), "Print the version and the scalar precision, then exit");
+  app.require_subcommand(0, 1);
+
+  proxima::tool::DemoOptions demo;
+  CLI::App* demo_cmd =
+      app.add_subcommand("demo", "Billiard break: 16 balls, 10 s at 60 Hz; prints detection statistics, draws an SVG");
+  demo_cmd->add_option("--frames", demo.config.frames, "Frames to simulate at 60 Hz")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 1000000));
+  demo_cmd->add_option("--svg", demo.svg_path, "Picture of the table and trajectories (empty: none)")
+      ->capture_default_str();
+  demo_cmd->add_option("--seed", demo.config.seed, "Jitter of the rack and the shot (0: perfectly symmetric)")
+      ->capture_default_str();
+  demo_cmd->add_option("--speed", demo.config.cue_speed, "Speed of the cue ball, m/s")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 1000.0));
+  demo_cmd->add_flag("--quiet,-q", demo.quiet, "Print nothing (still writes the SVG)");
+
+  std::string query_input;
+  CLI::App* query_cmd = app.add_subcommand(
+      "query", "Answer JSON requests, one per line, from FILE or standard input; one JSON answer per line");
+  query_cmd->add_option("input", query_input, "Request file; '-' or absent: standard input");
+  query_cmd->footer(query_footer());
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  }
+
+  try {
+    if (demo_cmd->parsed()) return proxima::tool::run_billiards_demo(demo, std::cout, std::cerr);
+    if (query_cmd->parsed()) return run_query(query_input);
+  } catch (const std::exception& e) {
+    std::cerr << "proxima: " << e.what() << "\n";
+    return 1;
+  }
+  std::cout << app.help();
+  return 1;
 }

@@ -1,0 +1,41 @@
+#include "query_operations.hpp"
+
+#include <array>
+
+#include "query_bound_ops.hpp"
+#include "query_shape_ops.hpp"
+
+namespace proxima::tool {
+
+namespace {
+
+const std::array kOperations = {
+    Operation{"raycast", op_raycast, "target, origin, direction, max_t? -> hit, t, point, normal (world frame)"},
+    Operation{"contains", op_contains, "target, point -> inside"},
+    Operation{"closest_point", op_closest_point, "target, point -> point, normal, distance (signed)"},
+    Operation{"bound", op_bound, "target, volume -> the bounding volume in the world frame"},
+    Operation{"fit", op_fit, "points, volume -> the fitted volume and volume_m3"},
+    Operation{"mass", op_mass, "target, density? -> volume, mass, centroid, inertia (world axes)"},
+};
+
+}  // namespace
+
+std::span<const Operation> operations() { return kOperations; }
+
+const Operation* find_operation(std::string_view name) {
+  for (const Operation& op : kOperations) {
+    if (op.name == name) return &op;
+  }
+  return nullptr;
+}
+
+std::string operation_names() {
+  std::string names;
+  for (const Operation& op : kOperations) {
+    if (!names.empty()) names += ", ";
+    names += op.name;
+  }
+  return names;
+}
+
+}  // namespace proxima::tool
