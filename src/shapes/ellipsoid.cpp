@@ -16,12 +16,17 @@
 //    bisection. We bisect on u = (t + e2^2) / e2^2 > 0 and write each term as
 //    z_i / ((1 - q_i) + u q_i) with z_i = y_i / e_i and q_i = (e2 / e_i)^2 in (0, 1]: no
 //    term overflows for any ratio of radii, and u keeps full relative precision near 0
-//    (points close to the plane of the two largest axes). Bisection steps are geometric
-//    while the bracket spans more than a factor 4, then arithmetic, and stop when the
-//    midpoint equals an end: a bounded number of iterations. Points with y2 = 0 use
-//    Eberly's closed form when they lie inside the evolute region of the minor plane and
-//    otherwise the 2-D ellipse problem (same method one dimension down). The sign of the
-//    distance comes from contains() so that the two queries always agree.
+//    (points close to the plane of the two largest axes). Radii below 2^-59 (float) or
+//    2^-507 (double) times the problem's scale are raised to that floor, which keeps z_i
+//    and q_i clear of overflow and underflow for any ratio of radii at a cost far below
+//    the precision of the coordinates. Bisection steps are geometric while the bracket
+//    spans more than a factor 4, then arithmetic, and stop when the midpoint equals an
+//    end: a bounded number of iterations. Points with y2 = 0 use Eberly's closed form when
+//    they lie inside the evolute region of the minor plane and otherwise the 2-D ellipse
+//    problem (same method one dimension down). The result is kept in normalised form
+//    w = x / e, renormalised to |w| = 1 and mapped back with the true radii, so the point
+//    lies on the surface to rounding. The sign of the distance comes from contains() so
+//    that the two queries always agree.
 //  - mass_properties: V = 4/3 pi abc, I_xx = m (b^2 + c^2) / 5 and cyclic.
 #include <proxima/core/validate.hpp>
 #include <proxima/geometry/raycast.hpp>
@@ -30,6 +35,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 
 namespace proxima {
 
@@ -91,32 +97,30 @@ Real bisect_root(const std::array<Real, N>& z, const std::array<Real, N>& q, Rea
   return u0 + (u1 - u0) * Real(0.5);
 }
 
-// Closest point of the ellipse (x/e0)^2 + (x/e1)^2 = 1, e0 >= e1 > 0, to (y0, y1) >= 0, given
-// z = (y0/e0, y1/e1); the point is written to x0, x1 (>= 0).
-void closest_on_ellipse(Real e0, Real e1, Real y0, Real y1, Real z0, Real z1, Real& x0, Real& x1) {
-  const Real ratio = e1 / e0;
-  const Real q = ratio * ratio;
+// Closest point of the ellipse (x/e0)^2 + (y/e1)^2 = 1, e0 >= e1 > 0, to a point (y0, y1) >= 0
+// given as z = (y0/e0, y1/e1) and q = (e1/e0)^2: returns the normalised coordinates
+// (w0, w1) = (x0/e0, x1/e1) >= 0 of the nearest point.
+void closest_on_ellipse(Real z0, Real z1, Real q, Real& w0, Real& w1) {
   if (z1 > Real(0)) {
     const Real g = z0 * z0 + z1 * z1 - Real(1);
     if (g == Real(0)) {
-      x0 = y0;
-      x1 = y1;
+      w0 = z0;
+      w1 = z1;
       return;
     }
     const Real u = bisect_root<2>({z0, z1}, {q, Real(1)}, g);
-    x0 = e0 * (z0 / ((Real(1) - q) + u * q));
-    x1 = e1 * (z1 / u);
+    w0 = z0 / ((Real(1) - q) + u * q);
+    w1 = z1 / u;
     return;
   }
   // y1 = 0: on the major axis. Inside the evolute's reach the nearest point leaves the axis.
   const Real d = Real(1) - q;
   if (z0 < d) {
-    const Real xde = z0 / d;
-    x0 = e0 * xde;
-    x1 = e1 * std::sqrt(std::max(Real(0), Real(1) - xde * xde));
+    w0 = z0 / d;
+    w1 = std::sqrt(std::max(Real(0), Real(1) - w0 * w0));
   } else {
-    x0 = e0;
-    x1 = Real(0);
+    w0 = Real(1);
+    w1 = Real(0);
   }
 }
 
@@ -178,7 +182,6 @@ bool Ellipsoid::contains(const Vec3& point) const {
 }
 
 SurfacePoint Ellipsoid::closest_point(const Vec3& point) const {
-  SurfacePoint sp;
   const bool inside = contains(point);
 
   // Sort the axes by decreasing radius: axis[0] is the largest, axis[2] the smallest.
@@ -186,71 +189,86 @@ SurfacePoint Ellipsoid::closest_point(const Vec3& point) const {
   std::sort(axis.begin(), axis.end(), [this](int a, int b) { return radii_[a] > radii_[b]; });
   std::array<Real, 3> e{};
   std::array<Real, 3> y{};
-  std::array<Real, 3> z{};
-  bool finite = true;
   for (int k = 0; k < 3; ++k) {
     e[k] = radii_[axis[k]];
     y[k] = std::abs(point[axis[k]]);
-    z[k] = y[k] / e[k];
-    finite = finite && std::isfinite(z[k]);
   }
+  // Radii below radius_floor = 2^-59 (float) or 2^-507 (double) times the problem's scale are
+  // raised to it: far below the precision of any coordinate at that scale, and it keeps
+  // z = y / e and (e_i / e2)^2 clear of overflow and underflow for any ratio of radii.
+  const Real radius_floor = Real(16) * std::sqrt(std::numeric_limits<Real>::min()) * std::max({e[0], y[0], y[1], y[2]});
+  std::array<Real, 3> z{};
+  std::array<Real, 3> q{};
+  for (int k = 0; k < 3; ++k) z[k] = y[k] / std::max(e[k], radius_floor);
+  const Real e2 = std::max(e[2], radius_floor);
+  for (int k = 0; k < 3; ++k) {
+    const Real ratio = e2 / std::max(e[k], radius_floor);
+    q[k] = ratio * ratio;
+  }
+  q[2] = Real(1);
 
-  std::array<Real, 3> x{};
-  if (!finite) {
-    // A point so far away that y / e overflows: the nearest point is, to the precision
-    // available, the support point towards it.
-    sp.point = support(point);
-  } else {
-    const Real g = z[0] * z[0] + z[1] * z[1] + z[2] * z[2] - Real(1);
-    const Real r0 = e[2] / e[0];
-    const Real r1 = e[2] / e[1];
-    const std::array<Real, 3> q{r0 * r0, r1 * r1, Real(1)};
-    if (z[2] > Real(0)) {
-      if (g == Real(0)) {
-        x = y;
-      } else {
-        const Real u = bisect_root<3>(z, q, g);
-        x[0] = e[0] * (z[0] / ((Real(1) - q[0]) + u * q[0]));
-        x[1] = e[1] * (z[1] / ((Real(1) - q[1]) + u * q[1]));
-        x[2] = e[2] * (z[2] / u);
-      }
+  // w = normalised coordinates x / e of the nearest point (first octant, sorted axes).
+  std::array<Real, 3> w{};
+  const Real g = z[0] * z[0] + z[1] * z[1] + z[2] * z[2] - Real(1);
+  if (z[2] > Real(0)) {
+    if (g == Real(0)) {
+      w = z;
     } else {
-      // y2 = 0: in the plane of the two largest axes. Inside the evolute region the
-      // nearest point leaves the plane (closed form); otherwise it is the nearest point of
-      // the ellipse in the plane.
-      bool done = false;
-      const Real d0 = Real(1) - q[0];
-      const Real d1 = Real(1) - q[1];
-      if (z[0] < d0 && z[1] < d1) {
-        const Real xde0 = z[0] / d0;
-        const Real xde1 = z[1] / d1;
-        const Real discr = Real(1) - xde0 * xde0 - xde1 * xde1;
-        if (discr > Real(0)) {
-          x[0] = e[0] * xde0;
-          x[1] = e[1] * xde1;
-          x[2] = e[2] * std::sqrt(discr);
-          done = true;
-        }
-      }
-      if (!done) {
-        closest_on_ellipse(e[0], e[1], y[0], y[1], z[0], z[1], x[0], x[1]);
-        x[2] = Real(0);
+      const Real u = bisect_root<3>(z, q, g);
+      w[0] = z[0] / ((Real(1) - q[0]) + u * q[0]);
+      w[1] = z[1] / ((Real(1) - q[1]) + u * q[1]);
+      w[2] = z[2] / u;
+    }
+  } else {
+    // y2 = 0: in the plane of the two largest axes. Inside the evolute region the nearest
+    // point leaves the plane (closed form); otherwise it is the nearest point of the ellipse
+    // in the plane.
+    bool done = false;
+    const Real d0 = Real(1) - q[0];
+    const Real d1 = Real(1) - q[1];
+    if (z[0] < d0 && z[1] < d1) {
+      const Real w0 = z[0] / d0;
+      const Real w1 = z[1] / d1;
+      const Real discr = Real(1) - w0 * w0 - w1 * w1;
+      if (discr > Real(0)) {
+        w = {w0, w1, std::sqrt(discr)};
+        done = true;
       }
     }
-    for (int k = 0; k < 3; ++k) sp.point[axis[k]] = std::copysign(x[k], point[axis[k]]);
+    if (!done) {
+      const Real ratio = std::max(e[1], radius_floor) / std::max(e[0], radius_floor);
+      closest_on_ellipse(z[0], z[1], ratio * ratio, w[0], w[1]);
+      w[2] = Real(0);
+    }
+  }
+  // |w| = 1 at the root; renormalising removes what the bisection left (which matters only
+  // when w was computed from denormal inputs), so the point is on the surface to rounding.
+  {
+    const Real m = std::max({w[0], w[1], w[2]});
+    if (m > Real(0)) {
+      for (Real& c : w) c /= m;
+      const Real len = std::sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
+      for (Real& c : w) c /= len;
+    } else {
+      w = {Real(0), Real(0), Real(1)};
+    }
   }
 
-  // Outward normal: gradient (x / R^2), scaled by the smallest radius to stay in range.
-  const Real e_min = std::min({radii_.x, radii_.y, radii_.z});
+  SurfacePoint sp;
+  Vec3 wv;
+  for (int k = 0; k < 3; ++k) wv[axis[k]] = point[axis[k]] < Real(0) ? -w[k] : w[k];
+  sp.point = radii_ * wv;
+  // Outward normal: the gradient (x / R^2) = w / R, scaled by the smallest radius.
+  const Real e_min = e[2];
   Vec3 n;
-  for (int i = 0; i < 3; ++i) n[i] = (sp.point[i] / radii_[i]) * (e_min / radii_[i]);
+  for (int i = 0; i < 3; ++i) n[i] = wv[i] * (e_min / radii_[i]);
   n = robust_normalize(n);
   if (!(glm::dot(n, n) > Real(0))) {
-    // Underflow for absurd ratios of radii: the axis of the largest |x_i / r_i|.
-    const Vec3 w = glm::abs(sp.point / radii_);
-    const int k = w.x >= w.y ? (w.x >= w.z ? 0 : 2) : (w.y >= w.z ? 1 : 2);
+    // Underflow for absurd ratios of radii: the axis of the largest |w_i|.
+    const Vec3 aw = glm::abs(wv);
+    const int k = aw.x >= aw.y ? (aw.x >= aw.z ? 0 : 2) : (aw.y >= aw.z ? 1 : 2);
     n = Vec3(Real(0));
-    n[k] = sp.point[k] < Real(0) ? Real(-1) : Real(1);
+    n[k] = wv[k] < Real(0) ? Real(-1) : Real(1);
   }
   sp.normal = n;
   const Real d = glm::length(point - sp.point);
