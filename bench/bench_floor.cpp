@@ -5,7 +5,7 @@
 //   2. SpherePairs: the cheapest exact test, |c1 - c2|^2 <= (r1 + r2)^2, hits counted;
 //   3. CapsulePairs: the segment-segment distance of geometry/closest_points.hpp
 //      (Ericson, Real-Time Collision Detection, 5.1.9) compared with (ra + rb)^2.
-// Each reports ns per query (ns_per_query), the hits of one pass, and the hits computed
+// Each reports ns per query (per_query), the hits of one pass, and the hits computed
 // in double from the file's values (hits_double) for comparison.
 #include <benchmark/benchmark.h>
 
@@ -73,7 +73,7 @@ void read_bandwidth(benchmark::State& state, const std::vector<Record>* records)
   }
   state.SetBytesProcessed(static_cast<std::int64_t>(state.iterations()) *
                           static_cast<std::int64_t>(records->size() * sizeof(Record)));
-  state.counters["ns_per_query"] = pb::ns_per_item(records->size());
+  state.counters["per_query"] = pb::time_per_item(records->size());
 }
 
 void sphere_pairs(benchmark::State& state) {
@@ -89,7 +89,7 @@ void sphere_pairs(benchmark::State& state) {
   }
   state.SetBytesProcessed(static_cast<std::int64_t>(state.iterations()) *
                           static_cast<std::int64_t>(g_spheres.size() * sizeof(SphereRecord)));
-  state.counters["ns_per_query"] = pb::ns_per_item(g_spheres.size());
+  state.counters["per_query"] = pb::time_per_item(g_spheres.size());
   state.counters["hits"] = static_cast<double>(hits);
   state.counters["hits_double"] = static_cast<double>(g_sphere_hits_double);
 }
@@ -107,7 +107,7 @@ void capsule_pairs(benchmark::State& state) {
   }
   state.SetBytesProcessed(static_cast<std::int64_t>(state.iterations()) *
                           static_cast<std::int64_t>(g_capsules.size() * sizeof(CapsuleRecord)));
-  state.counters["ns_per_query"] = pb::ns_per_item(g_capsules.size());
+  state.counters["per_query"] = pb::time_per_item(g_capsules.size());
   state.counters["hits"] = static_cast<double>(hits);
   state.counters["hits_double"] = static_cast<double>(g_capsule_hits_double);
 }

@@ -5,7 +5,7 @@
 //   3. WorldAabb/<shape>: the tight world box under 1024 random poses.
 // Convex hulls are built from the W2 shared point clouds (shape 0 of convex_shapes_8,
 // _32 and _128.txt) and from 1000 random points on a sphere. Each reports ns per call
-// (ns_per_query).
+// (per_query).
 #include <benchmark/benchmark.h>
 
 #include <proxima/shapes/placed.hpp>
@@ -74,7 +74,7 @@ void support_local(benchmark::State& state, const S& shape) {
       benchmark::DoNotOptimize(p);
     }
   }
-  state.counters["ns_per_query"] = pb::ns_per_item(kSamples);
+  state.counters["per_query"] = pb::time_per_item(kSamples);
 }
 
 template <class S>
@@ -87,7 +87,7 @@ void support_world(benchmark::State& state, const S& shape) {
       benchmark::DoNotOptimize(p);
     }
   }
-  state.counters["ns_per_query"] = pb::ns_per_item(kSamples);
+  state.counters["per_query"] = pb::time_per_item(kSamples);
 }
 
 template <class S>
@@ -99,7 +99,7 @@ void world_aabb(benchmark::State& state, const S& shape) {
       benchmark::DoNotOptimize(box);
     }
   }
-  state.counters["ns_per_query"] = pb::ns_per_item(kSamples);
+  state.counters["per_query"] = pb::time_per_item(kSamples);
 }
 
 /// Registers the three benchmarks of one shape (kept alive by value in the lambdas).

@@ -38,9 +38,10 @@ inline bool report_load_error(const Error& error) {
   return false;
 }
 
-/// A counter shown as nanoseconds per item: `items` per iteration, inverted rate.
-inline benchmark::Counter ns_per_item(std::uint64_t items) {
-  return benchmark::Counter(static_cast<double>(items) * 1e-9,
+/// A counter of the time per item, `items` per iteration (an inverted rate: Google
+/// Benchmark prints it with an SI prefix, e.g. "47.2ns"; the JSON value is in seconds).
+inline benchmark::Counter time_per_item(std::uint64_t items) {
+  return benchmark::Counter(static_cast<double>(items),
                             benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
 }
 
