@@ -60,10 +60,11 @@ std::optional<RayHit> ray_cone(const Ray& ray, Real max_t, const Vec3& apex, con
   }
   if (r.length == Real(0)) return std::nullopt;
 
-  // Shifted origin: the point of the line nearest the cone's centre.
-  const Vec3 center = apex + (Real(0.5) * height) * frame.axis;
-  const Real shift = glm::dot(center - ray.origin, r.unit);
-  const Vec3 m = frame.local(ray.origin + shift * r.unit - apex);
+  // Shifted origin: the point of the line nearest the cone's centre (all in vectors
+  // relative to the apex, so that no sum is formed at the magnitude of the coordinates).
+  const Vec3 m0 = ray.origin - apex;
+  const Real shift = glm::dot((Real(0.5) * height) * frame.axis - m0, r.unit);
+  const Vec3 m = frame.local(m0 + shift * r.unit);
   const Vec3 u = frame.local(r.unit);
 
   const detail::Interval slab = detail::slab_interval(m.z, u.z, Real(0), height, kApex, kBase);
