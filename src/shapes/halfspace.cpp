@@ -50,9 +50,9 @@ Aabb plane_box(const Vec3& n, Real d) {
 
 Result<HalfSpace> HalfSpace::create(const Vec3& normal, Real offset) {
   if (auto e = validate::finite(normal, "normal")) return *e;
-  if (auto e = validate::finite(offset, "offset")) return *e;
   const Real m = max_abs(normal);
   if (!(m > Real(0))) return make_error(ErrorCode::Degenerate, "normal", "must not be the zero vector");
+  if (auto e = validate::finite(offset, "offset")) return *e;
   const Vec3 w = normal / m;
   const Real l = glm::length(w);
   const Real d = (offset / m) / l;
