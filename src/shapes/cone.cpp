@@ -26,6 +26,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace proxima {
 
@@ -69,7 +70,7 @@ Result<Cone> Cone::create(Real radius, Real half_length) {
 Vec3 Cone::support(const Vec3& direction) const {
   const Vec3 apex(Real(0), Real(0), half_length_);
   const Real m = std::max({std::abs(direction.x), std::abs(direction.y), std::abs(direction.z)});
-  if (!(m > Real(0))) return apex;
+  if (!(m > Real(0)) || !is_finite(direction)) return apex;
   const Vec3 d = direction / m;  // largest component +-1: no overflow, no underflow to 0
   const Real rho = std::sqrt(d.x * d.x + d.y * d.y);
   // Apex: h d.z; rim: r rho - h d.z.
@@ -110,6 +111,13 @@ bool Cone::contains(const Vec3& point) const {
 }
 
 SurfacePoint Cone::closest_point(const Vec3& point) const {
+  if (!is_finite(point)) {
+    // A non-finite query: the top point, infinitely far.
+    SurfacePoint far;
+    far.point = Vec3(Real(0), Real(0), half_length_);
+    far.signed_distance = std::numeric_limits<Real>::infinity();
+    return far;
+  }
   const Real r = radius_;
   const Real h = half_length_;
   // The half-plane through the axis and the point: radial unit (ux, uy) (any one on the axis).

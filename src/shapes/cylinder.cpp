@@ -21,6 +21,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace proxima {
 
@@ -62,6 +63,7 @@ Result<Cylinder> Cylinder::create(Real radius, Real half_length) {
 }
 
 Vec3 Cylinder::support(const Vec3& direction) const {
+  if (!is_finite(direction)) return {Real(0), Real(0), half_length_};
   const Real z = direction.z < Real(0) ? -half_length_ : half_length_;
   const Real m = std::max(std::abs(direction.x), std::abs(direction.y));
   if (!(m > Real(0))) return {Real(0), Real(0), z};
@@ -94,6 +96,13 @@ bool Cylinder::contains(const Vec3& point) const {
 }
 
 SurfacePoint Cylinder::closest_point(const Vec3& point) const {
+  if (!is_finite(point)) {
+    // A non-finite query: the top point, infinitely far.
+    SurfacePoint far;
+    far.point = Vec3(Real(0), Real(0), half_length_);
+    far.signed_distance = std::numeric_limits<Real>::infinity();
+    return far;
+  }
   const Real r = radius_;
   const Real h = half_length_;
   // Radial unit vector of the half-plane holding the point (any one on the axis).

@@ -134,6 +134,7 @@ Result<Ellipsoid> Ellipsoid::create(const Vec3& radii) {
 }
 
 Vec3 Ellipsoid::support(const Vec3& direction) const {
+  if (!is_finite(direction)) return {Real(0), Real(0), radii_.z};
   const Vec3 d = scale_to_unit_max(direction);
   const Vec3 rd = scale_to_unit_max(radii_ * d);
   const Real len2 = glm::dot(rd, rd);
@@ -156,12 +157,15 @@ Aabb Ellipsoid::world_aabb(const Transform& pose) const {
 }
 
 std::optional<RayHit> Ellipsoid::raycast(const Ray& ray, Real max_t) const {
-  const Real len2 = glm::dot(ray.direction, ray.direction);
+  // The checks of every ray cast: finite ray, max_t >= 0 (NaN never hits).
+  if (!is_finite(ray.origin) || !is_finite(ray.direction) || !(max_t >= Real(0))) return std::nullopt;
   if (contains(ray.origin)) {
     RayHit hit;
     hit.t = Real(0);
     hit.point = ray.origin;
-    hit.normal = len2 > Real(0) ? -robust_normalize(ray.direction) : Vec3(Real(0), Real(0), Real(1));
+    // -direction / |direction|; a zero direction gets +z, as in every ray cast.
+    const Vec3 back = -robust_normalize(ray.direction);
+    hit.normal = glm::dot(back, back) > Real(0) ? back : Vec3(Real(0), Real(0), Real(1));
     return hit;
   }
   const Ray scaled{ray.origin / radii_, ray.direction / radii_};
@@ -170,8 +174,10 @@ std::optional<RayHit> Ellipsoid::raycast(const Ray& ray, Real max_t) const {
   RayHit hit;
   hit.t = unit_hit->t;
   hit.point = ray.at(hit.t);
-  // Gradient of the implicit function at the hit: (p / R) / R, p / R on the unit sphere.
-  hit.normal = robust_normalize(scaled.at(hit.t) / radii_);
+  // Gradient of the implicit function at the hit: (p / R) / R with p / R on the unit
+  // sphere, scaled by the smallest radius so that it cannot overflow.
+  const Real r_min = std::min({radii_.x, radii_.y, radii_.z});
+  hit.normal = robust_normalize(scaled.at(hit.t) * (r_min / radii_));
   if (!(glm::dot(hit.normal, hit.normal) > Real(0))) hit.normal = unit_hit->normal;
   return hit;
 }
@@ -182,6 +188,13 @@ bool Ellipsoid::contains(const Vec3& point) const {
 }
 
 SurfacePoint Ellipsoid::closest_point(const Vec3& point) const {
+  if (!is_finite(point)) {
+    // A non-finite query: the top point, infinitely far.
+    SurfacePoint far;
+    far.point = Vec3(Real(0), Real(0), radii_.z);
+    far.signed_distance = std::numeric_limits<Real>::infinity();
+    return far;
+  }
   const bool inside = contains(point);
 
   // Sort the axes by decreasing radius: axis[0] is the largest, axis[2] the smallest.

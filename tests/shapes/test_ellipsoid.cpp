@@ -724,5 +724,27 @@ TEST(Ellipsoid, NeverNaN) {
   }
 }
 
+TEST(Ellipsoid, NonFiniteQueriesHaveDefinedAnswers) {
+  test::ScopedNoFpTraps no_traps;
+  const Ellipsoid s = make(Vec3(1, 2, 3));
+  const Real nan = test::nan_value();
+  const Real inf = test::inf_value();
+  for (const Vec3& p : {Vec3(nan, 0, 0), Vec3(0, inf, 0), Vec3(0, 0, -inf), Vec3(nan, nan, nan)}) {
+    EXPECT_FALSE(s.contains(p));
+    const SurfacePoint sp = s.closest_point(p);
+    EXPECT_TRUE(test::all_finite(sp.point) && test::all_finite(sp.normal));
+    EXPECT_EQ(sp.signed_distance, inf);
+    EXPECT_TRUE(test::all_finite(s.support(p)));
+    EXPECT_FALSE(s.raycast(Ray{p, Vec3(1, 0, 0)}, Real(10)));
+    EXPECT_FALSE(s.raycast(Ray{Vec3(0), p}, Real(10)));
+  }
+  // max_t: NaN and negative never hit, +infinity is allowed.
+  EXPECT_FALSE(s.raycast(Ray{Vec3(0), Vec3(1, 0, 0)}, nan));
+  EXPECT_FALSE(s.raycast(Ray{Vec3(-50, 0, 0), Vec3(1, 0, 0)}, Real(-1)));
+  const auto hit = s.raycast(Ray{Vec3(-50, 0, 0), Vec3(1, 0, 0)}, inf);
+  ASSERT_TRUE(hit.has_value());
+  EXPECT_TRUE(test::all_finite(hit->point) && std::isfinite(hit->t));
+}
+
 }  // namespace
 }  // namespace proxima

@@ -37,8 +37,8 @@ class Cone {
   Real half_length() const { return half_length_; }
 
   /// Farthest point of the cone in `direction` (any vector): the apex or a point of the
-  /// base rim (the base centre for a direction along -z, the apex for a zero direction).
-  /// O(1).
+  /// base rim (the base centre for a direction along -z, the apex for a zero or
+  /// non-finite direction). O(1).
   Vec3 support(const Vec3& direction) const;
   /// Farthest point of the core (the whole cone) in `direction`: equals support().
   Vec3 core_support(const Vec3& direction) const { return support(direction); }
@@ -60,7 +60,7 @@ class Cone {
   /// Nearest surface point to `point` (local) with signed distance (< 0 inside); solved in
   /// the (radial, z) half-plane as the nearest point of the slant edge and the base edge of
   /// the profile triangle. Inside points go to the nearest face (slant side or base) with
-  /// that face's normal.
+  /// that face's normal. A non-finite point gives the apex at distance +infinity.
   SurfacePoint closest_point(const Vec3& point) const;
   /// Volume 2 pi r^2 h / 3, mass, centroid (0, 0, -h/2) and inertia about the centroid for
   /// uniform `density`: I_zz = 3/10 m r^2, I_xx = I_yy = 3/20 m r^2 + 3/80 m (2h)^2.

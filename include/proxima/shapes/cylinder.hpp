@@ -36,7 +36,7 @@ class Cylinder {
 
   /// Farthest point of the cylinder in `direction` (any vector): a point of a cap rim, or
   /// the centre of a cap when `direction` is parallel to the axis (the centre of the top
-  /// cap for a zero direction). O(1).
+  /// cap for a zero or non-finite direction). O(1).
   Vec3 support(const Vec3& direction) const;
   /// Farthest point of the core (the whole cylinder) in `direction`: equals support().
   Vec3 core_support(const Vec3& direction) const { return support(direction); }
@@ -56,7 +56,8 @@ class Cylinder {
   bool contains(const Vec3& point) const;
   /// Nearest surface point to `point` (local) with signed distance (< 0 inside); solved in
   /// the (radial, z) half-plane as the nearest point of a rectangle's boundary. Inside
-  /// points go to the nearest face (side or cap) with that face's normal.
+  /// points go to the nearest face (side or cap) with that face's normal. A non-finite
+  /// point gives the top cap's centre at distance +infinity.
   SurfacePoint closest_point(const Vec3& point) const;
   /// Volume 2 pi r^2 h, mass, centroid (origin) and inertia about it for uniform
   /// `density`: I_zz = m r^2 / 2, I_xx = I_yy = m (3 r^2 + (2h)^2) / 12.

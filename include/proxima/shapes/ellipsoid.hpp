@@ -33,7 +33,7 @@ class Ellipsoid {
   const Vec3& radii() const { return radii_; }
 
   /// Farthest point of the ellipsoid in `direction`: R^2 d / |R d| with R = diag(radii)
-  /// (any non-zero vector; zero gives the surface point (0, 0, rz)). O(1).
+  /// (any non-zero vector; zero or non-finite gives the surface point (0, 0, rz)). O(1).
   Vec3 support(const Vec3& direction) const;
   /// Farthest point of the core (the whole ellipsoid) in `direction`: equals support().
   Vec3 core_support(const Vec3& direction) const { return support(direction); }
@@ -54,7 +54,8 @@ class Ellipsoid {
   bool contains(const Vec3& point) const;
   /// Nearest surface point to `point` (local) with signed distance (< 0 inside), by Eberly's
   /// robust bisection (works for points on the axes, on the symmetry planes and inside, and
-  /// for any ratio of radii; at most a fixed number of iterations).
+  /// for any ratio of radii; at most a fixed number of iterations). A non-finite point gives
+  /// (0, 0, rz) at distance +infinity.
   SurfacePoint closest_point(const Vec3& point) const;
   /// Volume 4/3 pi rx ry rz, mass, centroid (origin) and inertia for uniform `density`:
   /// I_xx = m (ry^2 + rz^2) / 5 and cyclic.
