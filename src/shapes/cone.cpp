@@ -69,8 +69,9 @@ Result<Cone> Cone::create(Real radius, Real half_length) {
 
 Vec3 Cone::support(const Vec3& direction) const {
   const Vec3 apex(Real(0), Real(0), half_length_);
+  if (!is_finite(direction)) return apex;
   const Real m = std::max({std::abs(direction.x), std::abs(direction.y), std::abs(direction.z)});
-  if (!(m > Real(0)) || !is_finite(direction)) return apex;
+  if (!(m > Real(0))) return apex;
   const Vec3 d = direction / m;  // largest component +-1: no overflow, no underflow to 0
   const Real rho = std::sqrt(d.x * d.x + d.y * d.y);
   // Apex: h d.z; rim: r rho - h d.z.
