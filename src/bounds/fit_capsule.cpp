@@ -1,7 +1,7 @@
 // Bounding capsule: principal axis, then tightened segment ends and radius.
 //
-// Steps, for each of the three principal axes a of the points' covariance (the long axis
-// first; the smallest volume wins):
+// Steps (on the convex hull's vertices when there are many points: a capsule is convex,
+// so containing them is containing all), for an axis direction a:
 //  1. Project the points on the plane orthogonal to a; the axis line goes through the
 //     centre of the projections' smallest enclosing circle (Welzl), so the smallest
 //     admissible radius r0 is that circle's radius.
@@ -10,14 +10,17 @@
 //     symmetrically for s_lo): s_hi = max(s - sqrt(r^2 - rho^2)), s_lo = min(s +
 //     sqrt(r^2 - rho^2)); when s_lo > s_hi a single point in between suffices (a ball).
 //  3. Larger radii shorten the segment; volume(r) = pi r^2 (s_hi - s_lo) + 4/3 pi r^3 is
-//     minimised over [r0, r_ball] (r_ball covers everything with a point segment) by 24
+//     minimised over [r0, r_ball] (r_ball covers everything with a point segment) by 12
 //     samples and a golden-section refinement around the best one.
+//  Axis: the best of the three principal axes of the points' covariance, refined by a
+//     pattern search over tilts of the axis (halving the angle when no tilt helps).
 //  4. The radius is reduced to the largest distance of a point from the final segment
 //     (evaluated as BoundingCapsule::contains does, nudged by ulps until all pass).
 // Sources: Ericson, Real-Time Collision Detection, 4.5 (capsule/sphere-swept volumes);
 // Welzl 1991 for the enclosing circle; the end-shrinking rule is the exact condition for a
 // point to lie within r of the segment.
 #include <proxima/bounds/fit_capsule.hpp>
+#include <proxima/shapes/convex_hull.hpp>
 
 #include <glm/geometric.hpp>
 
@@ -67,98 +70,136 @@ BoundingCapsule finish_capsule(std::span<const Vec3> points, const Vec3& p0, con
   return c;
 }
 
+// The best capsule with axis direction `a` for the points (double, relative coordinates):
+// steps 1-3 of the header comment.
+struct AxisFit {
+  double volume = std::numeric_limits<double>::max();
+  glm::dvec3 p0{0.0};
+  glm::dvec3 p1{0.0};
+};
+
+AxisFit fit_along_axis(std::span<const glm::dvec3> rel, const glm::dvec3& axis, std::vector<glm::dvec3>& perp) {
+  const glm::dvec3 a = glm::normalize(axis);
+  perp.resize(rel.size());
+  for (std::size_t i = 0; i < rel.size(); ++i) perp[i] = rel[i] - glm::dot(rel[i], a) * a;
+  glm::dvec3 line_point;
+  double circle_r2;
+  detail::minimal_ball(perp, line_point, circle_r2);
+  line_point -= glm::dot(line_point, a) * a;
+  AxisData d;
+  d.s.resize(rel.size());
+  d.rho2.resize(rel.size());
+  double rho2_max = 0.0, s_min = std::numeric_limits<double>::max(), s_max = -s_min;
+  for (std::size_t i = 0; i < rel.size(); ++i) {
+    d.s[i] = glm::dot(rel[i], a);
+    const glm::dvec3 w = perp[i] - line_point;
+    d.rho2[i] = glm::dot(w, w);
+    rho2_max = std::max(rho2_max, d.rho2[i]);
+    s_min = std::min(s_min, d.s[i]);
+    s_max = std::max(s_max, d.s[i]);
+  }
+  const double r0 = std::sqrt(rho2_max);
+  const double half = 0.5 * (s_max - s_min);
+  const double r1 = std::sqrt(rho2_max + half * half);
+  // Sample, then golden-section around the best sample.
+  constexpr int kSamples = 12;
+  double best_r = r0;
+  double best_v = volume_for_radius(d, r0);
+  int best_k = 0;
+  for (int k = 1; k <= kSamples; ++k) {
+    const double r = r0 + (r1 - r0) * k / kSamples;
+    const double v = volume_for_radius(d, r);
+    if (v < best_v) {
+      best_v = v;
+      best_r = r;
+      best_k = k;
+    }
+  }
+  if (r1 > r0) {
+    double lo = r0 + (r1 - r0) * std::max(best_k - 1, 0) / kSamples;
+    double hi = r0 + (r1 - r0) * std::min(best_k + 1, kSamples) / kSamples;
+    const double g = 0.5 * (std::sqrt(5.0) - 1.0);
+    double x1 = hi - g * (hi - lo), x2 = lo + g * (hi - lo);
+    double f1 = volume_for_radius(d, x1), f2 = volume_for_radius(d, x2);
+    for (int it = 0; it < 20; ++it) {
+      if (f1 < f2) {
+        hi = x2;
+        x2 = x1;
+        f2 = f1;
+        x1 = hi - g * (hi - lo);
+        f1 = volume_for_radius(d, x1);
+      } else {
+        lo = x1;
+        x1 = x2;
+        f1 = f2;
+        x2 = lo + g * (hi - lo);
+        f2 = volume_for_radius(d, x2);
+      }
+    }
+    const double xm = 0.5 * (lo + hi);
+    const double fm = volume_for_radius(d, xm);
+    if (fm < best_v) {
+      best_v = fm;
+      best_r = xm;
+    }
+  }
+  double s_lo, s_hi;
+  segment_for_radius(d, best_r, s_lo, s_hi);
+  if (s_lo > s_hi) s_lo = s_hi = 0.5 * (s_lo + s_hi);
+  AxisFit f;
+  f.volume = best_v;
+  f.p0 = line_point + s_lo * a;
+  f.p1 = line_point + s_hi * a;
+  return f;
+}
+
 }  // namespace
 
 Result<BoundingCapsule> fit_capsule(std::span<const Vec3> points) {
   if (auto e = detail::validate_points(points)) return *e;
-  const glm::dvec3 origin(points[0]);
+  // A capsule is convex: containing the hull's vertices is containing every point.
+  std::vector<Vec3> hull_vertices;
+  if (points.size() > 256) {
+    if (auto hull = ConvexHull::create(points)) hull_vertices.assign(hull->vertices().begin(), hull->vertices().end());
+  }
+  const std::span<const Vec3> work = hull_vertices.empty() ? points : std::span<const Vec3>(hull_vertices);
+  const glm::dvec3 origin(work[0]);
   std::vector<glm::dvec3> rel;
-  rel.reserve(points.size());
-  for (const Vec3& p : points) rel.push_back(glm::dvec3(p) - origin);
-  const glm::dmat3 frame = detail::pca_frame_of_points(points);
+  rel.reserve(work.size());
+  for (const Vec3& p : work) rel.push_back(glm::dvec3(p) - origin);
+  const glm::dmat3 frame = detail::pca_frame_of_points(work);
 
-  BoundingCapsule best;
-  Real best_volume = kRealMax;
-  bool have = false;
-  std::vector<glm::dvec3> perp(rel.size());
-  for (int axis = 0; axis < 3; ++axis) {
-    const glm::dvec3 a = frame[axis];
-    for (std::size_t i = 0; i < rel.size(); ++i) perp[i] = rel[i] - glm::dot(rel[i], a) * a;
-    glm::dvec3 line_point;
-    double circle_r2;
-    detail::minimal_ball(perp, line_point, circle_r2);
-    line_point -= glm::dot(line_point, a) * a;
-    AxisData d;
-    d.s.resize(rel.size());
-    d.rho2.resize(rel.size());
-    double rho2_max = 0.0, s_min = std::numeric_limits<double>::max(), s_max = -s_min;
-    for (std::size_t i = 0; i < rel.size(); ++i) {
-      d.s[i] = glm::dot(rel[i], a);
-      const glm::dvec3 w = perp[i] - line_point;
-      d.rho2[i] = glm::dot(w, w);
-      rho2_max = std::max(rho2_max, d.rho2[i]);
-      s_min = std::min(s_min, d.s[i]);
-      s_max = std::max(s_max, d.s[i]);
-    }
-    const double r0 = std::sqrt(rho2_max);
-    const double half = 0.5 * (s_max - s_min);
-    const double r1 = std::sqrt(rho2_max + half * half);
-    // Sample, then golden-section around the best sample.
-    constexpr int kSamples = 24;
-    double best_r = r0;
-    double best_v = volume_for_radius(d, r0);
-    int best_k = 0;
-    for (int k = 1; k <= kSamples; ++k) {
-      const double r = r0 + (r1 - r0) * k / kSamples;
-      const double v = volume_for_radius(d, r);
-      if (v < best_v) {
-        best_v = v;
-        best_r = r;
-        best_k = k;
-      }
-    }
-    if (r1 > r0) {
-      double lo = r0 + (r1 - r0) * std::max(best_k - 1, 0) / kSamples;
-      double hi = r0 + (r1 - r0) * std::min(best_k + 1, kSamples) / kSamples;
-      const double g = 0.5 * (std::sqrt(5.0) - 1.0);
-      double x1 = hi - g * (hi - lo), x2 = lo + g * (hi - lo);
-      double f1 = volume_for_radius(d, x1), f2 = volume_for_radius(d, x2);
-      for (int it = 0; it < 40; ++it) {
-        if (f1 < f2) {
-          hi = x2;
-          x2 = x1;
-          f2 = f1;
-          x1 = hi - g * (hi - lo);
-          f1 = volume_for_radius(d, x1);
-        } else {
-          lo = x1;
-          x1 = x2;
-          f1 = f2;
-          x2 = lo + g * (hi - lo);
-          f2 = volume_for_radius(d, x2);
-        }
-      }
-      const double xm = 0.5 * (lo + hi);
-      const double fm = volume_for_radius(d, xm);
-      if (fm < best_v) {
-        best_v = fm;
-        best_r = xm;
-      }
-    }
-    double s_lo, s_hi;
-    segment_for_radius(d, best_r, s_lo, s_hi);
-    if (s_lo > s_hi) s_lo = s_hi = 0.5 * (s_lo + s_hi);
-    const Vec3 p0(origin + line_point + s_lo * a);
-    const Vec3 p1(origin + line_point + s_hi * a);
-    const BoundingCapsule c = finish_capsule(points, p0, p1);
-    const Real v = c.volume();
-    if (!have || v < best_volume) {
-      best = c;
-      best_volume = v;
-      have = true;
+  // Step 0: the best principal axis; then a pattern search on the axis direction (tilts
+  // of a shrinking angle about two orthogonal directions) while the volume decreases.
+  std::vector<glm::dvec3> perp;
+  glm::dvec3 axis = frame[0];
+  AxisFit best = fit_along_axis(rel, axis, perp);
+  for (int k = 1; k < 3; ++k) {
+    const AxisFit f = fit_along_axis(rel, frame[k], perp);
+    if (f.volume < best.volume) {
+      best = f;
+      axis = frame[k];
     }
   }
-  return best;
+  double angle = 0.1;
+  for (int it = 0; it < 60 && angle > 2e-4; ++it) {
+    const glm::dmat3 basis = detail::frame_from_axis(axis);
+    bool improved = false;
+    for (int k = 0; k < 4; ++k) {
+      const glm::dvec3 tilt = (k < 2 ? basis[1] : basis[2]) * (k % 2 == 0 ? 1.0 : -1.0);
+      const glm::dvec3 candidate = glm::normalize(std::cos(angle) * axis + std::sin(angle) * tilt);
+      const AxisFit f = fit_along_axis(rel, candidate, perp);
+      if (f.volume < best.volume * (1.0 - 1e-5)) {
+        best = f;
+        axis = candidate;
+        improved = true;
+        break;
+      }
+    }
+    if (!improved) angle *= 0.5;
+  }
+  // Step 4: reduce the radius to the farthest point from the final segment (all points).
+  return finish_capsule(points, Vec3(origin + best.p0), Vec3(origin + best.p1));
 }
 
 }  // namespace proxima

@@ -10,7 +10,8 @@
 
 namespace proxima {
 
-/// Capsule along a principal axis of the points (their covariance), tightened:
+/// Capsule along a principal axis of the points (their covariance), refined by a local
+/// search over the axis direction, and tightened:
 /// 1. the radius starts as the largest distance of a point from the axis line;
 /// 2. the segment ends are pulled in as far as every point stays within that radius of
 ///    the segment (each point p at axial coordinate s and distance rho from the axis
