@@ -486,8 +486,11 @@ Result<ConvexShapes> read_convex_shapes(const std::string& path) {
   });
 }
 
-Result<ConvexPairs> read_convex_pairs(const std::string& path) {
-  return guarded<ConvexPairs>([&]() -> ConvexPairs {
+namespace {
+
+/// Reads a convex_pairs file; shape ids must be below `shape_limit`.
+ConvexPairs parse_convex_pairs(const std::string& path, std::uint64_t shape_limit, const std::string& shapes_file) {
+  {
     Source src(path);
     const Header h = expect_header(src, "convex_pairs");
     const std::uint64_t count = require_count(src, h, "count");
@@ -499,7 +502,10 @@ Result<ConvexPairs> read_convex_pairs(const std::string& path) {
       ConvexPair p;
       const std::uint64_t a = parse_unsigned(src, t[0], "shape id");
       const std::uint64_t b = parse_unsigned(src, t[1], "shape id");
-      if (a > 0xffffffffu || b > 0xffffffffu) src.fail_here("shape id too large");
+      if (a >= shape_limit || b >= shape_limit) {
+        src.fail_here("shape id " + std::to_string(std::max(a, b)) + " beyond the " + std::to_string(shape_limit) +
+                      " shapes of " + shapes_file);
+      }
       p.a = static_cast<std::uint32_t>(a);
       p.b = static_cast<std::uint32_t>(b);
       p.pose_a = parse_pose(src, t, 2);
@@ -507,7 +513,22 @@ Result<ConvexPairs> read_convex_pairs(const std::string& path) {
       out.pairs.push_back(p);
     });
     return out;
-  });
+  }
+}
+
+/// The value of `key` in the header of `path`, or "" when the header cannot be read or
+/// lacks it (the full reader then reports why).
+std::string header_value(const std::string& path, const char* key) {
+  const auto header = read_header(path);
+  if (!header) return {};
+  const auto it = header->keys.find(key);
+  return it == header->keys.end() ? std::string() : it->second;
+}
+
+}  // namespace
+
+Result<ConvexPairs> read_convex_pairs(const std::string& path) {
+  return guarded<ConvexPairs>([&]() { return parse_convex_pairs(path, std::uint64_t{1} << 32, "the shapes file"); });
 }
 
 Result<std::vector<BoxPair>> read_box_pairs(const std::string& path) {
@@ -613,8 +634,11 @@ Result<RayQueries> read_rays(const std::string& path) {
   });
 }
 
-Result<CcdPairs> read_ccd_pairs(const std::string& path) {
-  return guarded<CcdPairs>([&]() -> CcdPairs {
+namespace {
+
+/// Reads a ccd_pairs file; hull ids must be below `hull_limit`.
+CcdPairs parse_ccd_pairs(const std::string& path, std::uint64_t hull_limit, const std::string& hulls_file) {
+  {
     Source src(path);
     const Header h = expect_header(src, "ccd_pairs");
     const std::uint64_t count = require_count(src, h, "count");
@@ -641,6 +665,12 @@ Result<CcdPairs> read_ccd_pairs(const std::string& path) {
       CcdCase c;
       c.a = parse_ccd_shape(src, parts[0]);
       c.b = parse_ccd_shape(src, parts[1]);
+      for (const CcdShape* shape : {&c.a, &c.b}) {
+        if (shape->kind == CcdShapeKind::Hull && shape->hull >= hull_limit) {
+          src.fail_here("hull id " + std::to_string(shape->hull) + " beyond the " + std::to_string(hull_limit) +
+                        " shapes of " + hulls_file);
+        }
+      }
       const auto pa = split(parts[2]);
       expect_tokens(src, pa, 14, "pA0(7) pA1(7)");
       const auto pb = split(parts[3]);
@@ -653,7 +683,13 @@ Result<CcdPairs> read_ccd_pairs(const std::string& path) {
     }
     if (src.next_record(line)) src.fail_here("more cases than the header's count=" + std::to_string(count));
     return out;
-  });
+  }
+}
+
+}  // namespace
+
+Result<CcdPairs> read_ccd_pairs(const std::string& path) {
+  return guarded<CcdPairs>([&]() { return parse_ccd_pairs(path, std::uint64_t{1} << 32, "the hulls file"); });
 }
 
 namespace {
@@ -717,40 +753,34 @@ Result<PrimitivePairs<CapsulePair>> read_capsule_pairs(const std::string& path, 
 
 Result<ConvexWorkload> read_convex_workload(const std::string& dir, int points) {
   const std::string pairs_path = workload_path(dir, "convex_pairs_" + std::to_string(points) + ".txt");
-  auto pairs = read_convex_pairs(pairs_path);
-  if (!pairs) return pairs.error();
-  auto shapes = read_convex_shapes(workload_path(dir, pairs->shapes_file));
-  if (!shapes) return shapes.error();
-  ConvexWorkload w{std::move(shapes).value(), std::move(pairs).value()};
-  for (std::size_t k = 0; k < w.pairs.pairs.size(); ++k) {
-    const ConvexPair& p = w.pairs.pairs[k];
-    if (p.a >= w.shapes.shapes.size() || p.b >= w.shapes.shapes.size()) {
-      // Records start on line 2 when the file has no blank or comment lines.
-      return make_error(
-          ErrorCode::OutOfRange, pairs_path + ": record " + std::to_string(k),
-          "shape id beyond the " + std::to_string(w.shapes.shapes.size()) + " shapes of " + w.pairs.shapes_file);
-    }
+  const std::string shapes_file = header_value(pairs_path, "shapes");
+  if (shapes_file.empty()) {
+    auto pairs = read_convex_pairs(pairs_path);  // reports why
+    if (!pairs) return pairs.error();
+    return make_error(ErrorCode::InvalidArgument, pairs_path + ":1", "empty shapes= key");
   }
-  return w;
+  auto shapes = read_convex_shapes(workload_path(dir, shapes_file));
+  if (!shapes) return shapes.error();
+  const std::uint64_t limit = shapes->shapes.size();
+  auto pairs = guarded<ConvexPairs>([&]() { return parse_convex_pairs(pairs_path, limit, shapes_file); });
+  if (!pairs) return pairs.error();
+  return ConvexWorkload{std::move(shapes).value(), std::move(pairs).value()};
 }
 
 Result<CcdWorkload> read_ccd_workload(const std::string& dir) {
   const std::string pairs_path = workload_path(dir, "ccd_pairs.txt");
-  auto pairs = read_ccd_pairs(pairs_path);
-  if (!pairs) return pairs.error();
-  auto hulls = read_convex_shapes(workload_path(dir, pairs->hulls_file));
-  if (!hulls) return hulls.error();
-  CcdWorkload w{std::move(hulls).value(), std::move(pairs).value()};
-  for (std::size_t k = 0; k < w.pairs.cases.size(); ++k) {
-    for (const CcdShape* s : {&w.pairs.cases[k].a, &w.pairs.cases[k].b}) {
-      if (s->kind == CcdShapeKind::Hull && s->hull >= w.hulls.shapes.size()) {
-        return make_error(
-            ErrorCode::OutOfRange, pairs_path + ": record " + std::to_string(k),
-            "hull id beyond the " + std::to_string(w.hulls.shapes.size()) + " shapes of " + w.pairs.hulls_file);
-      }
-    }
+  const std::string hulls_file = header_value(pairs_path, "hulls");
+  if (hulls_file.empty()) {
+    auto pairs = read_ccd_pairs(pairs_path);  // reports why
+    if (!pairs) return pairs.error();
+    return make_error(ErrorCode::InvalidArgument, pairs_path + ":1", "empty hulls= key");
   }
-  return w;
+  auto hulls = read_convex_shapes(workload_path(dir, hulls_file));
+  if (!hulls) return hulls.error();
+  const std::uint64_t limit = hulls->shapes.size();
+  auto pairs = guarded<CcdPairs>([&]() { return parse_ccd_pairs(pairs_path, limit, hulls_file); });
+  if (!pairs) return pairs.error();
+  return CcdWorkload{std::move(hulls).value(), std::move(pairs).value()};
 }
 
 // ---------------------------------------------------------------------------------

@@ -116,8 +116,23 @@ TEST(MalformedWorkloads, ConvexShapes) {
       << "convex_pairs 1 count=1 shapes=convex_shapes_1.txt\n0 1 0 0 0 1 0 0 0 1 1 1 1 0 0 0\n";
   const auto w = read_convex_workload(dir.string(), 1);
   ASSERT_FALSE(w.ok());
-  EXPECT_NE(w.error().what().find("convex_pairs_1.txt: record 0"), std::string::npos) << w.error().what();
-  EXPECT_NE(w.error().what().find("shape id beyond the 1 shapes"), std::string::npos) << w.error().what();
+  EXPECT_NE(w.error().what().find("convex_pairs_1.txt:2"), std::string::npos) << w.error().what();
+  EXPECT_NE(w.error().what().find("shape id 1 beyond the 1 shapes of convex_shapes_1.txt"), std::string::npos)
+      << w.error().what();
+
+  std::ofstream((dir / "ccd_pairs.txt").string())
+      << "ccd_pairs 1 count=2 hulls=convex_shapes_1.txt\n"
+      << "hull 0 | sphere 1 | 0 0 0 1 0 0 0 1 0 0 1 0 0 0 | 0 0 0 1 0 0 0 1 0 0 1 0 0 0\n"
+      << "# comment\n"
+      << "sphere 1 | hull 3 | 0 0 0 1 0 0 0 1 0 0 1 0 0 0 | 0 0 0 1 0 0 0 1 0 0 1 0 0 0\n";
+  const auto ccd = read_ccd_workload(dir.string());
+  ASSERT_FALSE(ccd.ok());
+  EXPECT_NE(ccd.error().what().find("ccd_pairs.txt:4"), std::string::npos) << ccd.error().what();
+  EXPECT_NE(ccd.error().what().find("hull id 3 beyond the 1 shapes"), std::string::npos) << ccd.error().what();
+  std::ofstream((dir / "ccd_pairs.txt").string()) << "ccd_pairs 1 count=0\n";
+  const auto no_hulls = read_ccd_workload(dir.string());
+  ASSERT_FALSE(no_hulls.ok());
+  EXPECT_NE(no_hulls.error().what().find("lacks the key hulls="), std::string::npos) << no_hulls.error().what();
 }
 
 TEST(MalformedWorkloads, CcdLines) {
