@@ -490,30 +490,28 @@ namespace {
 
 /// Reads a convex_pairs file; shape ids must be below `shape_limit`.
 ConvexPairs parse_convex_pairs(const std::string& path, std::uint64_t shape_limit, const std::string& shapes_file) {
-  {
-    Source src(path);
-    const Header h = expect_header(src, "convex_pairs");
-    const std::uint64_t count = require_count(src, h, "count");
-    ConvexPairs out;
-    out.shapes_file = require_key(src, h, "shapes");
-    out.pairs.reserve(count);
-    read_records(src, count, [&](const std::vector<std::string_view>& t) {
-      expect_tokens(src, t, 16, "a b pA(7) pB(7)");
-      ConvexPair p;
-      const std::uint64_t a = parse_unsigned(src, t[0], "shape id");
-      const std::uint64_t b = parse_unsigned(src, t[1], "shape id");
-      if (a >= shape_limit || b >= shape_limit) {
-        src.fail_here("shape id " + std::to_string(std::max(a, b)) + " beyond the " + std::to_string(shape_limit) +
-                      " shapes of " + shapes_file);
-      }
-      p.a = static_cast<std::uint32_t>(a);
-      p.b = static_cast<std::uint32_t>(b);
-      p.pose_a = parse_pose(src, t, 2);
-      p.pose_b = parse_pose(src, t, 9);
-      out.pairs.push_back(p);
-    });
-    return out;
-  }
+  Source src(path);
+  const Header h = expect_header(src, "convex_pairs");
+  const std::uint64_t count = require_count(src, h, "count");
+  ConvexPairs out;
+  out.shapes_file = require_key(src, h, "shapes");
+  out.pairs.reserve(count);
+  read_records(src, count, [&](const std::vector<std::string_view>& t) {
+    expect_tokens(src, t, 16, "a b pA(7) pB(7)");
+    ConvexPair p;
+    const std::uint64_t a = parse_unsigned(src, t[0], "shape id");
+    const std::uint64_t b = parse_unsigned(src, t[1], "shape id");
+    if (a >= shape_limit || b >= shape_limit) {
+      src.fail_here("shape id " + std::to_string(std::max(a, b)) + " beyond the " + std::to_string(shape_limit) +
+                    " shapes of " + shapes_file);
+    }
+    p.a = static_cast<std::uint32_t>(a);
+    p.b = static_cast<std::uint32_t>(b);
+    p.pose_a = parse_pose(src, t, 2);
+    p.pose_b = parse_pose(src, t, 9);
+    out.pairs.push_back(p);
+  });
+  return out;
 }
 
 /// The value of `key` in the header of `path`, or "" when the header cannot be read or
@@ -638,52 +636,50 @@ namespace {
 
 /// Reads a ccd_pairs file; hull ids must be below `hull_limit`.
 CcdPairs parse_ccd_pairs(const std::string& path, std::uint64_t hull_limit, const std::string& hulls_file) {
-  {
-    Source src(path);
-    const Header h = expect_header(src, "ccd_pairs");
-    const std::uint64_t count = require_count(src, h, "count");
-    CcdPairs out;
-    out.hulls_file = require_key(src, h, "hulls");
-    out.cases.reserve(count);
-    std::string_view line;
-    for (std::uint64_t k = 0; k < count; ++k) {
-      if (!src.next_record(line)) {
-        fail(path, src.line(), "file ends after " + std::to_string(k) + " of the " + std::to_string(count) + " cases");
-      }
-      std::vector<std::string_view> parts;
-      std::size_t start = 0;
-      while (true) {
-        const std::size_t bar = line.find('|', start);
-        parts.push_back(line.substr(start, bar == std::string_view::npos ? std::string_view::npos : bar - start));
-        if (bar == std::string_view::npos) break;
-        start = bar + 1;
-      }
-      if (parts.size() != 4) {
-        src.fail_here("expected 4 fields separated by '|' (shapeA | shapeB | pA0 pA1 | pB0 pB1), found " +
-                      std::to_string(parts.size()));
-      }
-      CcdCase c;
-      c.a = parse_ccd_shape(src, parts[0]);
-      c.b = parse_ccd_shape(src, parts[1]);
-      for (const CcdShape* shape : {&c.a, &c.b}) {
-        if (shape->kind == CcdShapeKind::Hull && shape->hull >= hull_limit) {
-          src.fail_here("hull id " + std::to_string(shape->hull) + " beyond the " + std::to_string(hull_limit) +
-                        " shapes of " + hulls_file);
-        }
-      }
-      const auto pa = split(parts[2]);
-      expect_tokens(src, pa, 14, "pA0(7) pA1(7)");
-      const auto pb = split(parts[3]);
-      expect_tokens(src, pb, 14, "pB0(7) pB1(7)");
-      c.a0 = parse_pose(src, pa, 0);
-      c.a1 = parse_pose(src, pa, 7);
-      c.b0 = parse_pose(src, pb, 0);
-      c.b1 = parse_pose(src, pb, 7);
-      out.cases.push_back(c);
+  Source src(path);
+  const Header h = expect_header(src, "ccd_pairs");
+  const std::uint64_t count = require_count(src, h, "count");
+  CcdPairs out;
+  out.hulls_file = require_key(src, h, "hulls");
+  out.cases.reserve(count);
+  std::string_view line;
+  for (std::uint64_t k = 0; k < count; ++k) {
+    if (!src.next_record(line)) {
+      fail(path, src.line(), "file ends after " + std::to_string(k) + " of the " + std::to_string(count) + " cases");
     }
-    if (src.next_record(line)) src.fail_here("more cases than the header's count=" + std::to_string(count));
-    return out;
+    std::vector<std::string_view> parts;
+    std::size_t start = 0;
+    while (true) {
+      const std::size_t bar = line.find('|', start);
+      parts.push_back(line.substr(start, bar == std::string_view::npos ? std::string_view::npos : bar - start));
+      if (bar == std::string_view::npos) break;
+      start = bar + 1;
+    }
+    if (parts.size() != 4) {
+      src.fail_here("expected 4 fields separated by '|' (shapeA | shapeB | pA0 pA1 | pB0 pB1), found " +
+                    std::to_string(parts.size()));
+    }
+    CcdCase c;
+    c.a = parse_ccd_shape(src, parts[0]);
+    c.b = parse_ccd_shape(src, parts[1]);
+    for (const CcdShape* shape : {&c.a, &c.b}) {
+      if (shape->kind == CcdShapeKind::Hull && shape->hull >= hull_limit) {
+        src.fail_here("hull id " + std::to_string(shape->hull) + " beyond the " + std::to_string(hull_limit) +
+                      " shapes of " + hulls_file);
+      }
+    }
+    const auto pa = split(parts[2]);
+    expect_tokens(src, pa, 14, "pA0(7) pA1(7)");
+    const auto pb = split(parts[3]);
+    expect_tokens(src, pb, 14, "pB0(7) pB1(7)");
+    c.a0 = parse_pose(src, pa, 0);
+    c.a1 = parse_pose(src, pa, 7);
+    c.b0 = parse_pose(src, pb, 0);
+    c.b1 = parse_pose(src, pb, 7);
+    out.cases.push_back(c);
   }
+  if (src.next_record(line)) src.fail_here("more cases than the header's count=" + std::to_string(count));
+  return out;
 }
 
 }  // namespace
