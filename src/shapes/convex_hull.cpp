@@ -1,10 +1,12 @@
 // ConvexHull queries (the hull itself is built in convex_hull_build.cpp).
 //
-//  - support_index: linear scan for small hulls; otherwise hill-climbing over the vertex
-//    adjacency (a local maximum of a linear function over the vertex graph of a convex
-//    polytope is global; moves only on a strictly larger dot product, so no cycle) — the
-//    "hill climbing" of van den Bergen, Collision Detection in Interactive 3D
-//    Environments, 2004, sec. 4.3.4, and Cameron's "enhanced GJK" (1997).
+//  - support_index: linear scan for small hulls; otherwise hill-climbing (a local maximum
+//    of a linear function over the vertex graph of a convex polytope is global; moves
+//    only on a strictly larger dot product, so no cycle) — the "hill climbing" of van den
+//    Bergen, Collision Detection in Interactive 3D Environments, 2004, sec. 4.3.4, and
+//    Cameron's "enhanced GJK" (1997). Moves go to any vertex sharing a face, so faces
+//    merged within the input's rounding (planar only to that accuracy) cannot hide a
+//    better vertex behind a bend.
 //  - raycast: Cyrus–Beck clipping of the ray's parameter interval against every face
 //    half-space (Cyrus and Beck 1978; Ericson, Real-Time Collision Detection, 5.3.8).
 //  - contains: every face plane test; a point within tolerance() in front of some planes
@@ -14,6 +16,9 @@
 //    the nearest of the projections that fall inside their face polygon and the closest
 //    points on every edge.
 //  - world_aabb: box of the transformed vertices.
+// Every query works relative to the centre of the hull's box (shifted vertices and plane
+// offsets precomputed in double): for a hull far from its local origin the differences
+// are exact, so dot products and plane tests keep the hull's own resolution.
 
 #include <proxima/core/tolerance.hpp>
 #include <proxima/shapes/convex_hull.hpp>
@@ -38,7 +43,9 @@ Vec3 closest_on_segment(const Vec3& p, const Vec3& a, const Vec3& b) {
 }  // namespace
 
 std::uint32_t ConvexHull::support_index(const Vec3& direction, std::uint32_t start_vertex) const {
-  const std::vector<Vec3>& v = data_->vertices;
+  // Relative to the box centre: for a hull far from the origin the differences are exact
+  // and the dot products keep the hull's own resolution.
+  const std::vector<Vec3>& v = data_->shifted_vertices;
   const auto n = static_cast<std::uint32_t>(v.size());
   if (n <= kLinearScanMaxVertices) {
     std::uint32_t best = 0;
@@ -59,7 +66,10 @@ std::uint32_t ConvexHull::support_index(const Vec3& direction, std::uint32_t sta
   for (;;) {
     std::uint32_t next = current;
     Real next_dot = current_dot;
-    for (std::uint32_t nb : vertex_neighbors(current)) {
+    const std::uint32_t* nb_begin = data_->climb_neighbors.data() + data_->climb_offsets[current];
+    const std::uint32_t* nb_end = data_->climb_neighbors.data() + data_->climb_offsets[current + 1];
+    for (const std::uint32_t* it = nb_begin; it != nb_end; ++it) {
+      const std::uint32_t nb = *it;
       const Real d = glm::dot(v[nb], direction);
       if (d > next_dot) {
         next_dot = d;
@@ -75,17 +85,24 @@ std::uint32_t ConvexHull::support_index(const Vec3& direction, std::uint32_t sta
 Aabb ConvexHull::world_aabb(const Transform& pose) const {
   const Mat3 r = pose.rotation_matrix();
   Aabb box = Aabb::empty();
-  for (const Vec3& v : data_->vertices) box.grow(r * v);
-  box.min += pose.position;
-  box.max += pose.position;
+  for (const Vec3& v : data_->shifted_vertices) box.grow(r * v);
+  const Vec3 c = pose.apply(data_->reference);
+  box.min += c;
+  box.max += c;
   return box;
+}
+
+// Signed distance of the shifted point q in front of face i's plane.
+static inline Real plane_distance(const ConvexHull::Data& d, std::size_t i, const Vec3& q) {
+  return glm::dot(d.faces[i].normal, q) - d.shifted_offsets[i];
 }
 
 bool ConvexHull::contains(const Vec3& point) const {
   const Real tol = data_->tolerance;
+  const Vec3 q = point - data_->reference;
   Real worst = -kRealMax;
-  for (const HullFace& f : data_->faces) {
-    const Real d = glm::dot(f.normal, point) - f.offset;
+  for (std::size_t i = 0; i < data_->faces.size(); ++i) {
+    const Real d = plane_distance(*data_, i, q);
     if (d > tol) return false;
     worst = std::max(worst, d);
   }
@@ -97,14 +114,16 @@ bool ConvexHull::contains(const Vec3& point) const {
 
 std::optional<RayHit> ConvexHull::raycast(const Ray& ray, Real max_t) const {
   if (!(max_t >= Real(0))) return std::nullopt;
+  const Vec3 origin = ray.origin - data_->reference;
   Real t_enter = Real(0);
   Real t_exit = max_t;
-  const HullFace* enter_face = nullptr;
+  std::size_t enter_face = data_->faces.size();
   const Real tol = data_->tolerance;
-  for (const HullFace& f : data_->faces) {
+  for (std::size_t i = 0; i < data_->faces.size(); ++i) {
     // Inside the face's half-space: t * denom <= dist.
-    const Real denom = glm::dot(f.normal, ray.direction);
-    const Real dist = f.offset - glm::dot(f.normal, ray.origin);
+    const Vec3& n = data_->faces[i].normal;
+    const Real denom = glm::dot(n, ray.direction);
+    const Real dist = -plane_distance(*data_, i, origin);
     if (denom == Real(0)) {
       if (dist < -tol) return std::nullopt;  // parallel and outside
       continue;
@@ -113,7 +132,7 @@ std::optional<RayHit> ConvexHull::raycast(const Ray& ray, Real max_t) const {
     if (denom < Real(0)) {
       if (t > t_enter) {
         t_enter = t;
-        enter_face = &f;
+        enter_face = i;
       }
     } else if (t < t_exit) {
       t_exit = t;
@@ -121,7 +140,7 @@ std::optional<RayHit> ConvexHull::raycast(const Ray& ray, Real max_t) const {
     if (t_enter > t_exit) return std::nullopt;
   }
   RayHit hit;
-  if (enter_face == nullptr) {
+  if (enter_face == data_->faces.size()) {
     // The origin is inside (or on) the hull.
     hit.t = Real(0);
     hit.point = ray.origin;
@@ -135,18 +154,20 @@ std::optional<RayHit> ConvexHull::raycast(const Ray& ray, Real max_t) const {
   }
   hit.t = t_enter;
   hit.point = ray.at(t_enter);
-  hit.normal = enter_face->normal;
+  hit.normal = data_->faces[enter_face].normal;
   return hit;
 }
 
 SurfacePoint ConvexHull::closest_point(const Vec3& point) const {
   const std::vector<HullFace>& faces = data_->faces;
-  const std::vector<Vec3>& v = data_->vertices;
+  const std::vector<Vec3>& v = data_->shifted_vertices;
+  const Vec3& ref = data_->reference;
+  const Vec3 p = point - ref;
   // The face whose plane is farthest in front of (or least behind) the point.
   std::size_t best_face = 0;
   Real best_plane = -kRealMax;
   for (std::size_t i = 0; i < faces.size(); ++i) {
-    const Real d = glm::dot(faces[i].normal, point) - faces[i].offset;
+    const Real d = plane_distance(*data_, i, p);
     if (d > best_plane) {
       best_plane = d;
       best_face = i;
@@ -162,12 +183,12 @@ SurfacePoint ConvexHull::closest_point(const Vec3& point) const {
   }
   // Outside: the nearest point over every face polygon.
   Real best_d2 = kRealMax;
-  Vec3 best_point = point;
+  Vec3 best_point = p;
   for (std::size_t i = 0; i < faces.size(); ++i) {
     const HullFace& f = faces[i];
-    const Real d = glm::dot(f.normal, point) - f.offset;
+    const Real d = plane_distance(*data_, i, p);
     if (d <= Real(0) || d * d >= best_d2) continue;
-    const Vec3 q = point - d * f.normal;
+    const Vec3 q = p - d * f.normal;
     bool inside = true;
     for (std::uint32_t k = 0; k < f.index_count && inside; ++k) {
       const Vec3& a = v[data_->face_indices[f.first_index + k]];
@@ -180,8 +201,8 @@ SurfacePoint ConvexHull::closest_point(const Vec3& point) const {
     }
   }
   for (const HullEdge& e : data_->edges) {
-    const Vec3 q = closest_on_segment(point, v[e.v0], v[e.v1]);
-    const Vec3 pq = point - q;
+    const Vec3 q = closest_on_segment(p, v[e.v0], v[e.v1]);
+    const Vec3 pq = p - q;
     const Real d2 = glm::dot(pq, pq);
     if (d2 < best_d2) {
       best_d2 = d2;
@@ -189,11 +210,11 @@ SurfacePoint ConvexHull::closest_point(const Vec3& point) const {
     }
   }
   const Real dist = std::sqrt(best_d2);
-  r.point = best_point;
+  r.point = best_point + ref;
   r.signed_distance = dist;
   // Normal from the offset when it is well defined, else the nearest face's normal.
   if (dist > std::numeric_limits<Real>::min() * Real(1e6)) {
-    const Vec3 n = (point - best_point) / dist;
+    const Vec3 n = (p - best_point) / dist;
     const Real nl = glm::length(n);
     r.normal = (nl > Real(0.5) && nl < Real(1.5)) ? n / nl : faces[best_face].normal;
   } else {

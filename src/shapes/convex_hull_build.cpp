@@ -9,11 +9,15 @@
 //     the plane of the three (an O(n) approximation of the cloud's width); a cloud that is
 //     coincident, collinear or coplanar within tolerance is Degenerate.
 //  4. Run qhull (Barber, Dobkin, Huhdanpaa, "The Quickhull Algorithm for Convex Hulls",
-//     ACM TOMS 1996) in double with pre-merging 'C-r', r = 4 epsilon of Real (relative to
-//     the hull's size), so that facets coplanar within the resolution of Real merge into
-//     convex polygons (a rotated box keeps six faces in float); 'Qs' searches every point
-//     for the initial simplex. Qhull's messages go to a temporary file, read back for the
-//     error message. Its memory is freed on every path.
+//     ACM TOMS 1996) in double: 'Qs' searches every point for the initial simplex, 'C-0'
+//     pre-merges within qhull's roundoff, and the post-merge centrum radius 'Cr' (r = 2
+//     epsilon of Real at the points' distance from the origin: the rounding of the input
+//     coordinates) merges facets until every centrum is r below its neighbours' planes.
+//     Faces coplanar within the resolution of the input become one convex polygon (a
+//     rotated box keeps six faces), and no sliver or shallow dent made of rounding noise
+//     is left, where face outlines would be arbitrary and hill-climbing could stop short.
+//     Qhull's messages go to a temporary file, read back for the error message. Its
+//     memory is freed on every path.
 //  5. Each facet's vertex loop comes from qhull's own topology: the ridges of a merged
 //     facet are walked end to end (as qhull's qh_facet3vertex does), a simplicial facet's
 //     order follows its orientation flag, so every edge is traversed once in each
@@ -22,10 +26,10 @@
 //  6. Vertices shared by only two faces lie on a straight edge and are removed from both
 //     loops (they would stall hill-climbing). Compact the vertex indices, recompute each
 //     face plane from its loop (Newell's method, offset = the largest vertex offset),
-//     pair each directed edge with its reverse, check the closed 2-manifold (each directed
-//     edge once with its reverse in another face, V - E + F = 2), build the vertex
-//     adjacency (CSR). If qhull or any check fails, qhull runs again with only its own
-//     double-precision merging ('C-0') before Internal is reported.
+//     pair each directed edge with its reverse and check the closed 2-manifold (each
+//     directed edge once, its reverse in another face, V - E + F = 2). Build the vertex
+//     adjacency (CSR). If qhull or a check fails, qhull runs again with a 10x larger
+//     post-merge radius (three times at most) before Internal is reported.
 //  7. Box, scale, tolerance; the hull's width over its face normals must exceed the
 //     flatness tolerance; mass properties (convex_hull_mass.cpp).
 
@@ -130,6 +134,10 @@ class QhullSession {
 struct QhullOutcome {
   std::vector<std::vector<int>> loops;
   std::vector<D3> normals;
+  std::vector<std::size_t> plane_of;  // loop whose points define each loop's plane (itself, or the
+                                      // merged facet it was cut from)
+  std::size_t face_count = 0;         // loops [0, face_count) are faces, the rest plane sources
+  double max_outside = 0;             // farthest input point above its facet's hyperplane (normalised)
   int exit_code = 0;
   std::string message;
 };
@@ -160,7 +168,7 @@ ridgeT* next_ridge(ridgeT* at, facetT* facet, vertexT** vertex_out) {
   return nullptr;
 }
 
-QhullOutcome run_qhull(const std::vector<D3>& pts, double merge_radius) {
+QhullOutcome run_qhull(const std::vector<D3>& pts, double post_merge_radius) {
   QhullOutcome out;
   std::vector<coordT> coords(pts.size() * 3);
   for (std::size_t i = 0; i < pts.size(); ++i) {
@@ -172,13 +180,14 @@ QhullOutcome run_qhull(const std::vector<D3>& pts, double merge_radius) {
   QhullSession session(messages.get());
   qhT* qh = session.get();
   char command[64];
-  std::snprintf(command, sizeof command, "qhull Qs C-%.3g", merge_radius);
+  std::snprintf(command, sizeof command, "qhull Qs C-0 C%.3g", post_merge_radius);
   out.exit_code =
       qh_new_qhull(qh, 3, static_cast<int>(pts.size()), coords.data(), False, command, nullptr, messages.get());
   if (out.exit_code != 0) {
     out.message = messages.first_line();
     return out;
   }
+  out.max_outside = std::max({0.0, qh->max_outside, qh->max_vertex});
   auto fail = [&](const char* why) {
     out.exit_code = qh_ERRqhull;
     out.message = why;
@@ -227,12 +236,81 @@ QhullOutcome run_qhull(const std::vector<D3>& pts, double merge_radius) {
   return out;
 }
 
+// Coordinates of the loop's points in the plane of unit normal n, (u, w, n) right-handed.
+std::vector<std::array<double, 2>> project_loop(const std::vector<int>& loop, const D3& n, const std::vector<D3>& pts) {
+  const D3 helper = std::abs(n[0]) < 0.6 ? D3{1, 0, 0} : (std::abs(n[1]) < 0.6 ? D3{0, 1, 0} : D3{0, 0, 1});
+  D3 u = cross(helper, n);
+  const double ul = norm(u);
+  u = {u[0] / ul, u[1] / ul, u[2] / ul};
+  const D3 w = cross(n, u);
+  std::vector<std::array<double, 2>> q;
+  q.reserve(loop.size());
+  for (int id : loop) q.push_back({dot(pts[id], u), dot(pts[id], w)});
+  return q;
+}
+
+double turn2(const std::array<double, 2>& a, const std::array<double, 2>& b, const std::array<double, 2>& c) {
+  return (b[0] - a[0]) * (c[1] - b[1]) - (b[1] - a[1]) * (c[0] - b[0]);
+}
+
+double length2(const std::array<double, 2>& a, const std::array<double, 2>& b) {
+  return std::hypot(b[0] - a[0], b[1] - a[1]);
+}
+
+// True when the CCW loop turns left at every vertex, or right by less than `slack`
+// (the vertex lies within slack inside the line of its neighbours' edges).
+bool is_convex_loop(const std::vector<int>& loop, const D3& n, const std::vector<D3>& pts, double slack) {
+  const auto q = project_loop(loop, n, pts);
+  const std::size_t k = q.size();
+  for (std::size_t i = 0; i < k; ++i) {
+    const auto& a = q[i];
+    const auto& b = q[(i + 1) % k];
+    const auto& c = q[(i + 2) % k];
+    if (turn2(a, b, c) < -slack * (length2(a, b) + length2(b, c))) return false;
+  }
+  return true;
+}
+
+// Ear clipping (Meisters 1975; Eberly, "Triangulation by Ear Clipping") of a simple CCW
+// loop in the plane of n. Returns false when no ear is left (the outline crosses itself).
+bool ear_clip(const std::vector<int>& loop, const D3& n, const std::vector<D3>& pts,
+              std::vector<std::array<int, 3>>& triangles) {
+  const auto all = project_loop(loop, n, pts);
+  std::vector<std::size_t> rest(loop.size());
+  for (std::size_t i = 0; i < rest.size(); ++i) rest[i] = i;
+  auto inside = [&](std::size_t p, std::size_t a, std::size_t b, std::size_t c) {
+    return turn2(all[a], all[b], all[p]) >= 0 && turn2(all[b], all[c], all[p]) >= 0 &&
+           turn2(all[c], all[a], all[p]) >= 0;
+  };
+  while (rest.size() > 3) {
+    bool clipped = false;
+    for (std::size_t i = 0; i < rest.size() && !clipped; ++i) {
+      const std::size_t a = rest[(i + rest.size() - 1) % rest.size()];
+      const std::size_t b = rest[i];
+      const std::size_t c = rest[(i + 1) % rest.size()];
+      if (!(turn2(all[a], all[b], all[c]) > 0)) continue;
+      bool empty = true;
+      for (std::size_t p : rest) {
+        if (p != a && p != b && p != c && inside(p, a, b, c)) {
+          empty = false;
+          break;
+        }
+      }
+      if (!empty) continue;
+      triangles.push_back({loop[a], loop[b], loop[c]});
+      rest.erase(rest.begin() + static_cast<std::ptrdiff_t>(i));
+      clipped = true;
+    }
+    if (!clipped) return false;
+  }
+  triangles.push_back({loop[rest[0]], loop[rest[1]], loop[rest[2]]});
+  return true;
+}
+
 // Turns qhull's loops counter-clockwise seen from outside and removes the vertices that
-// only two faces share. With `require_convex`, a loop that turns the wrong way at some
-// vertex by more than the resolution of Real (which merging within a radius can leave
-// where neighbours are nearly coplanar) makes the loops unusable. Returns an empty
-// string, or why the loops are unusable.
-std::string orient_and_simplify(QhullOutcome& hull, const std::vector<D3>& pts, bool require_convex) {
+// only two faces share; cuts loops that bend inwards by more than `slack` (normalised
+// length) into triangles. Returns an empty string, or why the loops are unusable.
+std::string orient_and_simplify(QhullOutcome& hull, const std::vector<D3>& pts, double slack) {
   // One orientation for all loops (the ridge walk is consistent between neighbours):
   // the sign of the total area vector against qhull's outward normals.
   std::vector<double> along(hull.loops.size());
@@ -266,24 +344,51 @@ std::string orient_and_simplify(QhullOutcome& hull, const std::vector<D3>& pts, 
     loop.erase(std::remove_if(loop.begin(), loop.end(), [&](int id) { return face_count[id] == 2; }), loop.end());
     if (loop.size() < 3) return "a facet collapsed to an edge";
   }
-  if (require_convex) {
-    const double min_sine = -16.0 * double(kEpsilon);
-    for (std::size_t f = 0; f < hull.loops.size(); ++f) {
-      const std::vector<int>& loop = hull.loops[f];
-      for (std::size_t k = 0; k < loop.size(); ++k) {
-        const D3 ab = sub(pts[loop[(k + 1) % loop.size()]], pts[loop[k]]);
-        const D3 bc = sub(pts[loop[(k + 2) % loop.size()]], pts[loop[(k + 1) % loop.size()]]);
-        if (dot(cross(ab, bc), hull.normals[f]) < min_sine * norm(ab) * norm(bc)) return "a merged facet is not convex";
-      }
+
+  // A merged facet is planar only within the merge radius; where its outline bends
+  // inwards by more than that, it is cut into triangles (convex pieces for every query).
+  // The pieces keep the plane of the whole facet (appended after the kept loops).
+  std::vector<std::vector<int>> loops;
+  std::vector<std::size_t> plane_of;
+  std::vector<std::vector<int>> cut;
+  std::vector<std::size_t> cut_from;
+  for (std::size_t f = 0; f < hull.loops.size(); ++f) {
+    if (is_convex_loop(hull.loops[f], hull.normals[f], pts, slack)) {
+      plane_of.push_back(loops.size());
+      loops.push_back(std::move(hull.loops[f]));
+      continue;
+    }
+    std::vector<std::array<int, 3>> triangles;
+    if (!ear_clip(hull.loops[f], hull.normals[f], pts, triangles)) return "a merged facet outline is not simple";
+    for (const auto& t : triangles) {
+      cut.push_back({t[0], t[1], t[2]});
+      cut_from.push_back(f);
     }
   }
+  // Cut facets' own loops are kept at the end, only as plane sources (not faces).
+  const std::size_t faces = loops.size() + cut.size();
+  std::vector<std::size_t> source_slot(hull.loops.size(), 0);
+  std::vector<std::vector<int>> sources;
+  for (std::size_t k = 0; k < cut.size(); ++k) {
+    if (k == 0 || cut_from[k] != cut_from[k - 1]) {
+      source_slot[cut_from[k]] = faces + sources.size();
+      sources.push_back(hull.loops[cut_from[k]]);
+    }
+    plane_of.push_back(source_slot[cut_from[k]]);
+    loops.push_back(std::move(cut[k]));
+  }
+  hull.face_count = faces;
+  for (auto& src : sources) loops.push_back(std::move(src));
+  hull.loops = std::move(loops);
+  hull.plane_of = std::move(plane_of);
   return {};
 }
 
 // Builds vertices, faces (planes by Newell's method), edges and adjacency from the
 // oriented loops, checking the closed 2-manifold. Returns an empty string, or why not.
 std::string assemble(std::span<const Vec3> points, const QhullOutcome& hull, ConvexHull::Data& data,
-                     std::vector<D3>& vd) {
+                     std::vector<D3>& vd, double& planarity) {
+  planarity = 0;
   std::vector<std::uint32_t> remap(points.size(), std::numeric_limits<std::uint32_t>::max());
   vd.clear();
   for (const std::vector<int>& ids : hull.loops) {
@@ -297,21 +402,26 @@ std::string assemble(std::span<const Vec3> points, const QhullOutcome& hull, Con
   }
   const std::size_t nv = data.vertices.size();
 
-  data.faces.reserve(hull.loops.size());
-  for (const std::vector<int>& ids : hull.loops) {
+  // Planes by Newell's method over the loop of the facet each face comes from (a face cut
+  // out of a bent merged facet keeps the whole facet's plane), relative to its centroid;
+  // offset = the largest vertex offset, so every vertex lies on or below the plane.
+  data.faces.reserve(hull.face_count);
+  for (std::size_t fi = 0; fi < hull.face_count; ++fi) {
+    const std::vector<int>& ids = hull.loops[fi];
+    const std::vector<int>& plane_ids = hull.loops[hull.plane_of[fi]];
     HullFace face;
     face.first_index = static_cast<std::uint32_t>(data.face_indices.size());
     face.index_count = static_cast<std::uint32_t>(ids.size());
     D3 c{0, 0, 0};
-    for (int id : ids) {
+    for (int id : plane_ids) {
       const D3& v = vd[remap[id]];
       for (int a = 0; a < 3; ++a) c[a] += v[a];
     }
-    for (int a = 0; a < 3; ++a) c[a] /= double(ids.size());
-    D3 n{0, 0, 0};  // Newell's method, relative to the loop centroid
-    for (std::size_t k = 0; k < ids.size(); ++k) {
-      const D3 p = sub(vd[remap[ids[k]]], c);
-      const D3 q = sub(vd[remap[ids[(k + 1) % ids.size()]]], c);
+    for (int a = 0; a < 3; ++a) c[a] /= double(plane_ids.size());
+    D3 n{0, 0, 0};
+    for (std::size_t k = 0; k < plane_ids.size(); ++k) {
+      const D3 p = sub(vd[remap[plane_ids[k]]], c);
+      const D3 q = sub(vd[remap[plane_ids[(k + 1) % plane_ids.size()]]], c);
       const D3 pq = cross(p, q);
       for (int a = 0; a < 3; ++a) n[a] += pq[a];
     }
@@ -319,10 +429,13 @@ std::string assemble(std::span<const Vec3> points, const QhullOutcome& hull, Con
     if (!(nl > 0)) return std::string("a merged facet has zero area");
     n = {n[0] / nl, n[1] / nl, n[2] / nl};
     double offset = -std::numeric_limits<double>::max();
-    for (int id : ids) {
+    double lowest = std::numeric_limits<double>::max();
+    for (int id : plane_ids) {
       offset = std::max(offset, dot(n, vd[remap[id]]));
-      data.face_indices.push_back(remap[id]);
+      lowest = std::min(lowest, dot(n, vd[remap[id]]));
     }
+    for (int id : ids) data.face_indices.push_back(remap[id]);
+    planarity = std::max(planarity, offset - lowest);
     face.normal = Vec3(Real(n[0]), Real(n[1]), Real(n[2]));
     face.offset = Real(offset);
     data.faces.push_back(face);
@@ -380,6 +493,26 @@ std::string assemble(std::span<const Vec3> points, const QhullOutcome& hull, Con
     }
   }
 
+  // Hill-climbing moves: every other vertex of every face around a vertex (a superset of
+  // the edge neighbours, with the diagonals of faces that merging left slightly bent).
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> mates;
+  for (const HullFace& f : data.faces) {
+    for (std::uint32_t a = 0; a < f.index_count; ++a) {
+      for (std::uint32_t b = 0; b < f.index_count; ++b) {
+        if (a != b) mates.push_back({data.face_indices[f.first_index + a], data.face_indices[f.first_index + b]});
+      }
+    }
+  }
+  std::sort(mates.begin(), mates.end());
+  mates.erase(std::unique(mates.begin(), mates.end()), mates.end());
+  data.climb_offsets.assign(nv + 1, 0);
+  data.climb_neighbors.reserve(mates.size());
+  for (const auto& [from, to] : mates) {
+    ++data.climb_offsets[from + 1];
+    data.climb_neighbors.push_back(to);
+  }
+  for (std::size_t v = 0; v < nv; ++v) data.climb_offsets[v + 1] += data.climb_offsets[v];
+
   return {};
 }
 
@@ -427,6 +560,15 @@ Result<ConvexHull> ConvexHull::create(std::span<const Vec3> points) {
     for (int a = 0; a < 3; ++a) pts[i][a] = (double(points[i][a]) - center[a]) / extent;
   }
 
+  // The input's own resolution: Real's rounding at the points' distance from the origin,
+  // relative to the extent (normalised units).
+  const double far_ratio =
+      std::max({std::abs(lo[0]), std::abs(lo[1]), std::abs(lo[2]), std::abs(hi[0]), std::abs(hi[1]), std::abs(hi[2])}) /
+      extent;
+  // Flat below the resolution of Real at the hull's size, or below a few roundings of the
+  // input (a thinner solid would be made of rounding noise).
+  const double flat = std::max(kFlatRelative, 8.0 * double(kEpsilon) * far_ratio);
+
   // 3. Flatness: farthest pair (from the extremes of the longest box axis), farthest point
   // from their line, farthest point from the plane of the three.
   int axis = 0;
@@ -450,7 +592,7 @@ Result<ConvexHull> ConvexHull::create(std::span<const Vec3> points) {
       i2 = i;
     }
   }
-  if (!(best > kFlatRelative)) return degenerate("all points are collinear (within tolerance)");
+  if (!(best > flat)) return degenerate("all points are collinear (within tolerance)");
   D3 plane_n = cross(line, sub(pts[i2], pts[i0]));
   const double pn = norm(plane_n);
   plane_n = {plane_n[0] / pn, plane_n[1] / pn, plane_n[2] / pn};
@@ -461,28 +603,33 @@ Result<ConvexHull> ConvexHull::create(std::span<const Vec3> points) {
     thickness_lo = std::min(thickness_lo, d);
     thickness_hi = std::max(thickness_hi, d);
   }
-  if (!(thickness_hi - thickness_lo > kFlatRelative)) {
+  if (!(thickness_hi - thickness_lo > flat)) {
     return degenerate("all points are coplanar (within tolerance)");
   }
 
-  // 4-6. qhull, oriented loops, the polyhedron. The first run merges facets that are
-  // coplanar within the rounding of Real at the hull's size (a rotated box keeps six
-  // faces in float); if that run or the checks of its output fail, qhull runs again with
-  // only its own double-precision merging ('C-0').
+  // 4-6. qhull, oriented loops, the polyhedron; retried with more merging when qhull or
+  // the checks of its output fail.
   auto data = std::make_shared<Data>();
   std::vector<D3> vd;  // hull vertices in double, original frame
   std::string failure;
-  for (const double radius : {4.0 * double(kEpsilon), 0.0}) {
+  double planarity = 0;
+  double merge_deviation = 0;
+  const double base_radius = 2.0 * double(kEpsilon) * std::max(1.0, far_ratio);
+  for (int attempt = 0; attempt < 4; ++attempt) {
+    const double radius = base_radius * std::pow(10.0, attempt);
     QhullOutcome hull = run_qhull(pts, radius);
     if (hull.exit_code == qh_ERRsingular) return degenerate("qhull found the points flat (" + hull.message + ")");
     if (hull.exit_code != 0) {
       failure = "exit code " + std::to_string(hull.exit_code) + (hull.message.empty() ? "" : ": " + hull.message);
       continue;
     }
-    failure = orient_and_simplify(hull, pts, radius > 0);
+    failure = orient_and_simplify(hull, pts, 2.0 * radius);
     if (!failure.empty()) continue;
     *data = Data{};
-    failure = assemble(points, hull, *data, vd);
+    failure = assemble(points, hull, *data, vd, planarity);
+    // Input points may lie above the merged faces by qhull's outer distance plus the
+    // faces' own deviation from planarity.
+    merge_deviation = hull.max_outside * extent + planarity;
     if (failure.empty()) break;
   }
   if (!failure.empty()) return internal(failure);
@@ -494,22 +641,39 @@ Result<ConvexHull> ConvexHull::create(std::span<const Vec3> points) {
   for (const Vec3& v : data->vertices) data->local_box.grow(v);
   const Vec3 ext = data->local_box.extents();
   data->scale = std::max({ext.x, ext.y, ext.z});
-  const Vec3 far = glm::max(glm::abs(data->local_box.min), glm::abs(data->local_box.max));
-  // Geometric tolerance at the hull's size plus the rounding of a plane test n . p - d at
-  // the hull's distance from the origin (a few ulps of the largest coordinate).
-  data->tolerance = kRelativeTolerance * data->scale + Real(16) * kEpsilon * std::max({far.x, far.y, far.z});
+  // Geometric tolerance at the hull's size plus how far the merged faces deviate from the
+  // input points. Queries work relative to the box centre (exact differences for hulls
+  // far from the origin), so no term grows with the distance from the origin.
+  data->tolerance = kRelativeTolerance * data->scale + Real(merge_deviation);
+  data->reference = data->local_box.center();
+  data->shifted_vertices.reserve(data->vertices.size());
+  for (const Vec3& v : data->vertices) data->shifted_vertices.push_back(v - data->reference);
+  const D3 ref{double(data->reference.x), double(data->reference.y), double(data->reference.z)};
+  data->shifted_offsets.reserve(data->faces.size());
+  for (const HullFace& f : data->faces) {
+    // max over the loop of n . (v - reference), in double.
+    const D3 n{double(f.normal.x), double(f.normal.y), double(f.normal.z)};
+    double off = -std::numeric_limits<double>::max();
+    for (std::uint32_t k = 0; k < f.index_count; ++k)
+      off = std::max(off, dot(n, sub(vd[data->face_indices[f.first_index + k]], ref)));
+    data->shifted_offsets.push_back(Real(off));
+  }
   double width = std::numeric_limits<double>::max();
   std::uint32_t start = 0;
-  for (const HullFace& f : data->faces) {
+  std::vector<D3> shifted(vd.size());
+  for (std::size_t i = 0; i < vd.size(); ++i) shifted[i] = sub(vd[i], ref);
+  for (std::size_t fi = 0; fi < data->faces.size(); ++fi) {
+    const HullFace& f = data->faces[fi];
     const D3 n{double(f.normal.x), double(f.normal.y), double(f.normal.z)};
-    // Deepest vertex below the face: steepest descent of n . v over the adjacency.
+    // Deepest vertex below the face: steepest descent of n . v over the face mates,
+    // relative to the box centre.
     std::uint32_t cur = start;
-    double cur_d = dot(n, vd[cur]);
+    double cur_d = dot(n, shifted[cur]);
     for (bool moved = true; moved;) {
       moved = false;
-      for (std::uint32_t k = data->neighbor_offsets[cur]; k < data->neighbor_offsets[cur + 1]; ++k) {
-        const std::uint32_t nb = data->neighbors[k];
-        const double d = dot(n, vd[nb]);
+      for (std::uint32_t k = data->climb_offsets[cur]; k < data->climb_offsets[cur + 1]; ++k) {
+        const std::uint32_t nb = data->climb_neighbors[k];
+        const double d = dot(n, shifted[nb]);
         if (d < cur_d) {
           cur_d = d;
           cur = nb;
@@ -518,9 +682,9 @@ Result<ConvexHull> ConvexHull::create(std::span<const Vec3> points) {
       }
     }
     start = cur;
-    width = std::min(width, double(f.offset) - cur_d);
+    width = std::min(width, double(data->shifted_offsets[fi]) - cur_d);
   }
-  if (!(width > kFlatRelative * extent)) return degenerate("all points are coplanar (within tolerance)");
+  if (!(width > flat * extent)) return degenerate("all points are coplanar (within tolerance)");
   if (!detail::compute_hull_mass(*data)) return degenerate("the hull has no volume");
 
   return ConvexHull(std::move(data));

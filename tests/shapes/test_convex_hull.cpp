@@ -236,6 +236,10 @@ std::vector<Case> sweep_cases(std::uint64_t seed, int repeats) {
   for (int r = 0; r < repeats; ++r) {
     for (int k = 0; k < static_cast<int>(Cloud::Count); ++k) {
       for (std::size_t pi = 0; pi < placements().size(); ++pi) {
+        // A slab 2e-3 thick is below float's resolution 1e4 from the origin (Degenerate,
+        // see FlatBelowTheInputResolutionIsDegenerate).
+        const Placement& pl = placements()[pi];
+        if (k == static_cast<int>(Cloud::Flat) && sizeof(Real) == 4 && pl.offset > Real(1e3) * pl.scale) continue;
         Case c;
         c.name = "cloud " + std::to_string(k) + " placement " + std::to_string(pi) + " repeat " + std::to_string(r);
         c.points = place(make_cloud(static_cast<Cloud>(k), rng), placements()[pi], rng);
@@ -259,7 +263,8 @@ void check_structure(const ConvexHull& h, const std::vector<Vec3>& input) {
   const auto verts = h.vertices();
   const auto faces = h.faces();
   const auto edges = h.edges();
-  const Real tol = rounding_tol(h);
+  // Merged faces are planar, and hold every input point, within the hull's tolerance.
+  const Real tol = h.tolerance() + rounding_tol(h);
   ASSERT_GE(verts.size(), 4u);
 
   // Every hull vertex is an input point; no vertex twice.
@@ -296,13 +301,15 @@ void check_structure(const ConvexHull& h, const std::vector<Vec3>& input) {
       const D3 cc = to_d(verts[loop[(k + 2) % loop.size()]]);
       area = add(area, cross(sub(a, c), sub(b, c)));
       EXPECT_NEAR(glm::dot(f.normal, verts[loop[k]]), f.offset, tol) << "face " << fi << " is not planar";
-      // Convex: turns left at every vertex, up to the resolution of Real.
-      EXPECT_GT(dot(cross(sub(b, a), sub(cc, b)), n), -64.0 * double(kEps) * norm(sub(b, a)) * norm(sub(cc, b)))
+      // Convex: turns left at every vertex, up to the tolerance (b within it of line ac).
+      EXPECT_GT(dot(cross(sub(b, a), sub(cc, b)), n), -double(tol) * (norm(sub(b, a)) + norm(sub(cc, b))))
           << "face " << fi << " loop is not convex";
     }
     const double al = norm(area);
     ASSERT_GT(al, 0.0);
-    EXPECT_GT(dot(area, n) / al, 1.0 - 1e-3) << "face " << fi << " loop is not CCW seen from outside";
+    // CCW from outside: the loop's area vector along the outward normal (how closely is
+    // bounded by the planarity check above: a piece of a merged face can tilt within it).
+    EXPECT_GT(dot(area, n) / al, 0.5) << "face " << fi << " loop is not CCW seen from outside";
   }
   EXPECT_EQ(index_total, h.face_indices().size());
 
@@ -353,7 +360,7 @@ TEST(ConvexHull, StructureOverRandomClouds) {
     check_structure(*r, c.points);
     ++built;
   }
-  EXPECT_EQ(built, 3 * static_cast<int>(Cloud::Count) * static_cast<int>(placements().size()));
+  EXPECT_GE(built, 3 * (static_cast<int>(Cloud::Count) * static_cast<int>(placements().size()) - 1));
 }
 
 // ---------------------------------------------------------------------------------------
@@ -475,6 +482,31 @@ TEST(ConvexHull, NearlyFlatCloudBuilds) {
   EXPECT_FALSE(h.contains(Vec3(0, 0, Real(2e-3))));
 }
 
+TEST(ConvexHull, FlatBelowTheInputResolutionIsDegenerate) {
+  // 1e4 from the origin the coordinates are only known to ~eps * 1e4: a slab a few such
+  // roundings thick is flat, one a hundred roundings thick is a solid.
+  test::Random rng(12);
+  for (const Real thickness_in_roundings : {Real(4), Real(100)}) {
+    const Real thickness = thickness_in_roundings * kEps * Real(1e4);
+    std::vector<Vec3> p;
+    for (int i = 0; i < 100; ++i) {
+      Vec3 q = rng.vec3(Real(-1), Real(1));
+      q.z *= Real(0.5) * thickness;
+      p.push_back(q + Vec3(Real(1e4), Real(-1e4), Real(1e4)));
+    }
+    p.push_back(Vec3(Real(1e4), Real(-1e4), Real(1e4) + Real(0.5) * thickness));
+    p.push_back(Vec3(Real(1e4), Real(-1e4), Real(1e4) - Real(0.5) * thickness));
+    auto r = ConvexHull::create(p);
+    if (thickness_in_roundings < Real(10)) {
+      ASSERT_FALSE(r.ok());
+      EXPECT_EQ(r.error().code, ErrorCode::Degenerate);
+    } else {
+      ASSERT_TRUE(r.ok()) << r.error().what();
+      check_structure(*r, p);
+    }
+  }
+}
+
 TEST(ConvexHull, CopiesShareTheirData) {
   const ConvexHull a = build(cube_corners(Real(1)));
   const ConvexHull b = a;  // NOLINT(performance-unnecessary-copy-initialization)
@@ -582,7 +614,8 @@ TEST(ConvexHull, SupportIndexMatchesLinearScanOverInputPoints) {
   for (const Case& c : sweep_cases(203, 1)) {
     SCOPED_TRACE(c.name);
     const ConvexHull h = build(c.points);
-    const Real tol = rounding_tol(h);
+    // Input points dropped by merging lie within the hull's tolerance of its faces.
+    const Real tol = h.tolerance() + rounding_tol(h);
     auto brute = [&](const Vec3& d) {
       Real best = -kRealMax;
       for (const Vec3& p : c.points) best = std::max(best, glm::dot(p, d));
@@ -595,7 +628,7 @@ TEST(ConvexHull, SupportIndexMatchesLinearScanOverInputPoints) {
         const Vec3 d = rng.unit_vector();
         const std::uint32_t i = h.support_index(d, s);
         ASSERT_LT(i, n);
-        ASSERT_NEAR(glm::dot(h.vertices()[i], d), brute(d), tol);
+        ASSERT_NEAR(glm::dot(h.vertices()[i], d), brute(d), tol) << "start " << s;
         ++checks;
       }
     }

@@ -61,7 +61,7 @@ class ConvexHull {
   static constexpr ShapeType kType = ShapeType::ConvexHull;
 
   /// Hulls with at most this many vertices answer support_index by a linear scan; larger
-  /// ones hill-climb over vertex_neighbors() from the start vertex.
+  /// ones hill-climb from the start vertex.
   static constexpr std::uint32_t kLinearScanMaxVertices = 16;
 
   /// Validated construction from a point cloud (local frame).
@@ -96,11 +96,15 @@ class ConvexHull {
   /// Index of a vertex farthest in `direction` (local frame; any vector, zero gives a
   /// valid vertex). Above kLinearScanMaxVertices it hill-climbs from `start_vertex`
   /// (clamped to a valid index; pass the previous answer to warm-start), moving to a
-  /// neighbour with a strictly larger dot product until none exists, which cannot cycle
-  /// and is exact on a convex polyhedron. O(V) worst case, O(1) amortised when coherent.
+  /// vertex sharing a face with a strictly larger dot product until none exists. That
+  /// cannot cycle, and it is exact on a convex polyhedron; moving across faces rather
+  /// than only along edges keeps it exact on faces that merging left slightly bent.
+  /// O(V) worst case, O(1) amortised when coherent.
   std::uint32_t support_index(const Vec3& direction, std::uint32_t start_vertex = 0) const;
 
-  /// Farthest point of the hull in `direction` (local frame): a vertex.
+  /// Farthest point of the hull in `direction` (local frame): a vertex. Dot products are
+  /// taken relative to the centre of the box, so ties are resolved at the hull's own
+  /// resolution even far from the local origin.
   Vec3 support(const Vec3& direction) const { return data_->vertices[support_index(direction)]; }
   /// Farthest point of the core in `direction`: the hull is its own core.
   Vec3 core_support(const Vec3& direction) const { return support(direction); }
@@ -131,8 +135,9 @@ class ConvexHull {
   /// Length scale of the hull (largest extent of its box).
   Real scale() const { return data_->scale; }
   /// Absolute distance below which a point counts as on the surface: kRelativeTolerance *
-  /// scale() plus 16 epsilon times the largest |coordinate| of the box (the rounding of a
-  /// plane test grows with the distance from the local origin).
+  /// scale() plus how far the merged faces deviate from the input points (a few times the
+  /// resolution of Real at the hull's size). Queries work relative to the centre of the
+  /// box, so this does not grow with the distance from the local origin.
   Real tolerance() const { return data_->tolerance; }
 
   /// The immutable hull data shared between copies.
@@ -143,9 +148,14 @@ class ConvexHull {
     std::vector<HullEdge> edges;                  ///< every edge once
     std::vector<std::uint32_t> neighbor_offsets;  ///< CSR offsets, size vertices + 1
     std::vector<std::uint32_t> neighbors;         ///< CSR adjacency over edges
+    std::vector<std::uint32_t> climb_offsets;     ///< CSR offsets of climb_neighbors, size vertices + 1
+    std::vector<std::uint32_t> climb_neighbors;   ///< vertices sharing a face (hill-climbing moves)
     Aabb local_box;                               ///< box of the vertices
     Real scale = Real(1);                         ///< largest box extent
     Real tolerance = Real(0);                     ///< absolute tolerance of contains / on-surface tests
+    Vec3 reference{Real(0)};                      ///< centre of the box: queries work relative to it
+    std::vector<Vec3> shifted_vertices;           ///< vertices - reference (exact for far hulls)
+    std::vector<Real> shifted_offsets;            ///< face offsets relative to reference
     Real volume = Real(0);                        ///< volume (length^3)
     Vec3 centroid{Real(0)};                       ///< centre of volume, local frame
     Mat3 unit_inertia{Real(0)};                   ///< inertia about the centroid at density 1
