@@ -1,0 +1,103 @@
+// The examples of docs/query-protocol.md are real: every request/answer pair in its plain
+// code blocks is answered again here and compared (numbers within the precision's
+// tolerance, strings exactly), so the document cannot drift from the program.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "json_expect.hpp"
+#include "query.hpp"
+
+namespace proxima {
+namespace {
+
+struct Example {
+  std::string request;
+  std::string answer;
+  int line = 0;
+};
+
+// Pairs of consecutive lines starting with '{' inside ``` blocks without a language tag.
+std::vector<Example> read_examples(const std::string& path) {
+  std::ifstream in(path);
+  std::vector<Example> examples;
+  std::string line;
+  bool in_plain_block = false;
+  bool in_other_block = false;
+  std::string pending;
+  int pending_line = 0;
+  for (int number = 1; std::getline(in, line); ++number) {
+    if (line.rfind("```", 0) == 0) {
+      if (in_plain_block || in_other_block) {
+        in_plain_block = in_other_block = false;
+      } else if (line == "```") {
+        in_plain_block = true;
+      } else {
+        in_other_block = true;
+      }
+      pending.clear();
+      continue;
+    }
+    if (!in_plain_block || line.empty() || line.front() != '{') {
+      pending.clear();
+      continue;
+    }
+    if (pending.empty()) {
+      pending = line;
+      pending_line = number;
+    } else {
+      examples.push_back({pending, line, pending_line});
+      pending.clear();
+    }
+  }
+  return examples;
+}
+
+// An oriented box's axes may come in any order and with either sign: replace "axes" and
+// "half_extents" by the (half extent, axis) pairs sorted by half extent, each axis turned so
+// that its largest component is positive.
+tool::Json canonical_obb(tool::Json answer) {
+  if (!answer.contains("axes")) return answer;
+  std::vector<std::array<double, 4>> pairs;
+  for (std::size_t i = 0; i < 3; ++i) {
+    std::array<double, 4> p{answer["half_extents"][i].get<double>(), answer["axes"][i][0].get<double>(),
+                            answer["axes"][i][1].get<double>(), answer["axes"][i][2].get<double>()};
+    std::size_t big = 1;
+    for (std::size_t k = 2; k < 4; ++k) {
+      if (std::abs(p[k]) > std::abs(p[big]) + 1e-3) big = k;
+    }
+    if (p[big] < 0) {
+      for (std::size_t k = 1; k < 4; ++k) p[k] = -p[k];
+    }
+    pairs.push_back(p);
+  }
+  std::sort(pairs.begin(), pairs.end());
+  tool::Json list = tool::Json::array();
+  for (const auto& p : pairs) list.push_back({p[0], p[1], p[2], p[3]});
+  answer.erase("axes");
+  answer.erase("half_extents");
+  answer["extent_axis_pairs"] = list;
+  return answer;
+}
+
+TEST(ProtocolDoc, ExamplesAreTheProgramsAnswers) {
+  const auto examples = read_examples(PROXIMA_QUERY_PROTOCOL_DOC);
+  ASSERT_GE(examples.size(), 25u);
+  int rejected_count = 0;
+  for (const Example& e : examples) {
+    bool rejected = false;
+    const tool::Json actual = tool::answer_line(e.request, rejected);
+    const auto expected = tool::Json::parse(e.answer);
+    rejected_count += rejected ? 1 : 0;
+    EXPECT_EQ(rejected, expected.contains("error")) << "docs line " << e.line;
+    test::expect_json_near(canonical_obb(actual), canonical_obb(expected), "docs line " + std::to_string(e.line));
+  }
+  EXPECT_GE(rejected_count, 8);
+}
+
+}  // namespace
+}  // namespace proxima
