@@ -254,8 +254,21 @@ ConvexDistance convex_distance(std::span<const Vec3> a, std::span<const Vec3> b)
     // Any common point: the current simplex's witness combination.
     D3 pa(0.0), pb(0.0);
     if (simplex.n == 4) {
-      pa = simplex.v[0].a;
-      pb = pa;
+      // Barycentric coordinates of the origin in the tetrahedron (signed volumes).
+      const D3 w0 = simplex.v[0].w, w1 = simplex.v[1].w, w2 = simplex.v[2].w, w3 = simplex.v[3].w;
+      const double total = glm::dot(w1 - w0, glm::cross(w2 - w0, w3 - w0));
+      double l[4] = {glm::dot(w1, glm::cross(w2, w3)), -glm::dot(w0, glm::cross(w2, w3)),
+                     glm::dot(w0, glm::cross(w1, w3)), -glm::dot(w0, glm::cross(w1, w2))};
+      double sum = 0.0;
+      for (double& x : l) {
+        x = total != 0.0 ? std::max(x / total, 0.0) : 0.25;
+        sum += x;
+      }
+      for (int i = 0; i < 4; ++i) {
+        const double li = sum > 0.0 ? l[i] / sum : 0.25;
+        pa += li * simplex.v[i].a;
+        pb += li * simplex.v[i].b;
+      }
     } else {
       for (int i = 0; i < simplex.n; ++i) {
         pa += simplex.lambda[i] * simplex.v[i].a;
