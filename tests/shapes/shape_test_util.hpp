@@ -236,7 +236,7 @@ void check_world_aabb_against_samples(const S& shape, const std::vector<Vec3>& s
 ///  - |signed distance| never exceeds the nearest-sample distance (+ tol) and falls short of
 ///    it by at most resolution (+ tol);
 ///  - |q - point| == |signed distance|; the point lies on the sampled surface;
-///  - the sign agrees with `inside` (checked away from the surface);
+///  - the sign agrees with `inside` and with shape.contains (checked away from the surface);
 ///  - the normal is unit, and for q outside it is (q - point) / distance.
 template <class S, class Inside>
 void check_closest_point_solid(const S& shape, const std::vector<Vec3>& samples, Real resolution, Real tol,
@@ -255,6 +255,7 @@ void check_closest_point_solid(const S& shape, const std::vector<Vec3>& samples,
     EXPECT_LE(nearest_sample_distance(samples, sp.point), resolution + tol);
     EXPECT_NEAR(glm::length(sp.normal), Real(1), precision_tolerance(Real(1)));
     if (brute > resolution + tol) {
+      EXPECT_EQ(shape.contains(q), inside(q)) << "query " << q.x << " " << q.y << " " << q.z;
       if (inside(q)) {
         EXPECT_LT(sp.signed_distance, Real(0)) << "query " << q.x << " " << q.y << " " << q.z;
       } else {
