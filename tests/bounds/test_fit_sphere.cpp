@@ -72,7 +72,7 @@ LD brute_force_min_radius(const std::vector<Vec3>& pts) {
     if (!circumball(s, c, r2)) return;
     if (r2 >= best * best) return;
     for (const LVec& q : p) {
-      if (dot(sub(q, c), sub(q, c)) > r2 * (1 + LD(1e-12)) + LD(1e-40)) return;
+      if (dot(sub(q, c), sub(q, c)) > r2 * (1 + LD(1e-14)) + LD(1e-40)) return;
     }
     best = std::sqrt(r2);
   };
