@@ -12,6 +12,7 @@
 namespace proxima::geometry {
 
 Vec3 closest_point_aabb(const Vec3& p, const Aabb& box) {
+  if (!is_finite(p)) return Vec3(detail::kNaN);
   // max then min, so that an empty box (min > max) still gives a finite answer.
   return glm::min(glm::max(p, box.min), box.max);
 }
@@ -33,8 +34,9 @@ Vec3 closest_point_obb_unscaled(const Vec3& p, const Vec3& center, const Mat3& a
 }  // namespace
 
 Vec3 closest_point_obb(const Vec3& p, const Vec3& center, const Mat3& axes, const Vec3& half_extents) {
-  const int e =
-      detail::rescale_exponent(std::max({detail::max_abs(p), detail::max_abs(center), detail::max_abs(half_extents)}));
+  const Real m = detail::magnitude({p, center, half_extents, axes[0], axes[1], axes[2]});
+  if (!std::isfinite(m)) return Vec3(detail::kNaN);
+  const int e = detail::rescale_exponent(detail::magnitude({p, center, half_extents}));
   if (e == 0) return closest_point_obb_unscaled(p, center, axes, half_extents);
   return detail::scaled(closest_point_obb_unscaled(detail::scaled(p, -e), detail::scaled(center, -e), axes,
                                                    detail::scaled(half_extents, -e)),

@@ -64,14 +64,18 @@ SegmentPair line_line_unscaled(const Vec3& p0, const Vec3& d0, const Vec3& p1, c
 }  // namespace
 
 Real distance_squared_point_point(const Vec3& p, const Vec3& q) {
-  const int e = detail::rescale_exponent(std::max(detail::max_abs(p), detail::max_abs(q)));
+  const Real m = detail::magnitude({p, q});
+  if (!std::isfinite(m)) return detail::kNaN;
+  const int e = detail::rescale_exponent(m);
   if (e == 0) return length_squared(p - q);
   return std::ldexp(length_squared(detail::scaled(p, -e) - detail::scaled(q, -e)), 2 * e);
 }
 
 SegmentPoint closest_point_line(const Vec3& p, const Vec3& a, const Vec3& d) {
-  const int ep = detail::rescale_exponent(std::max(detail::max_abs(p), detail::max_abs(a)));
-  const Real dmax = detail::max_abs(d);
+  const Real m = detail::magnitude({p, a});
+  const Real dmax = detail::magnitude({d});
+  if (!std::isfinite(m) || !std::isfinite(dmax)) return {Vec3(detail::kNaN), detail::kNaN};
+  const int ep = detail::rescale_exponent(m);
   if (dmax == Real(0)) return {a, Real(0)};
   const int ed = detail::rescale_exponent(dmax);
   if (ep == 0 && ed == 0) return closest_point_line_unscaled(p, a, d);
@@ -82,7 +86,9 @@ SegmentPoint closest_point_line(const Vec3& p, const Vec3& a, const Vec3& d) {
 }
 
 SegmentPoint closest_point_segment(const Vec3& p, const Vec3& a, const Vec3& b) {
-  const int e = detail::rescale_exponent(std::max({detail::max_abs(p), detail::max_abs(a), detail::max_abs(b)}));
+  const Real m = detail::magnitude({p, a, b});
+  if (!std::isfinite(m)) return {Vec3(detail::kNaN), detail::kNaN};
+  const int e = detail::rescale_exponent(m);
   if (e == 0) return detail::closest_point_segment_unscaled(p, a, b);
   const SegmentPoint r =
       detail::closest_point_segment_unscaled(detail::scaled(p, -e), detail::scaled(a, -e), detail::scaled(b, -e));
@@ -93,9 +99,15 @@ SegmentPoint closest_point_segment(const Vec3& p, const Vec3& a, const Vec3& b) 
 }
 
 SegmentPair closest_points_line_line(const Vec3& p0, const Vec3& d0, const Vec3& p1, const Vec3& d1) {
-  const int ep = detail::rescale_exponent(std::max(detail::max_abs(p0), detail::max_abs(p1)));
-  const int e0 = detail::rescale_exponent(detail::max_abs(d0));
-  const int e1 = detail::rescale_exponent(detail::max_abs(d1));
+  const Real mp = detail::magnitude({p0, p1});
+  const Real m0 = detail::magnitude({d0});
+  const Real m1 = detail::magnitude({d1});
+  if (!std::isfinite(mp) || !std::isfinite(m0) || !std::isfinite(m1)) {
+    return {Vec3(detail::kNaN), Vec3(detail::kNaN), detail::kNaN, detail::kNaN, detail::kNaN};
+  }
+  const int ep = detail::rescale_exponent(mp);
+  const int e0 = detail::rescale_exponent(m0);
+  const int e1 = detail::rescale_exponent(m1);
   if (ep == 0 && e0 == 0 && e1 == 0) return line_line_unscaled(p0, d0, p1, d1);
   SegmentPair r = line_line_unscaled(detail::scaled(p0, -ep), detail::scaled(d0, -e0), detail::scaled(p1, -ep),
                                      detail::scaled(d1, -e1));

@@ -132,8 +132,9 @@ TrianglePoint closest_point_triangle_unscaled(const Vec3& p, const Vec3& a, cons
 }  // namespace detail
 
 TrianglePoint closest_point_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
-  const int e = detail::rescale_exponent(
-      std::max({detail::max_abs(p), detail::max_abs(a), detail::max_abs(b), detail::max_abs(c)}));
+  const Real m = detail::magnitude({p, a, b, c});
+  if (!std::isfinite(m)) return {Vec3(detail::kNaN), Vec3(detail::kNaN), TriangleFeature::Face};
+  const int e = detail::rescale_exponent(m);
   if (e == 0) return detail::closest_point_triangle_unscaled(p, a, b, c);
   TrianglePoint r = detail::closest_point_triangle_unscaled(detail::scaled(p, -e), detail::scaled(a, -e),
                                                             detail::scaled(b, -e), detail::scaled(c, -e));

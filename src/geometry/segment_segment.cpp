@@ -109,8 +109,9 @@ SegmentPair closest_points_segment_segment_unscaled(const Vec3& p0, const Vec3& 
 }  // namespace detail
 
 SegmentPair closest_points_segment_segment(const Vec3& p0, const Vec3& p1, const Vec3& q0, const Vec3& q1) {
-  const int e = detail::rescale_exponent(
-      std::max({detail::max_abs(p0), detail::max_abs(p1), detail::max_abs(q0), detail::max_abs(q1)}));
+  const Real m = detail::magnitude({p0, p1, q0, q1});
+  if (!std::isfinite(m)) return {Vec3(detail::kNaN), Vec3(detail::kNaN), detail::kNaN, detail::kNaN, detail::kNaN};
+  const int e = detail::rescale_exponent(m);
   if (e == 0) return detail::closest_points_segment_segment_unscaled(p0, p1, q0, q1);
   SegmentPair r = detail::closest_points_segment_segment_unscaled(detail::scaled(p0, -e), detail::scaled(p1, -e),
                                                                   detail::scaled(q0, -e), detail::scaled(q1, -e));

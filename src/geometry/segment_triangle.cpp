@@ -67,7 +67,7 @@ ClosestPair closest_points_segment_triangle_unscaled(const Vec3& p, const Vec3& 
   ClosestPair best{p, a, kRealMax};
   const Vec3 n = glm::cross(b - a, c - a);
   if (!is_thin_triangle(n, a, b, c)) {
-    const Real scale = std::max({max_abs(p), max_abs(q), max_abs(a), max_abs(b), max_abs(c)});
+    const Real scale = magnitude({p, q, a, b, c});
     const Crossing crossing = common_point_segment_triangle(p, q, a, b, c, n, crossing_acceptance(scale), best);
     if (crossing == Crossing::Common) return best;
   }
@@ -89,8 +89,9 @@ ClosestPair closest_points_segment_triangle_unscaled(const Vec3& p, const Vec3& 
 }  // namespace detail
 
 ClosestPair closest_points_segment_triangle(const Vec3& p, const Vec3& q, const Vec3& a, const Vec3& b, const Vec3& c) {
-  const int e = detail::rescale_exponent(
-      std::max({detail::max_abs(p), detail::max_abs(q), detail::max_abs(a), detail::max_abs(b), detail::max_abs(c)}));
+  const Real m = detail::magnitude({p, q, a, b, c});
+  if (!std::isfinite(m)) return {Vec3(detail::kNaN), Vec3(detail::kNaN), detail::kNaN};
+  const int e = detail::rescale_exponent(m);
   if (e == 0) return detail::closest_points_segment_triangle_unscaled(p, q, a, b, c);
   ClosestPair r = detail::closest_points_segment_triangle_unscaled(detail::scaled(p, -e), detail::scaled(q, -e),
                                                                    detail::scaled(a, -e), detail::scaled(b, -e),

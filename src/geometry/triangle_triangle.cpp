@@ -41,11 +41,8 @@ namespace {
 
 using Tri = std::array<Vec3, 3>;
 
-Real max_abs(const Tri& a, const Tri& b) {
-  Real m = Real(0);
-  for (int k = 0; k < 3; ++k) m = std::max({m, detail::max_abs(a[k]), detail::max_abs(b[k])});
-  return m;
-}
+// Largest |coordinate| of the six vertices (infinity for non-finite input).
+Real max_abs(const Tri& a, const Tri& b) { return detail::magnitude({a[0], a[1], a[2], b[0], b[1], b[2]}); }
 
 // The two end points of the longest edge of a thin triangle.
 std::array<Vec3, 2> longest_edge(const Tri& t) {
@@ -261,6 +258,7 @@ bool triangles_intersect(const Vec3& a0, const Vec3& a1, const Vec3& a2, const V
   const Tri a{a0, a1, a2};
   const Tri b{b0, b1, b2};
   const Real m = max_abs(a, b);
+  if (!std::isfinite(m)) return false;
   const int e = detail::rescale_exponent(m);
   if (e == 0) return triangles_intersect_unscaled(a, b, kRelativeTolerance * m);
   return triangles_intersect_unscaled(scaled(a, -e), scaled(b, -e), kRelativeTolerance * std::ldexp(m, -e));
@@ -270,7 +268,9 @@ ClosestPair closest_points_triangle_triangle(const Vec3& a0, const Vec3& a1, con
                                              const Vec3& b1, const Vec3& b2) {
   const Tri a{a0, a1, a2};
   const Tri b{b0, b1, b2};
-  const int e = detail::rescale_exponent(max_abs(a, b));
+  const Real m = max_abs(a, b);
+  if (!std::isfinite(m)) return {Vec3(detail::kNaN), Vec3(detail::kNaN), detail::kNaN};
+  const int e = detail::rescale_exponent(m);
   if (e == 0) return triangle_triangle_unscaled(a, b);
   ClosestPair r = triangle_triangle_unscaled(scaled(a, -e), scaled(b, -e));
   r.on_a = detail::scaled(r.on_a, e);

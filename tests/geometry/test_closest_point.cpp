@@ -481,5 +481,44 @@ TEST(ClosestPoint, PointObbRandomAgainstLocalFrameClamp) {
   }
 }
 
+// ---------------------------------------------------------------- NaN input
+
+// NaN (or infinite) coordinates are invalid input: every query still returns, with NaN in
+// its answer instead of a plausible-looking distance (triangles_intersect: false).
+TEST(ClosestPoint, NanInputPropagates) {
+  test::ScopedNoFpTraps no_traps;
+  const Real nan = std::numeric_limits<Real>::quiet_NaN();
+  const Vec3 bad(Real(0), nan, Real(0));
+  const Vec3 a(0, 0, 0), b(1, 0, 0), c(0, 1, 0);
+  EXPECT_TRUE(std::isnan(distance_squared_point_point(bad, a)));
+  EXPECT_FALSE(is_finite(closest_point_line(bad, a, b).point));
+  EXPECT_FALSE(is_finite(closest_point_segment(bad, a, b).point));
+  EXPECT_FALSE(is_finite(closest_point_segment(a, bad, b).point));
+  EXPECT_FALSE(is_finite(closest_point_triangle(bad, a, b, c).point));
+  EXPECT_FALSE(is_finite(closest_point_triangle(a, b, bad, c).point));
+  EXPECT_FALSE(is_finite(closest_point_aabb(bad, Aabb{a, b})));
+  EXPECT_FALSE(is_finite(closest_point_obb(bad, a, Mat3(Real(1)), Vec3(1))));
+  EXPECT_TRUE(std::isnan(closest_points_line_line(bad, b, a, c).distance_squared));
+  const Vec3 inf(std::numeric_limits<Real>::infinity(), Real(0), Real(0));
+  EXPECT_TRUE(std::isnan(closest_points_segment_segment(a, inf, b, c).distance_squared));
+  EXPECT_TRUE(std::isnan(closest_point_segment(inf, a, b).t));
+  for (int k = 0; k < 4; ++k) {
+    Vec3 v[4] = {a, b, c, Vec3(1, 1, 1)};
+    v[k] = bad;
+    EXPECT_TRUE(std::isnan(closest_points_segment_segment(v[0], v[1], v[2], v[3]).distance_squared)) << k;
+  }
+  for (int k = 0; k < 5; ++k) {
+    Vec3 v[5] = {Vec3(0.2, 0.2, -1), Vec3(0.2, 0.2, 1), a, b, c};
+    v[k] = bad;
+    EXPECT_TRUE(std::isnan(closest_points_segment_triangle(v[0], v[1], v[2], v[3], v[4]).distance_squared)) << k;
+  }
+  for (int k = 0; k < 6; ++k) {
+    Vec3 v[6] = {a, b, c, Vec3(0.2, 0.2, -1), Vec3(0.2, 0.2, 1), Vec3(2, 2, 0)};
+    v[k] = bad;
+    EXPECT_TRUE(std::isnan(closest_points_triangle_triangle(v[0], v[1], v[2], v[3], v[4], v[5]).distance_squared)) << k;
+    EXPECT_FALSE(triangles_intersect(v[0], v[1], v[2], v[3], v[4], v[5])) << k;
+  }
+}
+
 }  // namespace
 }  // namespace proxima::geometry

@@ -9,13 +9,16 @@
 /// allocates nothing. Inputs whose coordinates are so large (or so small) that products of
 /// four coordinates would overflow (or underflow) are rescaled by an exact power of two
 /// internally, so any finite input gives a finite answer (a squared distance whose true
-/// value exceeds the largest Real is reported as infinity).
+/// value exceeds the largest Real is reported as infinity). Non-finite input (NaN or
+/// infinite coordinates) gives NaN points, parameters and distances (triangles_intersect:
+/// false), never a crash or a hang.
 
 #include <proxima/core/math.hpp>
 #include <proxima/geometry/aabb.hpp>
 
 #include <algorithm>
 #include <cmath>
+#include <initializer_list>
 #include <limits>
 
 namespace proxima::geometry {
@@ -95,7 +98,8 @@ ClosestPair closest_points_segment_triangle(const Vec3& p, const Vec3& q, const 
 /// True when triangles a0a1a2 and b0b1b2 share a point (touching counts); coplanar
 /// triangles handled in 2-D. Degenerate triangles are treated as segments/points.
 /// "Touching" is decided with the tolerance kRelativeTolerance * (largest |coordinate|),
-/// so triangles closer than that may be reported as intersecting.
+/// so triangles closer than that may be reported as intersecting. False for non-finite
+/// input.
 bool triangles_intersect(const Vec3& a0, const Vec3& a1, const Vec3& a2, const Vec3& b0, const Vec3& b1,
                          const Vec3& b2);
 
@@ -110,6 +114,21 @@ namespace detail {
 /// Largest |component| of v (0 for the zero vector).
 inline Real max_abs(const Vec3& v) { return std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)}); }
 
+/// Largest |coordinate| of the points; infinity when any coordinate is NaN or infinite
+/// (the public functions then return NaN answers).
+inline Real magnitude(std::initializer_list<Vec3> points) {
+  Real m = Real(0);
+  bool finite = true;
+  for (const Vec3& v : points) {
+    finite = finite && is_finite(v);
+    m = std::max(m, max_abs(v));
+  }
+  return finite ? m : std::numeric_limits<Real>::infinity();
+}
+
+/// Quiet NaN of Real, the answer to non-finite input.
+inline constexpr Real kNaN = std::numeric_limits<Real>::quiet_NaN();
+
 /// Above this magnitude a product of four coordinates could overflow: inputs are scaled down.
 inline constexpr Real kRescaleAbove = Real(std::numeric_limits<Real>::max_exponent / 4 >= 64 ? 1e60 : 1e8);
 /// Below this magnitude (and above 0) a product of four coordinates could underflow: inputs
@@ -117,8 +136,10 @@ inline constexpr Real kRescaleAbove = Real(std::numeric_limits<Real>::max_expone
 inline constexpr Real kRescaleBelow = Real(std::numeric_limits<Real>::max_exponent / 4 >= 64 ? 1e-60 : 1e-8);
 
 /// The power of two e such that magnitude * 2^-e lies in [0.5, 1) when `magnitude` is
-/// outside [kRescaleBelow, kRescaleAbove], else 0 (no rescaling needed; also for 0).
+/// outside [kRescaleBelow, kRescaleAbove], else 0 (no rescaling needed; also for 0, and
+/// for non-finite magnitudes).
 inline int rescale_exponent(Real magnitude) {
+  if (!std::isfinite(magnitude)) return 0;
   if (magnitude <= kRescaleAbove && (magnitude >= kRescaleBelow || magnitude == Real(0))) return 0;
   int e = 0;
   static_cast<void>(std::frexp(magnitude, &e));
