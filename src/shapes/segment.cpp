@@ -84,7 +84,7 @@ std::optional<RayHit> Segment::raycast(const Ray& ray, Real max_t) const {
   const Real s_max = max_t > Real(0) ? max_t * len : Real(0);
   const Vec3 r = ray.origin - a_;
   const Real c = glm::dot(u, r);  // ray origin's coordinate along u, relative to a
-  const Real cos = glm::dot(u, w);
+  const Real cos_angle = glm::dot(u, w);
   const Real f = glm::dot(w, r);  // ray origin's coordinate along w, relative to a
   // Perpendicular offsets of the end points from the ray's line.
   const Vec3 oa = a_ - ray.origin;
@@ -100,24 +100,27 @@ std::optional<RayHit> Segment::raycast(const Ray& ray, Real max_t) const {
     if (s1 < Real(0) || s0 > s_max) return std::nullopt;
     s = std::max(s0, Real(0));
   } else {
-    const Real denom = Real(1) - cos * cos;
-    s = denom > Real(0) ? (cos * f - c) / denom : Real(0);
+    const Real denom = Real(1) - cos_angle * cos_angle;
+    s = denom > Real(0) ? (cos_angle * f - c) / denom : Real(0);
     s = std::min(std::max(s, Real(0)), s_max);
-    Real t = f + cos * s;
+    Real t = f + cos_angle * s;
     if (t < Real(0)) {
       t = Real(0);
       s = std::min(std::max(-c, Real(0)), s_max);
     } else if (t > seg_len) {
       t = seg_len;
-      s = std::min(std::max(cos * seg_len - c, Real(0)), s_max);
+      s = std::min(std::max(cos_angle * seg_len - c, Real(0)), s_max);
     }
     const Vec3 on_ray = ray.origin + s * u;
     const auto q = geometry::closest_point_segment(on_ray, a_, b_);
     if (glm::length(on_ray - q.point) > tol) return std::nullopt;
-    const Vec3 across = -(u - cos * w);
+    // The part of -u orthogonal to the segment, projected twice so that rounding leaves no
+    // component along w even for nearly parallel rays.
+    Vec3 across = -(u - cos_angle * w);
+    across -= glm::dot(across, w) * w;
     Vec3 unit_across;
     Real across_len = Real(0);
-    if (unit_and_length(across, unit_across, across_len) && across_len > kSqrtEpsilon) normal = unit_across;
+    if (unit_and_length(across, unit_across, across_len)) normal = unit_across;
   }
   const Real t_hit = std::min(s / len, max_t);
   return RayHit{t_hit, ray.at(t_hit), normal};

@@ -41,11 +41,11 @@ class Point {
   /// The degenerate box of the point `pose.position` in the world frame.
   Aabb world_aabb(const Transform& pose) const;
 
-  /// First point of `ray` (local frame) within [0, max_t] that passes within
-  /// `linear_tolerance(|origin|)` of the point, or nothing. The hit is the nearest
-  /// approach of the ray to the point (t clamped to [0, max_t]) and its normal is
-  /// -direction/|direction| (+z for a zero direction, which hits only when the origin is on
-  /// the point).
+  /// Hit of `ray` (local frame) when it passes within linear_tolerance(largest coordinate of
+  /// the ray origin) of the point for some t in [0, max_t], else nothing (also for a
+  /// negative or NaN max_t). The hit is the ray's nearest approach to the point, its normal
+  /// -direction/|direction|; a zero direction hits (t = 0, normal +z) only when the origin
+  /// is on the point. O(1).
   std::optional<RayHit> raycast(const Ray& ray, Real max_t) const;
   /// True when `point` (local) is within kRelativeTolerance of the origin.
   bool contains(const Vec3& point) const;

@@ -52,11 +52,14 @@ class Segment {
   /// Box of the two transformed end points in the world frame (exact).
   Aabb world_aabb(const Transform& pose) const;
 
-  /// First point of `ray` (local frame) within [0, max_t] that passes within
-  /// max(tolerance(), linear_tolerance(|origin|)) of the segment, or nothing. A ray along
-  /// the segment's line hits where it enters the segment. The normal is orthogonal to the
-  /// segment and faces the ray origin (-direction/|direction| for a ray along the segment,
-  /// +z-like orthogonal vector for a zero direction on the segment).
+  /// Hit of `ray` (local frame) when, for some t in [0, max_t], it passes within
+  /// max(tolerance(), linear_tolerance(largest coordinate of the ray origin)) of the
+  /// segment, else nothing (also for a negative or NaN max_t). The hit is the ray's nearest
+  /// approach to the segment (Ericson's clamped closest points of two segments), with a
+  /// unit normal orthogonal to the segment facing the ray origin. A ray running along the
+  /// segment (both end points within that tolerance of the ray's line) hits where it enters
+  /// the segment, with normal -direction/|direction|. A zero direction hits (t = 0, a normal
+  /// orthogonal to the segment) only when the origin is on the segment. O(1).
   std::optional<RayHit> raycast(const Ray& ray, Real max_t) const;
   /// True when `point` (local) is within tolerance() of the segment.
   bool contains(const Vec3& point) const;
