@@ -13,16 +13,19 @@
 //     pre-merges within qhull's roundoff, and the post-merge centrum radius 'Cr' (r = 2
 //     epsilon of Real at the points' distance from the origin: the rounding of the input
 //     coordinates) merges facets until every centrum is r below its neighbours' planes.
-//     Faces coplanar within the resolution of the input become one convex polygon (a
-//     rotated box keeps six faces), and no sliver or shallow dent made of rounding noise
-//     is left, where face outlines would be arbitrary and hill-climbing could stop short.
-//     Qhull's messages go to a temporary file, read back for the error message. Its
-//     memory is freed on every path.
+//     Faces coplanar within the resolution of the input become one polygon (a rotated
+//     box keeps six faces), and no sliver or shallow dent made of rounding noise is left,
+//     where face outlines would be arbitrary and hill-climbing could stop short. For a
+//     thin cloud r is capped at kRelativeTolerance times its thickness: merging by plane
+//     distance moves a thin rim sideways by r / thickness. Qhull's messages go to a
+//     temporary file, read back for the error message. Its memory is freed on every path.
 //  5. Each facet's vertex loop comes from qhull's own topology: the ridges of a merged
 //     facet are walked end to end (as qhull's qh_facet3vertex does), a simplicial facet's
 //     order follows its orientation flag, so every edge is traversed once in each
 //     direction by its two faces. The loops are turned to be counter-clockwise seen from
-//     outside (one global orientation, checked face by face against qhull's normals).
+//     outside (one global orientation, checked face by face against qhull's normals). A
+//     merged facet is planar only within r: where its outline bends inwards by more than
+//     that, it is cut into triangles by ear clipping, which keep the facet's plane.
 //  6. Vertices shared by only two faces lie on a straight edge and are removed from both
 //     loops (they would stall hill-climbing). Compact the vertex indices, recompute each
 //     face plane from its loop (Newell's method, offset = the largest vertex offset),
@@ -493,13 +496,16 @@ std::string assemble(std::span<const Vec3> points, const QhullOutcome& hull, Con
     }
   }
 
-  // Hill-climbing moves: every other vertex of every face around a vertex (a superset of
-  // the edge neighbours, with the diagonals of faces that merging left slightly bent).
+  // Hill-climbing moves: every other vertex of every merged facet around a vertex (a
+  // superset of the edge neighbours, with the diagonals of facets that merging left
+  // slightly bent, including those cut into pieces).
   std::vector<std::pair<std::uint32_t, std::uint32_t>> mates;
-  for (const HullFace& f : data.faces) {
-    for (std::uint32_t a = 0; a < f.index_count; ++a) {
-      for (std::uint32_t b = 0; b < f.index_count; ++b) {
-        if (a != b) mates.push_back({data.face_indices[f.first_index + a], data.face_indices[f.first_index + b]});
+  for (std::size_t li = 0; li < hull.loops.size(); ++li) {
+    const std::vector<int>& loop = hull.loops[li];
+    if (li < hull.face_count && hull.plane_of[li] != li) continue;  // a piece: its facet is listed
+    for (int a : loop) {
+      for (int b : loop) {
+        if (a != b) mates.push_back({remap[a], remap[b]});
       }
     }
   }
@@ -614,7 +620,11 @@ Result<ConvexHull> ConvexHull::create(std::span<const Vec3> points) {
   std::string failure;
   double planarity = 0;
   double merge_deviation = 0;
-  const double base_radius = 2.0 * double(kEpsilon) * std::max(1.0, far_ratio);
+  // Merging by plane distance r moves the rim of a thin solid sideways by r / (its
+  // thickness), so a thin cloud merges less (down to qhull's roundoff).
+  const double thickness = std::min(best, thickness_hi - thickness_lo);
+  const double base_radius =
+      std::min(2.0 * double(kEpsilon) * std::max(1.0, far_ratio), double(kRelativeTolerance) * thickness);
   for (int attempt = 0; attempt < 4; ++attempt) {
     const double radius = base_radius * std::pow(10.0, attempt);
     QhullOutcome hull = run_qhull(pts, radius);
