@@ -44,9 +44,11 @@ std::optional<RayHit> ray_capsule(const Ray& ray, Real max_t, const Vec3& p0, co
     const detail::Interval side = detail::disc_interval(Vec2(m.x, m.y), Vec2(u.x, u.y), radius, 0);
     if (side.lo_feature == 0 && !side.empty() && side.hi >= Real(0)) {
       const Real s = std::max(side.lo, Real(0));  // before 0 only by rounding at the surface
-      const Real z = m.z + s * u.z;
-      if (std::isfinite(s) && z >= Real(0) && z <= len && (!best || s < best->s)) {
-        best = detail::Entry{s, frame.world(m.x + s * u.x, m.y + s * u.y, Real(0))};
+      if (std::isfinite(s)) {
+        const Real z = m.z + s * u.z;
+        if (z >= Real(0) && z <= len && (!best || s < best->s)) {
+          best = detail::Entry{s, frame.world(m.x + s * u.x, m.y + s * u.y, Real(0))};
+        }
       }
     }
   }

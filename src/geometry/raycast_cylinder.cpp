@@ -6,10 +6,11 @@
 //  2. Origin inside the closed solid (0 <= z <= L and x^2 + y^2 <= r^2): t = 0.
 //  3. Cap slab 0 <= z <= L: 1-D slab interval (whole line or nothing for a direction
 //     orthogonal to the axis).
-//  4. Lateral surface: the 2-D line (x, y) + s (ux, uy) against the disc of radius r. The
-//     discriminant is taken in the geometric form A (r - f)(r + f), f the distance from
-//     the axis to the projected line, and the roots from the cancellation-free form; a
-//     direction parallel to the axis gives the whole line or nothing.
+//  4. Lateral surface: the 2-D line (x, y) + s (ux, uy) against the disc of radius r,
+//     solved along the unit 2-D direction. The discriminant is taken in the geometric
+//     form (r - f)(r + f), f the distance from the axis to the projected line, and the
+//     roots from the cancellation-free form; a direction parallel to the axis gives the
+//     whole line or nothing.
 //  5. Intersect the two intervals; the later entry decides the face: cap (normal -a or
 //     +a) or lateral (normal = radial direction of the hit point).
 //
@@ -29,20 +30,27 @@ Interval disc_interval(const Vec2& m, const Vec2& u, Real r, int feature) {
   Interval none;
   none.lo = kInf;
   none.hi = -kInf;
-  const Real a = glm::dot(u, u);
-  if (a == Real(0)) {
+  Real speed;
+  Vec3 dir3;
+  if (!length_and_direction(Vec3(u, Real(0)), speed, dir3)) {
     // Parallel to the axis (or a zero direction): the radius never changes.
     if (glm::dot(m, m) <= r * r) return Interval{};
     return none;
   }
-  const Real b = glm::dot(m, u);
-  const Vec2 f = m - (b / a) * u;  // closest point of the projected line to the axis
+  // Solve along the unit 2-D direction (distance sigma = s * speed), so that nothing is
+  // divided by a tiny |u|^2.
+  const Vec2 dir(dir3.x, dir3.y);
+  const Real b = glm::dot(m, dir);
+  const Vec2 f = m - b * dir;  // closest point of the projected line to the axis
   const Real dist = safe_length(Vec3(f, Real(0)));
   if (dist > r) return none;
-  const Real disc = a * ((r - dist) * (r + dist));  // = b^2 - a c
+  const Real disc = (r - dist) * (r + dist);  // = b^2 - c
   const Real lm = safe_length(Vec3(m, Real(0)));
   const Real c = (lm - r) * (lm + r);
-  return quadratic_nonpositive(a, b, c, disc, feature).first;
+  Interval in = quadratic_nonpositive(Real(1), b, c, disc, feature).first;
+  in.lo /= speed;
+  in.hi /= speed;
+  return in;
 }
 
 }  // namespace detail

@@ -23,11 +23,24 @@ inline Real safe_length(const Vec3& v) {
   return m * std::sqrt(glm::dot(s, s));
 }
 
+/// Splits v into |v| and v / |v| (both computed from v scaled by its largest component,
+/// so that a denormal or huge v still gives a unit direction). Returns false (and leaves
+/// the outputs alone) when v is zero or not finite.
+inline bool length_and_direction(const Vec3& v, Real& length, Vec3& unit) {
+  const Real m = std::max(std::abs(v.x), std::max(std::abs(v.y), std::abs(v.z)));
+  if (!(m > Real(0)) || !std::isfinite(m)) return false;
+  const Vec3 s = v / m;
+  const Real ls = std::sqrt(glm::dot(s, s));  // in [1, sqrt(3)]
+  length = m * ls;
+  unit = s / ls;
+  return true;
+}
+
 /// v / |v|, or `fallback` when v is zero (or not finite).
 inline Vec3 safe_normalize(const Vec3& v, const Vec3& fallback) {
-  const Real len = safe_length(v);
-  if (!(len > Real(0)) || !std::isfinite(len)) return fallback;
-  return v / len;
+  Real length;
+  Vec3 unit;
+  return length_and_direction(v, length, unit) ? unit : fallback;
 }
 
 /// The unit normal reported for an inside hit made by a zero direction (any fixed unit
@@ -47,8 +60,10 @@ struct UnitRay {
 inline bool prepare(const Ray& ray, Real max_t, UnitRay& out) {
   if (!is_finite(ray.origin) || !is_finite(ray.direction) || !(max_t >= Real(0))) return false;
   out.origin = ray.origin;
-  out.length = safe_length(ray.direction);
-  out.unit = out.length > Real(0) ? ray.direction / out.length : Vec3(Real(0));
+  if (!length_and_direction(ray.direction, out.length, out.unit)) {
+    out.length = Real(0);
+    out.unit = Vec3(Real(0));
+  }
   return true;
 }
 
@@ -194,14 +209,7 @@ struct AxisFrame {
 /// The frame of segment p0p1 (finite points); a zero-length segment keeps the default axes.
 inline AxisFrame axis_frame(const Vec3& p0, const Vec3& p1) {
   AxisFrame f;
-  const Vec3 d = p1 - p0;
-  f.length = is_finite(d) ? safe_length(d) : Real(0);
-  if (f.length > Real(0)) {
-    f.axis = d / f.length;
-    orthonormal_basis(f.axis, f.e1, f.e2);
-  } else {
-    f.length = Real(0);
-  }
+  if (length_and_direction(p1 - p0, f.length, f.axis)) orthonormal_basis(f.axis, f.e1, f.e2);
   return f;
 }
 

@@ -26,9 +26,10 @@ namespace {
 /// Shared checks; returns the unit normal or nothing when the query can never hit.
 std::optional<Vec3> plane_normal(const Ray& ray, Real max_t, const Vec3& normal, Real offset, detail::UnitRay& r) {
   if (!detail::prepare(ray, max_t, r) || !is_finite(normal) || !is_finite(offset)) return std::nullopt;
-  const Real len = detail::safe_length(normal);
-  if (!(len > Real(0))) return std::nullopt;
-  return normal / len;
+  Real len;
+  Vec3 unit;
+  if (!detail::length_and_direction(normal, len, unit)) return std::nullopt;
+  return unit;
 }
 
 /// n.v in double: in the float build the products are exact and the sum is rounded in

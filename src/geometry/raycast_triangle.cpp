@@ -110,7 +110,9 @@ std::optional<RayHit> ray_triangle(const TriangleRay& pr, Real max_t, const Vec3
   const Vec3 n = glm::cross(e1, e2);
   const Real n_len = detail::safe_length(n);
   if (!(n_len > Real(16) * kEpsilon * detail::safe_length(e1) * detail::safe_length(e2))) return std::nullopt;
-  const Vec3 facing = glm::dot(n, pr.ray.direction) > Real(0) ? -n : n;
+  // Unit normal first: n . direction itself could overflow for huge coordinates.
+  const Vec3 unit = detail::safe_normalize(n, detail::kZeroDirectionNormal);
+  const Vec3 facing = glm::dot(unit, pr.ray.direction) > Real(0) ? -unit : unit;
   return detail::surface_hit(pr.ray, max_t, static_cast<Real>(t_wide), facing);
 }
 

@@ -7,6 +7,21 @@
 /// hits at t = 0 with normal -direction/|direction|; the returned normal is unit.
 /// A segment pq is the ray {p, q - p} with max_t = 1. Degenerate rays (zero direction)
 /// and rays parallel to a face give a defined answer, never NaN.
+///
+/// Details shared by every function here:
+///  - Solids are closed: an origin on the surface counts as inside (t = 0), and a ray that
+///    only touches the surface (tangent, along a face) hits.
+///  - With a zero direction, an inside origin hits at t = 0 with normal +z (any unit
+///    vector would do; this one is fixed); an outside origin misses.
+///  - max_t may be +infinity (an unbounded ray); a negative or NaN max_t, a non-finite
+///    origin or direction, and primitive parameters that are not finite or out of their
+///    domain (radius <= 0, negative half extent, empty box, zero plane normal, p0 == p1
+///    for the cylinder, apex == base for the cone) never hit.
+///  - Accuracy: t is found from differences of nearby coordinates first (origin minus
+///    centre, vertex minus origin...), so a primitive far from the world origin costs no
+///    more than rounding at its own size; grazing rays are as well-conditioned as their
+///    geometry allows (discriminants in the form (r - f)(r + f), stable quadratic roots).
+/// Each query is O(1), allocates nothing and never throws.
 
 #include <proxima/core/math.hpp>
 #include <proxima/geometry/aabb.hpp>
@@ -16,32 +31,41 @@
 
 namespace proxima::geometry {
 
-/// Solid sphere (centre, radius > 0). Analytic quadratic, cancellation-safe form.
+/// Solid sphere (centre, radius > 0). Analytic quadratic, cancellation-safe form; the
+/// normal is (hit point - centre) / radius.
 std::optional<RayHit> ray_sphere(const Ray& ray, Real max_t, const Vec3& center, Real radius);
 
 /// Solid axis-aligned box, slab method (Kay-Kajiya / Williams et al.); robust to direction
-/// components of +-0 and to flat boxes.
+/// components of +-0 and to flat boxes. The normal is the entry face's (one of them when
+/// entering through an edge or corner) and the point lies exactly on that face.
 std::optional<RayHit> ray_aabb(const Ray& ray, Real max_t, const Aabb& box);
 
-/// Solid oriented box: centre, `axes` (columns = unit box axes in this frame), half extents.
+/// Solid oriented box: centre, `axes` (columns = unit, orthogonal box axes in this
+/// frame), half extents >= 0. The normal is +-the entry face's axis.
 std::optional<RayHit> ray_obb(const Ray& ray, Real max_t, const Vec3& center, const Mat3& axes,
                               const Vec3& half_extents);
 
 /// Solid capsule: the points within `radius` of segment p0p1 (p0 == p1 gives a sphere).
+/// The normal is (hit point - nearest point of the segment) / radius.
 std::optional<RayHit> ray_capsule(const Ray& ray, Real max_t, const Vec3& p0, const Vec3& p1, Real radius);
 
-/// Solid capped cylinder with axis p0p1 (p0 != p1) and `radius` > 0.
+/// Solid capped cylinder with axis p0p1 (p0 != p1) and `radius` > 0. The normal is
+/// radial on the side, -+(p1 - p0)/|p1 - p0| on the caps at p0 / p1.
 std::optional<RayHit> ray_cylinder(const Ray& ray, Real max_t, const Vec3& p0, const Vec3& p1, Real radius);
 
 /// Solid capped cone: `apex`, the centre of its base disc `base_center` (!= apex) and
-/// the base radius > 0.
+/// the base radius > 0. The normal is the slant surface's on the side, the axis direction
+/// (base_center - apex, normalised) on the base, and its opposite at the apex itself.
 std::optional<RayHit> ray_cone(const Ray& ray, Real max_t, const Vec3& apex, const Vec3& base_center, Real base_radius);
 
-/// The plane n.x = d as a two-sided surface (`normal` unit). A ray lying in the plane hits
-/// at t = 0. The returned normal faces the ray origin.
+/// The plane n.x = d as a two-sided surface (`normal` unit; a non-unit normal describes
+/// the plane n.x = d all the same). An origin on the plane (e.g. a ray lying in it) hits
+/// at t = 0. The returned normal faces the ray origin (for an origin on the plane: faces
+/// against the direction).
 std::optional<RayHit> ray_plane(const Ray& ray, Real max_t, const Vec3& normal, Real offset);
 
-/// The solid half-space n.x <= d (`normal` unit); inside origin hits at t = 0.
+/// The solid half-space n.x <= d (`normal` unit, or any non-zero vector); inside origin
+/// hits at t = 0; the normal of a surface hit is n / |n|.
 std::optional<RayHit> ray_halfspace(const Ray& ray, Real max_t, const Vec3& normal, Real offset);
 
 /// Two-sided triangle abc, watertight (Woop, Benthin, Wald, "Watertight Ray/Triangle
