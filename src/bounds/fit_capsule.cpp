@@ -10,8 +10,9 @@
 //     symmetrically for s_lo): s_hi = max(s - sqrt(r^2 - rho^2)), s_lo = min(s +
 //     sqrt(r^2 - rho^2)); when s_lo > s_hi a single point in between suffices (a ball).
 //  3. Larger radii shorten the segment; volume(r) = pi r^2 (s_hi - s_lo) + 4/3 pi r^3 is
-//     minimised over [r0, r_ball] (r_ball covers everything with a point segment) by 12
-//     samples and a golden-section refinement around the best one.
+//     minimised over [r0, r_ball] (r_ball covers everything with a point segment) by
+//     sampling and a golden-section refinement around the best sample (coarsely while the
+//     axis is searched, finely for the final axis).
 //  Axis: the best of the three principal axes of the points' covariance, refined by a
 //     pattern search over tilts of the axis (halving the angle when no tilt helps).
 //  4. The radius is reduced to the largest distance of a point from the final segment
@@ -78,7 +79,8 @@ struct AxisFit {
   glm::dvec3 p1{0.0};
 };
 
-AxisFit fit_along_axis(std::span<const glm::dvec3> rel, const glm::dvec3& axis, std::vector<glm::dvec3>& perp) {
+AxisFit fit_along_axis(std::span<const glm::dvec3> rel, const glm::dvec3& axis, std::vector<glm::dvec3>& perp,
+                       bool fine) {
   const glm::dvec3 a = glm::normalize(axis);
   perp.resize(rel.size());
   for (std::size_t i = 0; i < rel.size(); ++i) perp[i] = rel[i] - glm::dot(rel[i], a) * a;
@@ -102,12 +104,12 @@ AxisFit fit_along_axis(std::span<const glm::dvec3> rel, const glm::dvec3& axis, 
   const double half = 0.5 * (s_max - s_min);
   const double r1 = std::sqrt(rho2_max + half * half);
   // Sample, then golden-section around the best sample.
-  constexpr int kSamples = 12;
+  const int samples = fine ? 16 : 6;
   double best_r = r0;
   double best_v = volume_for_radius(d, r0);
   int best_k = 0;
-  for (int k = 1; k <= kSamples; ++k) {
-    const double r = r0 + (r1 - r0) * k / kSamples;
+  for (int k = 1; k <= samples; ++k) {
+    const double r = r0 + (r1 - r0) * k / samples;
     const double v = volume_for_radius(d, r);
     if (v < best_v) {
       best_v = v;
@@ -116,12 +118,12 @@ AxisFit fit_along_axis(std::span<const glm::dvec3> rel, const glm::dvec3& axis, 
     }
   }
   if (r1 > r0) {
-    double lo = r0 + (r1 - r0) * std::max(best_k - 1, 0) / kSamples;
-    double hi = r0 + (r1 - r0) * std::min(best_k + 1, kSamples) / kSamples;
+    double lo = r0 + (r1 - r0) * std::max(best_k - 1, 0) / samples;
+    double hi = r0 + (r1 - r0) * std::min(best_k + 1, samples) / samples;
     const double g = 0.5 * (std::sqrt(5.0) - 1.0);
     double x1 = hi - g * (hi - lo), x2 = lo + g * (hi - lo);
     double f1 = volume_for_radius(d, x1), f2 = volume_for_radius(d, x2);
-    for (int it = 0; it < 20; ++it) {
+    for (int it = 0, iterations = fine ? 24 : 8; it < iterations; ++it) {
       if (f1 < f2) {
         hi = x2;
         x2 = x1;
@@ -173,9 +175,9 @@ Result<BoundingCapsule> fit_capsule(std::span<const Vec3> points) {
   // of a shrinking angle about two orthogonal directions) while the volume decreases.
   std::vector<glm::dvec3> perp;
   glm::dvec3 axis = frame[0];
-  AxisFit best = fit_along_axis(rel, axis, perp);
+  AxisFit best = fit_along_axis(rel, axis, perp, false);
   for (int k = 1; k < 3; ++k) {
-    const AxisFit f = fit_along_axis(rel, frame[k], perp);
+    const AxisFit f = fit_along_axis(rel, frame[k], perp, false);
     if (f.volume < best.volume) {
       best = f;
       axis = frame[k];
@@ -188,7 +190,7 @@ Result<BoundingCapsule> fit_capsule(std::span<const Vec3> points) {
     for (int k = 0; k < 4; ++k) {
       const glm::dvec3 tilt = (k < 2 ? basis[1] : basis[2]) * (k % 2 == 0 ? 1.0 : -1.0);
       const glm::dvec3 candidate = glm::normalize(std::cos(angle) * axis + std::sin(angle) * tilt);
-      const AxisFit f = fit_along_axis(rel, candidate, perp);
+      const AxisFit f = fit_along_axis(rel, candidate, perp, false);
       if (f.volume < best.volume * (1.0 - 1e-5)) {
         best = f;
         axis = candidate;
@@ -198,6 +200,7 @@ Result<BoundingCapsule> fit_capsule(std::span<const Vec3> points) {
     }
     if (!improved) angle *= 0.5;
   }
+  best = fit_along_axis(rel, axis, perp, true);
   // Step 4: reduce the radius to the farthest point from the final segment (all points).
   return finish_capsule(points, Vec3(origin + best.p0), Vec3(origin + best.p1));
 }

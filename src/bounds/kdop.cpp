@@ -19,14 +19,6 @@
 
 namespace proxima {
 
-Vec3 kdop_base_direction(int i) {
-  static constexpr int kTable[13][3] = {{1, 0, 0},  {0, 1, 0},   {0, 0, 1}, {1, 1, 1}, {1, -1, 1},
-                                        {1, 1, -1}, {1, -1, -1}, {1, 1, 0}, {1, 0, 1}, {0, 1, 1},
-                                        {1, -1, 0}, {1, 0, -1},  {0, 1, -1}};
-  const int k = std::clamp(i, 0, 12);
-  return {Real(kTable[k][0]), Real(kTable[k][1]), Real(kTable[k][2])};
-}
-
 namespace detail {
 
 template <int K>

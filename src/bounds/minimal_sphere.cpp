@@ -25,8 +25,8 @@
 #include <glm/geometric.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
-#include <list>
 #include <vector>
 
 #include "bounds/fit_util.hpp"
@@ -35,37 +35,44 @@ namespace proxima {
 namespace detail {
 namespace {
 
+// Points in a doubly linked list over indices (move-to-front without allocation).
 class Miniball {
  public:
-  explicit Miniball(std::span<const glm::dvec3> points) {
-    for (const glm::dvec3& p : points) list_.push_back(p);
+  explicit Miniball(std::span<const glm::dvec3> points) : p_(points) {
+    const int n = static_cast<int>(points.size());
+    next_.resize(static_cast<std::size_t>(n) + 1);
+    prev_.resize(static_cast<std::size_t>(n) + 1);
+    // Node n is the sentinel (end of the list).
+    for (int i = 0; i <= n; ++i) {
+      next_[static_cast<std::size_t>(i)] = i == n ? 0 : i + 1;
+      prev_[static_cast<std::size_t>(i)] = i == 0 ? n : i - 1;
+    }
+    if (n == 0) next_[0] = prev_[0] = 0;
+    end_ = n;
     double scale = 0.0;
     for (const glm::dvec3& p : points) scale = std::max(scale, glm::dot(p, p));
     tiny_ = 1e-28 * scale;
   }
 
   void run() {
-    auto it = list_.begin();
-    ++it;  // the first point seeds the ball
-    mtf(it);
-    auto t = it;
-    double max_e = 0.0;
-    double old_r2 = -1.0;
+    if (end_ == 0) return;
+    int t = next(begin());  // the first point seeds the ball
+    mtf(t);
     for (int guard = 0; guard < 10000; ++guard) {
-      auto pivot = list_.end();
-      max_e = 0.0;
-      for (auto k = t; k != list_.end(); ++k) {
-        const double e = excess(*k);
+      int pivot = end_;
+      double max_e = 0.0;
+      for (int k = t; k != end_; k = next(k)) {
+        const double e = excess(p_[static_cast<std::size_t>(k)]);
         if (e > max_e) {
           max_e = e;
           pivot = k;
         }
       }
-      if (!(max_e > 0.0) || pivot == list_.end()) break;
+      if (!(max_e > 0.0) || pivot == end_) break;
       t = support_end_;
-      if (t == pivot) ++t;
-      old_r2 = r2_;
-      if (push(*pivot)) {
+      if (t == pivot) t = next(t);
+      const double old_r2 = r2_;
+      if (push(p_[static_cast<std::size_t>(pivot)])) {
         mtf(support_end_);
         pop();
       }
@@ -78,7 +85,8 @@ class Miniball {
   double radius_squared() const { return std::max(r2_, 0.0); }
 
  private:
-  using It = std::list<glm::dvec3>::iterator;
+  int begin() const { return next_[static_cast<std::size_t>(end_)]; }
+  int next(int i) const { return next_[static_cast<std::size_t>(i)]; }
 
   double excess(const glm::dvec3& p) const {
     const glm::dvec3 d = p - c_;
@@ -87,13 +95,14 @@ class Miniball {
     return glm::dot(d, d) - r2_ - 1e-12 * r2_ - tiny_;
   }
 
-  void mtf(It end) {
-    support_end_ = list_.begin();
-    if (support_.size() == 4) return;
-    for (It k = list_.begin(); k != end;) {
-      It j = k++;
-      if (excess(*j) > 0.0) {
-        if (push(*j)) {
+  void mtf(int end) {
+    support_end_ = begin();
+    if (support_count_ == 4) return;
+    for (int k = begin(); k != end;) {
+      const int j = k;
+      k = next(k);
+      if (excess(p_[static_cast<std::size_t>(j)]) > 0.0) {
+        if (push(p_[static_cast<std::size_t>(j)])) {
           mtf(j);
           pop();
           move_to_front(j);
@@ -102,29 +111,36 @@ class Miniball {
     }
   }
 
+  // Moves a point to the front of the list, keeping support_end_ past the support points.
+  void move_to_front(int j) {
+    if (support_end_ == j) support_end_ = next(j);
+    if (begin() == j) return;
+    const auto uj = static_cast<std::size_t>(j);
+    next_[static_cast<std::size_t>(prev_[uj])] = next_[uj];
+    prev_[static_cast<std::size_t>(next_[uj])] = prev_[uj];
+    const int first = begin();
+    next_[uj] = first;
+    prev_[uj] = end_;
+    prev_[static_cast<std::size_t>(first)] = j;
+    next_[static_cast<std::size_t>(end_)] = j;
+  }
+
   // Ball with all support points (plus p) on its boundary; false when degenerate.
   bool push(const glm::dvec3& p) {
-    std::vector<glm::dvec3> s = support_;
-    s.push_back(p);
+    support_[static_cast<std::size_t>(support_count_)] = p;
     glm::dvec3 c;
     double r2;
-    if (!ball_of(s, c, r2)) return false;
-    support_.push_back(p);
+    if (!ball_of(support_.data(), support_count_ + 1, c, r2)) return false;
+    ++support_count_;
     c_ = c;
     r2_ = r2;
     return true;
   }
-  void pop() { support_.pop_back(); }
+  void pop() { --support_count_; }
 
-  // Moves a point to the front of the list, keeping support_end_ past the support points.
-  void move_to_front(It j) {
-    if (support_end_ == j) ++support_end_;
-    list_.splice(list_.begin(), list_, j);
-  }
-
-  static bool ball_of(const std::vector<glm::dvec3>& s, glm::dvec3& c, double& r2) {
+  static bool ball_of(const glm::dvec3* s, int count, glm::dvec3& c, double& r2) {
     const glm::dvec3& s0 = s[0];
-    const std::size_t m = s.size() - 1;
+    const std::size_t m = static_cast<std::size_t>(count) - 1;
     if (m == 0) {
       c = s0;
       r2 = 0.0;
@@ -177,9 +193,13 @@ class Miniball {
     return true;
   }
 
-  std::list<glm::dvec3> list_;
-  std::vector<glm::dvec3> support_;
-  It support_end_{};
+  std::span<const glm::dvec3> p_;
+  std::vector<int> next_;
+  std::vector<int> prev_;
+  int end_ = 0;
+  std::array<glm::dvec3, 4> support_{};
+  int support_count_ = 0;
+  int support_end_ = 0;
   glm::dvec3 c_{0.0};
   double r2_ = -1.0;
   double tiny_ = 0.0;

@@ -17,7 +17,14 @@ namespace proxima {
 /// 0-2 the axes (1,0,0) (0,1,0) (0,0,1); 3-6 the corner diagonals (1,1,1) (1,-1,1)
 /// (1,1,-1) (1,-1,-1); 7-12 the edge diagonals (1,1,0) (1,0,1) (0,1,1) (1,-1,0) (1,0,-1)
 /// (0,1,-1).
-Vec3 kdop_base_direction(int i);
+/// Indices outside 0..12 are clamped.
+inline Vec3 kdop_base_direction(int i) {
+  static constexpr signed char kTable[13][3] = {{1, 0, 0},  {0, 1, 0},   {0, 0, 1}, {1, 1, 1}, {1, -1, 1},
+                                                {1, 1, -1}, {1, -1, -1}, {1, 1, 0}, {1, 0, 1}, {0, 1, 1},
+                                                {1, -1, 0}, {1, 0, -1},  {0, 1, -1}};
+  const int k = i < 0 ? 0 : (i > 12 ? 12 : i);
+  return {Real(kTable[k][0]), Real(kTable[k][1]), Real(kTable[k][2])};
+}
 
 /// Closed k-DOP for K = 6 (the box), 14 (box + corners), 18 (box + edges) or 26 (all):
 /// {x : min[i] <= d_i . x <= max[i], i < K/2}. Kdop<6> and Kdop<14> use base directions
