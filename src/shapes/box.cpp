@@ -15,6 +15,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace proxima {
 namespace {
@@ -52,16 +53,24 @@ Aabb Box::local_aabb() const { return {-half_extents_, half_extents_}; }
 Aabb Box::world_aabb(const Transform& pose) const { return local_aabb().transformed(pose); }
 
 std::optional<RayHit> Box::raycast(const Ray& ray, Real max_t) const {
+  if (!(max_t >= Real(0)) || !is_finite(ray.origin) || !is_finite(ray.direction)) return std::nullopt;
   return geometry::ray_aabb(ray, max_t, local_aabb());
 }
 
 bool Box::contains(const Vec3& point) const {
+  if (!is_finite(point)) return false;
   const Vec3& h = half_extents_;
   return std::abs(point.x) <= h.x && std::abs(point.y) <= h.y && std::abs(point.z) <= h.z;
 }
 
 SurfacePoint Box::closest_point(const Vec3& point) const {
   SurfacePoint r;
+  if (!is_finite(point)) {
+    r.point = Vec3(Real(0), Real(0), half_extents_.z);
+    r.normal = Vec3(Real(0), Real(0), Real(1));
+    r.signed_distance = std::numeric_limits<Real>::infinity();
+    return r;
+  }
   if (!contains(point)) {
     r.point = geometry::closest_point_aabb(point, local_aabb());
     Vec3 unit;

@@ -18,6 +18,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace proxima {
 namespace {
@@ -46,7 +47,9 @@ Result<Capsule> Capsule::create(Real radius, Real half_length) {
 Vec3 Capsule::support(const Vec3& direction) const {
   Vec3 unit;
   Real len = Real(0);
-  if (!unit_and_length(direction, unit, len)) return Vec3(Real(0), Real(0), half_length_ + radius_);
+  if (!is_finite(direction) || !unit_and_length(direction, unit, len)) {
+    return Vec3(Real(0), Real(0), half_length_ + radius_);
+  }
   return core_support(direction) + radius_ * unit;
 }
 
@@ -62,16 +65,22 @@ Aabb Capsule::world_aabb(const Transform& pose) const {
 }
 
 std::optional<RayHit> Capsule::raycast(const Ray& ray, Real max_t) const {
+  if (!(max_t >= Real(0)) || !is_finite(ray.origin) || !is_finite(ray.direction)) return std::nullopt;
   return geometry::ray_capsule(ray, max_t, bottom(), top(), radius_);
 }
 
 bool Capsule::contains(const Vec3& point) const {
+  if (!is_finite(point)) return false;
   const Real z = std::clamp(point.z, -half_length_, half_length_);
   const Vec3 d(point.x, point.y, point.z - z);
   return glm::dot(d, d) <= radius_ * radius_;
 }
 
 SurfacePoint Capsule::closest_point(const Vec3& point) const {
+  if (!is_finite(point)) {
+    return SurfacePoint{Vec3(Real(0), Real(0), half_length_ + radius_), Vec3(Real(0), Real(0), Real(1)),
+                        std::numeric_limits<Real>::infinity()};
+  }
   const Vec3 core(Real(0), Real(0), std::clamp(point.z, -half_length_, half_length_));
   Vec3 unit;
   Real dist = Real(0);

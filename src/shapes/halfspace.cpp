@@ -22,6 +22,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 
 namespace proxima {
 namespace {
@@ -63,7 +64,8 @@ Result<HalfSpace> HalfSpace::create(const Vec3& normal, Real offset) {
   return HalfSpace(w / l, d);
 }
 
-Vec3 HalfSpace::support(const Vec3& direction) const {
+Vec3 HalfSpace::support(const Vec3& direction_in) const {
+  const Vec3 direction = is_finite(direction_in) ? direction_in : Vec3(Real(0));
   const Real extent = std::max(kSupportExtent, std::abs(offset_));
   Vec3 x;
   for (int i = 0; i < 3; ++i) x[i] = direction[i] >= Real(0) ? extent : -extent;
@@ -102,12 +104,14 @@ Aabb HalfSpace::world_aabb(const Transform& pose) const {
 }
 
 std::optional<RayHit> HalfSpace::raycast(const Ray& ray, Real max_t) const {
+  if (!(max_t >= Real(0)) || !is_finite(ray.origin) || !is_finite(ray.direction)) return std::nullopt;
   return geometry::ray_halfspace(ray, max_t, normal_, offset_);
 }
 
-bool HalfSpace::contains(const Vec3& point) const { return glm::dot(normal_, point) <= offset_; }
+bool HalfSpace::contains(const Vec3& point) const { return is_finite(point) && glm::dot(normal_, point) <= offset_; }
 
 SurfacePoint HalfSpace::closest_point(const Vec3& point) const {
+  if (!is_finite(point)) return SurfacePoint{offset_ * normal_, normal_, std::numeric_limits<Real>::infinity()};
   const Real s = glm::dot(normal_, point) - offset_;
   SurfacePoint r;
   r.point = point - s * normal_;

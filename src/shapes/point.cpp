@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace proxima {
 namespace {
@@ -39,7 +40,7 @@ Aabb Point::local_aabb() const { return Aabb::from_point(Vec3(Real(0))); }
 Aabb Point::world_aabb(const Transform& pose) const { return Aabb::from_point(pose.position); }
 
 std::optional<RayHit> Point::raycast(const Ray& ray, Real max_t) const {
-  if (!(max_t >= Real(0))) return std::nullopt;
+  if (!(max_t >= Real(0)) || !is_finite(ray.origin) || !is_finite(ray.direction)) return std::nullopt;
   const Real tol = linear_tolerance(max_abs(ray.origin));
   Vec3 unit;
   Real len = Real(0);
@@ -56,6 +57,7 @@ std::optional<RayHit> Point::raycast(const Ray& ray, Real max_t) const {
 }
 
 bool Point::contains(const Vec3& point) const {
+  if (!is_finite(point)) return false;
   const Real tol = linear_tolerance(Real(0));
   return max_abs(point) <= tol && glm::length(point) <= tol;
 }
@@ -65,7 +67,9 @@ SurfacePoint Point::closest_point(const Vec3& point) const {
   r.point = Vec3(Real(0));
   Vec3 unit;
   Real len = Real(0);
-  if (unit_and_length(point, unit, len)) {
+  if (!is_finite(point)) {
+    r.signed_distance = std::numeric_limits<Real>::infinity();
+  } else if (unit_and_length(point, unit, len)) {
     r.normal = unit;
     r.signed_distance = len;
   } else {

@@ -16,6 +16,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace proxima {
 namespace {
@@ -68,7 +69,7 @@ Aabb Segment::world_aabb(const Transform& pose) const {
 }
 
 std::optional<RayHit> Segment::raycast(const Ray& ray, Real max_t) const {
-  if (!(max_t >= Real(0))) return std::nullopt;
+  if (!(max_t >= Real(0)) || !is_finite(ray.origin) || !is_finite(ray.direction)) return std::nullopt;
   const Real tol = std::max(tolerance_, linear_tolerance(max_abs(ray.origin)));
   Vec3 w;
   Real seg_len = Real(0);
@@ -127,11 +128,18 @@ std::optional<RayHit> Segment::raycast(const Ray& ray, Real max_t) const {
 }
 
 bool Segment::contains(const Vec3& point) const {
+  if (!is_finite(point)) return false;
   const auto q = geometry::closest_point_segment(point, a_, b_);
   return glm::length(point - q.point) <= tolerance_;
 }
 
 SurfacePoint Segment::closest_point(const Vec3& point) const {
+  if (!is_finite(point)) {
+    Vec3 w;
+    Real len = Real(0);
+    unit_and_length(b_ - a_, w, len);
+    return SurfacePoint{a_, any_orthogonal(w), std::numeric_limits<Real>::infinity()};
+  }
   const auto q = geometry::closest_point_segment(point, a_, b_);
   SurfacePoint r;
   r.point = q.point;

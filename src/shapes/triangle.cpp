@@ -20,6 +20,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <limits>
 
 namespace proxima {
 namespace {
@@ -93,16 +94,19 @@ Aabb Triangle::world_aabb(const Transform& pose) const {
 }
 
 std::optional<RayHit> Triangle::raycast(const Ray& ray, Real max_t) const {
+  if (!(max_t >= Real(0)) || !is_finite(ray.origin) || !is_finite(ray.direction)) return std::nullopt;
   return geometry::ray_triangle(ray, max_t, v_[0], v_[1], v_[2]);
 }
 
 bool Triangle::contains(const Vec3& point) const {
+  if (!is_finite(point)) return false;
   const auto q = geometry::closest_point_triangle(point, v_[0], v_[1], v_[2]);
   const Vec3 d = point - q.point;
   return max_abs(d) <= tolerance_ && glm::length(d) <= tolerance_;
 }
 
 SurfacePoint Triangle::closest_point(const Vec3& point) const {
+  if (!is_finite(point)) return SurfacePoint{v_[0], normal_, std::numeric_limits<Real>::infinity()};
   const auto q = geometry::closest_point_triangle(point, v_[0], v_[1], v_[2]);
   SurfacePoint r;
   r.point = q.point;

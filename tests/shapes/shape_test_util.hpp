@@ -107,6 +107,44 @@ void expect_vector_field_finite_validated(Make make, const Vec3& base, const std
   }
 }
 
+/// Calls every query of `shape` with NaN and infinite inputs (points, directions, rays,
+/// max_t, poses) with the invalid-operation trap off. Every call must return (no crash, no
+/// hang, no sanitizer report). With `defined_answers`, the answers must also follow the
+/// shapes' convention for non-finite input: support is finite, contains is false,
+/// closest_point gives a finite point and unit normal at distance +infinity, and a ray with
+/// a non-finite origin or direction, or a NaN max_t, hits nothing.
+template <class S>
+void exercise_queries_with_non_finite_input(const S& shape, bool defined_answers = true) {
+  ScopedNoFpTraps no_traps;
+  const Real nan = nan_value();
+  const Real inf = inf_value();
+  const Vec3 bad_vectors[] = {Vec3(nan), Vec3(nan, 0, 0), Vec3(0, inf, 0), Vec3(-inf, inf, 0), Vec3(0, 0, -inf)};
+  for (const Vec3& v : bad_vectors) {
+    const Vec3 s = shape.support(v);
+    const Vec3 cs = shape.core_support(v);
+    const bool in = shape.contains(v);
+    const SurfacePoint sp = shape.closest_point(v);
+    const auto from_bad = shape.raycast(Ray{v, Vec3(1, 0, 0)}, Real(10));
+    const auto along_bad = shape.raycast(Ray{Vec3(0, 0, 5), v}, Real(10));
+    static_cast<void>(shape.world_aabb(Transform{v, kIdentityQuat}));
+    if (!defined_answers) continue;
+    EXPECT_TRUE(all_finite(s) && all_finite(cs));
+    EXPECT_FALSE(in);
+    EXPECT_TRUE(all_finite(sp.point) && all_finite(sp.normal));
+    EXPECT_NEAR(glm::length(sp.normal), Real(1), Real(64) * kEpsilon);
+    EXPECT_EQ(sp.signed_distance, inf);
+    EXPECT_FALSE(from_bad.has_value());
+    EXPECT_FALSE(along_bad.has_value());
+  }
+  const auto nan_max_t = shape.raycast(Ray{Vec3(0, 0, 5), Vec3(0, 0, -1)}, nan);
+  const auto negative_max_t = shape.raycast(Ray{Vec3(0, 0, 5), Vec3(0, 0, -1)}, -inf);
+  static_cast<void>(shape.world_aabb(Transform{Vec3(nan), Quat(nan, 0, 0, 0)}));
+  if (defined_answers) {
+    EXPECT_FALSE(nan_max_t.has_value());
+    EXPECT_FALSE(negative_max_t.has_value());
+  }
+}
+
 // ---------------------------------------------------------------------------------------
 // Surface samplers (unit size; scale and shift them in the test)
 

@@ -323,5 +323,7 @@ TEST(Box, MassPropertiesAnalyticAndIntegrated) {
   }
 }
 
+TEST(Box, NonFiniteQueryInputHasDefinedAnswers) { test::exercise_queries_with_non_finite_input(make(Vec3(1, 2, 3))); }
+
 }  // namespace
 }  // namespace proxima

@@ -333,5 +333,9 @@ TEST(Capsule, MassPropertiesAnalyticAndIntegrated) {
   }
 }
 
+TEST(Capsule, NonFiniteQueryInputHasDefinedAnswers) {
+  test::exercise_queries_with_non_finite_input(make(Real(0.5), Real(1.5)));
+}
+
 }  // namespace
 }  // namespace proxima

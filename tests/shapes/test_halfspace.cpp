@@ -307,5 +307,9 @@ TEST(HalfSpace, HasNoMassProperties) {
   static_assert(HasMassProperties<Sphere>);
 }
 
+TEST(HalfSpace, NonFiniteQueryInputHasDefinedAnswers) {
+  test::exercise_queries_with_non_finite_input(make(Vec3(1, 2, 2), 3));
+}
+
 }  // namespace
 }  // namespace proxima

@@ -183,5 +183,7 @@ TEST(Point, PlacedQueries) {
   }
 }
 
+TEST(Point, NonFiniteQueryInputHasDefinedAnswers) { test::exercise_queries_with_non_finite_input(kPoint); }
+
 }  // namespace
 }  // namespace proxima

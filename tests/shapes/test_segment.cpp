@@ -336,5 +336,9 @@ TEST(Segment, PlacedQueries) {
   }
 }
 
+TEST(Segment, NonFiniteQueryInputHasDefinedAnswers) {
+  test::exercise_queries_with_non_finite_input(make(Vec3(-1, 0, 0), Vec3(2, 1, 0)));
+}
+
 }  // namespace
 }  // namespace proxima

@@ -381,5 +381,9 @@ TEST(Triangle, PlacedQueries) {
   }
 }
 
+TEST(Triangle, NonFiniteQueryInputHasDefinedAnswers) {
+  test::exercise_queries_with_non_finite_input(make(Vec3(-1, 0, 0), Vec3(2, 0, 0), Vec3(0, 1, 1)));
+}
+
 }  // namespace
 }  // namespace proxima

@@ -32,7 +32,7 @@ class Box {
   const Vec3& half_extents() const { return half_extents_; }
 
   /// Farthest corner in `direction` (the + side on axes where the direction component is
-  /// zero; the corner h for a zero direction).
+  /// zero; the corner h for a zero direction, -h for a NaN one).
   Vec3 support(const Vec3& direction) const;
   /// Farthest point of the core (the box itself): support(direction).
   Vec3 core_support(const Vec3& direction) const { return support(direction); }
@@ -46,14 +46,17 @@ class Box {
   Aabb world_aabb(const Transform& pose) const;
 
   /// First hit of `ray` (local frame) with the solid box within [0, max_t] (slab method,
-  /// geometry::ray_aabb); origin inside: t = 0, normal -direction/|direction|.
+  /// geometry::ray_aabb); origin inside: t = 0, normal -direction/|direction|. Nothing for
+  /// a negative or NaN max_t or a non-finite ray.
   std::optional<RayHit> raycast(const Ray& ray, Real max_t) const;
-  /// True when `point` (local) is inside or on the surface: |p_i| <= h_i on every axis.
+  /// True when `point` (local) is inside or on the surface: |p_i| <= h_i on every axis
+  /// (false for a non-finite point).
   bool contains(const Vec3& point) const;
   /// Nearest surface point to `point` (local) with signed distance (< 0 inside). Outside:
   /// the clamped point and (point - clamped)/distance. Inside: the projection on the face
   /// nearest to `point` (ties go to x, then y, then z; the + face when the coordinate is 0)
-  /// with that face's normal.
+  /// with that face's normal. A non-finite point gives the centre of the +z face at
+  /// distance +infinity.
   SurfacePoint closest_point(const Vec3& point) const;
   /// Volume 8 hx hy hz, mass, centroid (origin) and the diagonal inertia
   /// m/3 (hy^2 + hz^2), m/3 (hx^2 + hz^2), m/3 (hx^2 + hy^2).

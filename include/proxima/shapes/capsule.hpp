@@ -40,7 +40,7 @@ class Capsule {
   Vec3 bottom() const { return {Real(0), Real(0), -half_length_}; }
 
   /// Farthest point of the capsule in `direction`: core_support + radius * direction /
-  /// |direction| (the top pole for a zero direction).
+  /// |direction| (the top pole for a zero or non-finite direction).
   Vec3 support(const Vec3& direction) const;
   /// Farthest point of the core segment in `direction`: the end with the same sign of z as
   /// `direction` (top() when direction.z == 0).
@@ -55,14 +55,16 @@ class Capsule {
   Aabb world_aabb(const Transform& pose) const;
 
   /// First hit of `ray` (local frame) with the solid capsule within [0, max_t]
-  /// (geometry::ray_capsule); origin inside: t = 0, normal -direction/|direction|.
+  /// (geometry::ray_capsule); origin inside: t = 0, normal -direction/|direction|. Nothing
+  /// for a negative or NaN max_t or a non-finite ray.
   std::optional<RayHit> raycast(const Ray& ray, Real max_t) const;
   /// True when `point` (local) is inside or on the surface: distance to the core segment
-  /// <= radius.
+  /// <= radius (false for a non-finite point).
   bool contains(const Vec3& point) const;
   /// Nearest surface point to `point` (local) with signed distance (< 0 inside): the core
   /// point nearest to `point` pushed out by the radius. A point on the axis gets the
-  /// normal +x (the cylindrical wall is then nearest, at distance radius).
+  /// normal +x (the cylindrical wall is then nearest, at distance radius). A non-finite
+  /// point gives the top pole at distance +infinity.
   SurfacePoint closest_point(const Vec3& point) const;
   /// Volume pi r^2 (2h) + 4/3 pi r^3, mass, centroid (origin) and inertia about the origin:
   /// the cylinder plus the two hemispheres shifted by the parallel-axis theorem; the axis

@@ -47,7 +47,8 @@ class HalfSpace {
   /// Farthest point in `direction` of the half-space clipped to the cube |x|_inf <=
   /// max(kSupportExtent, |offset|): a vertex of that convex polytope (exact linear
   /// programme: the cube's support corner, moved back onto the plane along the axes that
-  /// cost the least progress in `direction`). A zero direction gives a valid point.
+  /// cost the least progress in `direction`). A zero or non-finite direction gives a valid
+  /// point.
   Vec3 support(const Vec3& direction) const;
   /// Farthest point of the core (the clipped half-space itself): support(direction).
   Vec3 core_support(const Vec3& direction) const { return support(direction); }
@@ -65,11 +66,14 @@ class HalfSpace {
 
   /// First hit of `ray` (local frame) with the solid within [0, max_t]
   /// (geometry::ray_halfspace); origin inside: t = 0, normal -direction/|direction|.
+  /// Nothing for a negative or NaN max_t or a non-finite ray.
   std::optional<RayHit> raycast(const Ray& ray, Real max_t) const;
-  /// True when `point` (local) is inside or on the boundary: normal . point <= offset.
+  /// True when `point` (local) is inside or on the boundary: normal . point <= offset
+  /// (false for a non-finite point).
   bool contains(const Vec3& point) const;
   /// Projection of `point` on the boundary plane, normal = normal(), signed distance
-  /// normal . point - offset.
+  /// normal . point - offset. A non-finite point gives the plane point offset * normal at
+  /// distance +infinity.
   SurfacePoint closest_point(const Vec3& point) const;
 
  private:

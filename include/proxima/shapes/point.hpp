@@ -43,14 +43,16 @@ class Point {
 
   /// Hit of `ray` (local frame) when it passes within linear_tolerance(largest coordinate of
   /// the ray origin) of the point for some t in [0, max_t], else nothing (also for a
-  /// negative or NaN max_t). The hit is the ray's nearest approach to the point, its normal
+  /// negative or NaN max_t and for a non-finite ray). The hit is the ray's nearest approach to the point, its normal
   /// -direction/|direction|; a zero direction hits (t = 0, normal +z) only when the origin
   /// is on the point. O(1).
   std::optional<RayHit> raycast(const Ray& ray, Real max_t) const;
-  /// True when `point` (local) is within kRelativeTolerance of the origin.
+  /// True when `point` (local) is within kRelativeTolerance of the origin (false for a
+  /// non-finite point).
   bool contains(const Vec3& point) const;
   /// The origin, its distance |point| (>= 0) and the unit direction from the origin towards
-  /// `point` (+z when `point` is on the origin).
+  /// `point` (+z when `point` is on the origin; +z at distance +infinity for a non-finite
+  /// point).
   SurfacePoint closest_point(const Vec3& point) const;
   /// Zero volume, mass and inertia; centroid at the origin.
   MassProperties mass_properties(Real density = Real(1)) const;

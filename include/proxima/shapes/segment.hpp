@@ -40,7 +40,7 @@ class Segment {
   /// largest end-point coordinate (which bounds both the size and the coordinate rounding).
   Real tolerance() const { return tolerance_; }
 
-  /// Farthest end point in `direction` (a for a zero direction or a tie).
+  /// Farthest end point in `direction` (a for a zero or non-finite direction or a tie).
   Vec3 support(const Vec3& direction) const;
   /// Farthest point of the core (the segment itself) in `direction`: support(direction).
   Vec3 core_support(const Vec3& direction) const { return support(direction); }
@@ -54,17 +54,20 @@ class Segment {
 
   /// Hit of `ray` (local frame) when, for some t in [0, max_t], it passes within
   /// max(tolerance(), linear_tolerance(largest coordinate of the ray origin)) of the
-  /// segment, else nothing (also for a negative or NaN max_t). The hit is the ray's nearest
+  /// segment, else nothing (also for a negative or NaN max_t and for a non-finite ray). The
+  /// hit is the ray's nearest
   /// approach to the segment (Ericson's clamped closest points of two segments), with a
   /// unit normal orthogonal to the segment facing the ray origin. A ray running along the
   /// segment (both end points within that tolerance of the ray's line) hits where it enters
   /// the segment, with normal -direction/|direction|. A zero direction hits (t = 0, a normal
   /// orthogonal to the segment) only when the origin is on the segment. O(1).
   std::optional<RayHit> raycast(const Ray& ray, Real max_t) const;
-  /// True when `point` (local) is within tolerance() of the segment.
+  /// True when `point` (local) is within tolerance() of the segment (false for a non-finite
+  /// point).
   bool contains(const Vec3& point) const;
   /// Nearest point of the segment, its distance (>= 0) and the unit direction from it
-  /// towards `point` (a unit vector orthogonal to the segment when `point` is on it).
+  /// towards `point` (a unit vector orthogonal to the segment when `point` is on it). A
+  /// non-finite point gives a() at distance +infinity.
   SurfacePoint closest_point(const Vec3& point) const;
   /// Zero volume, mass and inertia; centroid at the midpoint (a + b) / 2.
   MassProperties mass_properties(Real density = Real(1)) const;

@@ -49,7 +49,8 @@ class Triangle {
   /// largest vertex coordinate (which bounds both the size and the coordinate rounding).
   Real tolerance() const { return tolerance_; }
 
-  /// Farthest vertex in `direction` (the first of equal ones; a for a zero direction).
+  /// Farthest vertex in `direction` (the first of equal ones; a for a zero or non-finite
+  /// direction).
   Vec3 support(const Vec3& direction) const;
   /// Farthest point of the core (the triangle itself): support(direction).
   Vec3 core_support(const Vec3& direction) const { return support(direction); }
@@ -62,13 +63,16 @@ class Triangle {
   Aabb world_aabb(const Transform& pose) const;
 
   /// First hit of `ray` (local frame) with the two-sided triangle within [0, max_t],
-  /// watertight (geometry::ray_triangle); the normal faces the ray origin.
+  /// watertight (geometry::ray_triangle); the normal faces the ray origin. Nothing for a
+  /// negative or NaN max_t or a non-finite ray.
   std::optional<RayHit> raycast(const Ray& ray, Real max_t) const;
-  /// True when `point` (local) is within tolerance() of the triangle.
+  /// True when `point` (local) is within tolerance() of the triangle (false for a
+  /// non-finite point).
   bool contains(const Vec3& point) const;
   /// Nearest point of the triangle, its distance (>= 0) and the unit direction from it
   /// towards `point`; when `point` is on the triangle (within tolerance()), the face normal
-  /// turned towards `point` (normal() when exactly in the plane).
+  /// turned towards `point` (normal() when exactly in the plane). A non-finite point gives
+  /// a() and normal() at distance +infinity.
   SurfacePoint closest_point(const Vec3& point) const;
   /// Zero volume, mass and inertia; centroid at (a + b + c) / 3.
   MassProperties mass_properties(Real density = Real(1)) const;
