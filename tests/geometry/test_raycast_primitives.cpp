@@ -6,6 +6,7 @@
 #include <proxima/core/tolerance.hpp>
 #include <proxima/geometry/raycast.hpp>
 
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -508,6 +509,44 @@ TEST(RayTriangle, PreparedRayGivesIdenticalAnswers) {
       EXPECT_EQ(x->normal, y->normal);
     }
   }
+}
+
+// ---------------------------------------------------------------------------------------
+// Zero direction and max_t = 0 on every solid: only an inside (or on-surface) origin hits,
+// at t = 0.
+
+TEST(RayCastInput, ZeroDirectionAndZeroMaxTOnEverySolid) {
+  const Mat3 axes = glm::mat3_cast(glm::angleAxis(Real(0.3), glm::normalize(Vec3(1, 2, 3))));
+  auto solids = [&](const Ray& ray, Real max_t) {
+    return std::array<std::optional<RayHit>, 8>{
+        ray_sphere(ray, max_t, Vec3(0), 1),           ray_aabb(ray, max_t, kUnitBox),
+        ray_obb(ray, max_t, Vec3(0), axes, Vec3(1)),  ray_capsule(ray, max_t, kP0, kP1, Real(0.5)),
+        ray_capsule(ray, max_t, kP0, kP0, Real(0.5)), ray_cylinder(ray, max_t, kP0, kP1, Real(0.5)),
+        ray_cone(ray, max_t, kApex, kBase, 1),        ray_halfspace(ray, max_t, Vec3(0, 0, 1), 1)};
+  };
+  const Vec3 inside(Real(0.1), Real(-0.05), Real(-0.6));  // inside all eight
+  const Vec3 outside(3, -4, 5);
+  for (const auto& hit : solids({inside, Vec3(0)}, kInf)) {
+    ASSERT_TRUE(hit);
+    EXPECT_EQ(hit->t, Real(0));
+    EXPECT_EQ(hit->point, inside);
+    EXPECT_NEAR(glm::length(hit->normal), Real(1), kTol);
+  }
+  const Ray moving{inside, {1, 2, -2}};
+  for (const auto& hit : solids(moving, 0)) expect_inside(hit, moving);
+  int index = 0;
+  for (const auto& hit : solids({outside, Vec3(0)}, kInf)) {
+    EXPECT_FALSE(hit) << index++;
+  }
+  // Heading straight for every solid, but with max_t = 0.
+  const Vec3 above(Real(0.1), Real(-0.05), 5);
+  index = 0;
+  for (const auto& hit : solids({above, {0, 0, -1}}, 0)) EXPECT_FALSE(hit) << index++;
+  index = 0;
+  for (const auto& hit : solids({above, {0, 0, -1}}, kInf)) EXPECT_TRUE(hit) << index++;
+  EXPECT_FALSE(ray_plane({above, Vec3(0)}, kInf, Vec3(0, 0, 1), 1));
+  EXPECT_FALSE(ray_plane({above, {0, 0, -1}}, 0, Vec3(0, 0, 1), 1));
+  EXPECT_FALSE(ray_triangle({above, {0, 0, -1}}, 0, Vec3(-1, -1, 0), Vec3(1, -1, 0), Vec3(0, 1, 0)));
 }
 
 // ---------------------------------------------------------------------------------------

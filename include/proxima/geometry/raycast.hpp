@@ -91,6 +91,10 @@ struct TriangleRay {
   int exponent = 0;            ///< direction = scaled direction * 2^exponent
   bool valid = false;          ///< false for a zero or non-finite ray: nothing is hit
 
+  /// An invalid prepared ray (declared so that TriangleRay is not an aggregate: a braced
+  /// {origin, direction} argument then always means a Ray).
+  TriangleRay() = default;
+
   /// Prepares `ray` (any direction; zero or non-finite ones give valid == false).
   static TriangleRay prepare(const Ray& ray);
 };
