@@ -21,8 +21,7 @@ namespace proxima::geometry {
 
 namespace {
 
-// Squared distance of p to the point of segment `from`-`to` at parameter t, and the
-// feature/barycentric bookkeeping of one edge of the fallback of step 2.
+// The nearest point of one edge and its squared distance to p (fallback of step 2).
 struct EdgeCandidate {
   SegmentPoint point;
   Real distance_squared;

@@ -12,7 +12,7 @@
 //     or an end point within tol of the other edge, or one triangle's vertex inside the
 //     other.
 //  5. Otherwise each triangle meets the other's plane in an interval of the line
-//     L = plane A ∩ plane B: the points where its edges cross that plane and its vertices
+//     L where the two planes meet: the points where its edges cross that plane and its vertices
 //     on it, measured along D = nA x nB. The triangles meet iff the intervals overlap (closed,
 //     with tol). Collecting the crossing points replaces Moller's case table by one loop
 //     and handles snapped vertices without special cases.
@@ -22,9 +22,10 @@
 //  1. Rescale as above.
 //  2. An edge of one triangle crossing the other (detail::common_point_segment_triangle,
 //     the crossing confirmed by its distance to the triangle): the triangles intersect,
-//     distance 0 at the crossing point; an unconfirmed crossing joins the candidates. For non-coplanar triangles the
-//     intersection segment ends on such crossings, so every intersection is found here or
-//     in step 3 (coplanar overlaps have touching edges or a vertex inside, at distance 0).
+//     distance 0 at the crossing point; an unconfirmed crossing joins the candidates. For
+//     non-coplanar triangles the intersection segment ends on such crossings, so every
+//     intersection is found here or in step 3 (coplanar overlaps have touching edges or a
+//     vertex inside, at distance 0).
 //  3. Otherwise the nearest of the 15 candidate pairs: each vertex against the other
 //     triangle (6) and each edge pair (9). For disjoint triangles a closest pair always
 //     involves a vertex or two edges: two interior points would need parallel planes, and

@@ -195,7 +195,8 @@ TEST(SegmentTriangle, ParallelPassingOverAnEdge) {
 }
 
 TEST(SegmentTriangle, SkewAboveAnEdge) {
-  // Segment along y at x = 2, z = 1 ... passing over edge ab (y = 0) below it: closest to the edge.
+  // Segment along y at x = 2, z = -1, ending before the edge ab (y = 0): its end (2, -1, -1)
+  // is nearest to the edge point (2, 0, 0).
   const ClosestPair r = closest_points_segment_triangle(Vec3(2, -3, -1), Vec3(2, -1, -1), kA, kB, kC);
   expect_vec_near(r.on_b, Vec3(2, 0, 0), tol_at(4));
   expect_vec_near(r.on_a, Vec3(2, -1, -1), tol_at(4));

@@ -299,8 +299,8 @@ TEST(TriangleTriangle, DistanceVertexFace) {
 }
 
 TEST(TriangleTriangle, DistanceEdgeEdge) {
-  // b's edge runs along y at x = 1, z = 1... above the hypotenuse region? No: above x in
-  // [-1, 3] at y = -1, z = 0.5: nearest to a's edge y = 0 at (1, 0, 0).
+  // b's edge at x = 1, y = -1 runs from z = 0.5 down to z = -0.5: nearest to a's edge y = 0
+  // at (1, 0, 0), one unit away.
   const Tri b{Vec3(1, -1, 0.5), Vec3(1, -1, -0.5), Vec3(1, -3, 0)};
   const ClosestPair r = closest_points_triangle_triangle(kUnit[0], kUnit[1], kUnit[2], b[0], b[1], b[2]);
   EXPECT_NEAR(r.distance_squared, Real(1), tol_at(3));
@@ -429,8 +429,8 @@ TEST(TriangleTriangle, RandomCoplanar) {
   test::Random rng(404);
   int hits = 0;
   for (int i = 0; i < 2000; ++i) {
-    // Both triangles in the plane z = 0 (exactly), then rotated by integer-free rotation
-    // only for half of them (coplanar up to rounding).
+    // Both triangles in the plane z = 0 (exactly coplanar); half of the pairs are then
+    // moved by a random rigid transform (coplanar up to rounding).
     Tri a{Vec3(rng.uniform(-1, 1), rng.uniform(-1, 1), 0), Vec3(rng.uniform(-1, 1), rng.uniform(-1, 1), 0),
           Vec3(rng.uniform(-1, 1), rng.uniform(-1, 1), 0)};
     const Vec2 shift(rng.uniform(-2, 2), rng.uniform(-2, 2));
