@@ -23,13 +23,13 @@ struct ConvexDistance {
 /// Convex Objects", JGT 1999), in double precision around a local origin with a
 /// Voronoi-region simplex solver (Ericson, Real-Time Collision Detection, 5.1.5-5.1.6,
 /// 9.5). Terminates when the lower bound from the support gap is within a relative 1e-12
-/// of the distance, when no progress is made, or after 64 iterations; the answer is never
+/// of the distance, when no progress is made, or after 128 iterations; the answer is never
 /// NaN and never smaller than the true distance minus that gap. O(iterations (|a| + |b|)).
 ConvexDistance convex_distance(std::span<const Vec3> a, std::span<const Vec3> b);
 
 /// True when the set of points within `radius_a` of conv(a) meets the set within
 /// `radius_b` of conv(b): GJK distance <= radius_a + radius_b + tolerance, the tolerance
-/// being a few ulps (of Real) of the coordinates' magnitude.
+/// being 16 ulps (of Real) of the largest coordinate magnitude (and radius).
 bool convex_cores_overlap(std::span<const Vec3> a, Real radius_a, std::span<const Vec3> b, Real radius_b);
 
 }  // namespace proxima

@@ -4,8 +4,9 @@
 /// BoundingCapsule, Kdop<K> (same K) and ConvexHull, all given in one common frame.
 ///
 /// All volumes are closed: touching counts as overlapping. Every test is exact, with
-/// touching decided within a tolerance of a few ulps of the coordinates' magnitude
-/// (kRelativeTolerance-scale for the iterative GJK pairs): no test is conservative.
+/// touching decided within a tolerance of about 16 ulps (of Real) of the coordinates'
+/// magnitude (exactly in Real arithmetic for the sphere and box closed forms): no test is
+/// conservative.
 ///   - closed forms: Aabb-Aabb, sphere-sphere, sphere-Aabb, sphere-Obb (closest point),
 ///     Obb-Obb and Obb-Aabb (15-axis separating-axis test, Gottschalk; Ericson 4.4.1,
 ///     with an epsilon on |R| for parallel edges), Kdop-Kdop and Kdop-Aabb (the slabs'
