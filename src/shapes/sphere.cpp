@@ -1,8 +1,40 @@
+// Sphere: the local origin grown by a radius.
+//
+// Steps:
+//  - support: radius * unit direction (core + radius with a point core, van den Bergen,
+//    Collision Detection in Interactive 3D Environments, 4.3.3); the direction is scaled by
+//    its largest component before normalising so that denormal and huge directions neither
+//    underflow nor overflow;
+//  - bounds: centre +- radius on every axis (exact under any rotation);
+//  - contains / closest point: the radial projection; the centre itself takes +z;
+//  - ray cast: geometry::ray_sphere;
+//  - mass: V = 4/3 pi r^3, I = 2/5 m r^2 on every axis.
+// Non-finite query input gets the shape-wide defined answer: a finite support point,
+// contains false, closest point at distance +infinity, no ray hit.
 #include <proxima/core/validate.hpp>
 #include <proxima/geometry/raycast.hpp>
 #include <proxima/shapes/sphere.hpp>
 
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
 namespace proxima {
+namespace {
+
+// Unit vector along v without overflow or underflow; false for zero or non-finite v.
+bool unit_direction(const Vec3& v, Vec3& unit, Real& length) {
+  if (!is_finite(v)) return false;
+  const Real m = std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)});
+  if (!(m > Real(0))) return false;
+  const Vec3 w = v / m;
+  const Real l = glm::length(w);
+  unit = w / l;
+  length = m * l;
+  return true;
+}
+
+}  // namespace
 
 Result<Sphere> Sphere::create(Real radius) {
   if (auto e = validate::positive(radius, "radius")) return *e;
@@ -10,9 +42,10 @@ Result<Sphere> Sphere::create(Real radius) {
 }
 
 Vec3 Sphere::support(const Vec3& direction) const {
-  const Real len2 = glm::dot(direction, direction);
-  if (!(len2 > Real(0))) return Vec3(Real(0), Real(0), radius_);
-  return direction * (radius_ / std::sqrt(len2));
+  Vec3 unit;
+  Real length = Real(0);
+  if (!unit_direction(direction, unit, length)) return Vec3(Real(0), Real(0), radius_);
+  return unit * radius_;
 }
 
 Aabb Sphere::local_aabb() const { return {Vec3(-radius_), Vec3(radius_)}; }
@@ -22,16 +55,30 @@ Aabb Sphere::world_aabb(const Transform& pose) const {
 }
 
 std::optional<RayHit> Sphere::raycast(const Ray& ray, Real max_t) const {
+  if (!(max_t >= Real(0)) || !is_finite(ray.origin) || !is_finite(ray.direction)) return std::nullopt;
   return geometry::ray_sphere(ray, max_t, Vec3(Real(0)), radius_);
 }
 
-bool Sphere::contains(const Vec3& point) const { return glm::dot(point, point) <= radius_ * radius_; }
+bool Sphere::contains(const Vec3& point) const {
+  if (!is_finite(point)) return false;
+  // Compare in the scale of the radius so that huge coordinates cannot overflow the square.
+  const Vec3 q = point / radius_;
+  return glm::dot(q, q) <= Real(1);
+}
 
 SurfacePoint Sphere::closest_point(const Vec3& point) const {
-  const Real dist = glm::length(point);
   SurfacePoint r;
-  r.normal = dist > Real(0) ? point / dist : Vec3(Real(0), Real(0), Real(1));
-  r.point = r.normal * radius_;
+  if (!is_finite(point)) {
+    r.point = Vec3(Real(0), Real(0), radius_);
+    r.normal = Vec3(Real(0), Real(0), Real(1));
+    r.signed_distance = std::numeric_limits<Real>::infinity();
+    return r;
+  }
+  Vec3 unit(Real(0), Real(0), Real(1));
+  Real dist = Real(0);
+  unit_direction(point, unit, dist);  // the centre keeps +z
+  r.normal = unit;
+  r.point = unit * radius_;
   r.signed_distance = dist - radius_;
   return r;
 }
