@@ -388,9 +388,9 @@ Ray random_ray(test::Random& rng, const Vec3& target_center, Real scale, const V
   return {origin, dir};
 }
 
-// Built at run time: GCC 12 with -frounding-math (which CGAL adds to the test flags)
-// miscompiles the static initialisation of an aggregate holding an inexact constant such
-// as Real(1e-4).
+// Built at run time: GCC 12 with -frounding-math (CGAL's flag) miscompiles the static
+// initialisation of an aggregate holding an inexact constant such as Real(1e-4); this
+// keeps the file correct whichever executable it is compiled into.
 std::array<Setting, 4> settings() {
   return {{{Real(1), Vec3(0)},
            {Real(1e4), Vec3(0)},

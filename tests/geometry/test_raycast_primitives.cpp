@@ -606,8 +606,8 @@ TEST(RayCastInput, InfiniteMaxTIsAnUnboundedRay) {
 namespace fuzz {
 
 Real pick(test::Random& rng) {
-  // Not static: GCC 12 with -frounding-math (added by CGAL) miscompiles static arrays of
-  // inexact floating-point constants.
+  // Not static: GCC 12 with -frounding-math (CGAL's flag) miscompiles static arrays of
+  // inexact floating-point constants; this keeps the file correct under any flags.
   const Real values[] = {0,
                          std::numeric_limits<Real>::denorm_min(),
                          std::numeric_limits<Real>::min(),
