@@ -1,4 +1,5 @@
 #include <gtest/gtest.h>
+
 #include <proxima/core/tolerance.hpp>
 #include <proxima/core/transform.hpp>
 

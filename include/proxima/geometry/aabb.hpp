@@ -57,7 +57,9 @@ struct Aabb {
     return p.x >= min.x && p.x <= max.x && p.y >= min.y && p.y <= max.y && p.z >= min.z && p.z <= max.z;
   }
   /// True when `b` lies entirely inside this box (boundary included).
-  bool contains(const Aabb& b) const { return glm::all(glm::lessThanEqual(min, b.min)) && glm::all(glm::lessThanEqual(b.max, max)); }
+  bool contains(const Aabb& b) const {
+    return glm::all(glm::lessThanEqual(min, b.min)) && glm::all(glm::lessThanEqual(b.max, max));
+  }
   /// True when the two closed boxes share at least one point (touching counts).
   bool overlaps(const Aabb& b) const {
     return min.x <= b.max.x && b.min.x <= max.x && min.y <= b.max.y && b.min.y <= max.y && min.z <= b.max.z &&

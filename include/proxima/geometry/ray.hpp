@@ -24,15 +24,17 @@ struct Ray {
   /// The point at parameter t.
   Vec3 at(Real t) const { return origin + t * direction; }
   /// The ray expressed in the local frame of `pose` (for casting against a placed shape).
-  Ray to_local(const Transform& pose) const { return {pose.inverse_apply(origin), pose.inverse_apply_vector(direction)}; }
+  Ray to_local(const Transform& pose) const {
+    return {pose.inverse_apply(origin), pose.inverse_apply_vector(direction)};
+  }
 };
 
 /// The first intersection of a ray with a surface.
 struct RayHit {
-  Real t = Real(0);       ///< ray parameter of the hit, in [0, max_t]
-  Vec3 point{Real(0)};    ///< hit point = origin + t * direction
-  Vec3 normal{Real(0)};   ///< unit normal at the hit: outward for solids; for surfaces without
-                          ///< interior (triangle, plane) the face normal turned to face the ray
+  Real t = Real(0);      ///< ray parameter of the hit, in [0, max_t]
+  Vec3 point{Real(0)};   ///< hit point = origin + t * direction
+  Vec3 normal{Real(0)};  ///< unit normal at the hit: outward for solids; for surfaces without
+                         ///< interior (triangle, plane) the face normal turned to face the ray
 
   /// The hit expressed in the parent frame of `pose` (t unchanged).
   RayHit to_world(const Transform& pose) const { return {t, pose.apply(point), pose.apply_vector(normal)}; }

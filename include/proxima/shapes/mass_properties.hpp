@@ -9,10 +9,10 @@ namespace proxima {
 
 /// Mass properties of a uniform-density solid, in the shape's local frame.
 struct MassProperties {
-  Real volume = Real(0);        ///< volume (length^3); 0 for points, segments, triangles
-  Real mass = Real(0);          ///< density * volume
-  Vec3 centroid{Real(0)};       ///< centre of mass, local frame
-  Mat3 inertia{Real(0)};        ///< inertia tensor about the centroid, local axes (mass * length^2)
+  Real volume = Real(0);   ///< volume (length^3); 0 for points, segments, triangles
+  Real mass = Real(0);     ///< density * volume
+  Vec3 centroid{Real(0)};  ///< centre of mass, local frame
+  Mat3 inertia{Real(0)};   ///< inertia tensor about the centroid, local axes (mass * length^2)
 };
 
 /// Inertia tensor about a point displaced by `offset` from the centroid (parallel-axis

@@ -21,8 +21,8 @@
 namespace proxima {
 
 /// Any shape, alternatives in ShapeType order (index() == static_cast<int>(type())).
-using Shape = std::variant<Point, Segment, Triangle, Sphere, Capsule, Box, Cylinder, Cone, Ellipsoid, ConvexHull,
-                           HalfSpace>;
+using Shape =
+    std::variant<Point, Segment, Triangle, Sphere, Capsule, Box, Cylinder, Cone, Ellipsoid, ConvexHull, HalfSpace>;
 
 /// The dispatch tag of the held shape.
 inline ShapeType shape_type(const Shape& shape) { return static_cast<ShapeType>(shape.index()); }

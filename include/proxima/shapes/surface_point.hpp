@@ -15,9 +15,9 @@ namespace proxima {
 /// points from the shape towards q (any unit vector orthogonal to the feature when q lies
 /// on the shape).
 struct SurfacePoint {
-  Vec3 point{Real(0)};           ///< nearest surface point
+  Vec3 point{Real(0)};                     ///< nearest surface point
   Vec3 normal{Real(0), Real(0), Real(1)};  ///< unit outward normal at `point`
-  Real signed_distance = Real(0);  ///< > 0 outside, < 0 inside, 0 on the surface
+  Real signed_distance = Real(0);          ///< > 0 outside, < 0 inside, 0 on the surface
 };
 
 }  // namespace proxima
