@@ -97,15 +97,26 @@ class MessageFile {
 
   FILE* get() const { return file_; }
 
-  // The first line of what qhull wrote (its error code and message), or "".
-  std::string first_line() const {
+  // The line of qhull's error (code QH6xxx and message) among what it wrote (warnings are
+  // QH7xxx), else its first line, or "".
+  std::string error_line() const {
     if (file_ == nullptr || !readable_) return {};
     std::fflush(file_);
     std::rewind(file_);
+    std::string first;
     std::string line;
     int c = 0;
-    while ((c = std::fgetc(file_)) != EOF && c != '\n' && line.size() < 300) line.push_back(static_cast<char>(c));
-    return line;
+    do {
+      c = std::fgetc(file_);
+      if (c == EOF || c == '\n') {
+        if (line.rfind("QH6", 0) == 0) return line;
+        if (first.empty()) first = line;
+        line.clear();
+      } else if (line.size() < 300) {
+        line.push_back(static_cast<char>(c));
+      }
+    } while (c != EOF);
+    return first;
   }
 
  private:
@@ -171,6 +182,15 @@ ridgeT* next_ridge(ridgeT* at, facetT* facet, vertexT** vertex_out) {
   return nullptr;
 }
 
+// Number of elements of a qhull set (its element array ends with a null pointer);
+// unlike qh_setsize it has no error exit, which would end the process outside qhull.
+int set_count(setT* set) {
+  if (set == nullptr) return 0;
+  int n = 0;
+  for (setelemT* e = &set->e[0]; e->p != nullptr; ++e) ++n;
+  return n;
+}
+
 QhullOutcome run_qhull(const std::vector<D3>& pts, double post_merge_radius) {
   QhullOutcome out;
   std::vector<coordT> coords(pts.size() * 3);
@@ -187,7 +207,7 @@ QhullOutcome run_qhull(const std::vector<D3>& pts, double post_merge_radius) {
   out.exit_code =
       qh_new_qhull(qh, 3, static_cast<int>(pts.size()), coords.data(), False, command, nullptr, messages.get());
   if (out.exit_code != 0) {
-    out.message = messages.first_line();
+    out.message = messages.error_line();
     return out;
   }
   out.max_outside = std::max({0.0, qh->max_outside, qh->max_vertex});
@@ -204,7 +224,7 @@ QhullOutcome run_qhull(const std::vector<D3>& pts, double post_merge_radius) {
   facetT* facet = nullptr;
   FORALLfacets {
     std::vector<int> loop;
-    const int count = qh_setsize(qh, facet->vertices);
+    const int count = set_count(facet->vertices);
     if (facet->simplicial) {
       // Vertex set sorted by decreasing id; the orientation flag says which way round.
       if (count != 3) return fail("a simplicial facet without 3 vertices");
@@ -217,7 +237,7 @@ QhullOutcome run_qhull(const std::vector<D3>& pts, double post_merge_radius) {
         loop = {point_id(v1), point_id(v0), point_id(v2)};
       }
     } else {
-      if (facet->ridges == nullptr || qh_setsize(qh, facet->ridges) < 3) return fail("a facet without ridges");
+      if (set_count(facet->ridges) < 3) return fail("a facet without ridges");
       ridgeT* first = SETfirstt_(facet->ridges, ridgeT);
       ridgeT* ridge = first;
       vertexT* vertex = nullptr;
@@ -439,6 +459,14 @@ std::string assemble(std::span<const Vec3> points, const QhullOutcome& hull, Con
     }
     for (int id : ids) data.face_indices.push_back(remap[id]);
     planarity = std::max(planarity, offset - lowest);
+    // The loop must turn counter-clockwise about its plane's normal (a piece cut from a
+    // facet whose outline folded over would not).
+    D3 area{0, 0, 0};
+    for (std::size_t k = 1; k + 1 < ids.size(); ++k) {
+      const D3 t = cross(sub(vd[remap[ids[k]]], vd[remap[ids[0]]]), sub(vd[remap[ids[k + 1]]], vd[remap[ids[0]]]));
+      area = {area[0] + t[0], area[1] + t[1], area[2] + t[2]};
+    }
+    if (dot(area, n) < -1e-6 * norm(area)) return std::string("a face is inverted");
     face.normal = Vec3(Real(n[0]), Real(n[1]), Real(n[2]));
     face.offset = Real(offset);
     data.faces.push_back(face);
@@ -498,15 +526,38 @@ std::string assemble(std::span<const Vec3> points, const QhullOutcome& hull, Con
 
   // Hill-climbing moves: every other vertex of every merged facet around a vertex (a
   // superset of the edge neighbours, with the diagonals of facets that merging left
-  // slightly bent, including those cut into pieces).
+  // slightly bent, including those cut into pieces). Facets of more than kMaxMates
+  // vertices (large flat polygons such as a cylinder's caps) add only their loop edges,
+  // keeping the lists linear in the hull's size.
+  constexpr std::size_t kMaxMates = 32;
   std::vector<std::pair<std::uint32_t, std::uint32_t>> mates;
   for (std::size_t li = 0; li < hull.loops.size(); ++li) {
     const std::vector<int>& loop = hull.loops[li];
     if (li < hull.face_count && hull.plane_of[li] != li) continue;  // a piece: its facet is listed
+    if (loop.size() > kMaxMates) {
+      for (std::size_t k = 0; k < loop.size(); ++k) {
+        const std::uint32_t a = remap[loop[k]];
+        const std::uint32_t b = remap[loop[(k + 1) % loop.size()]];
+        mates.push_back({a, b});
+        mates.push_back({b, a});
+      }
+      continue;
+    }
     for (int a : loop) {
       for (int b : loop) {
         if (a != b) mates.push_back({remap[a], remap[b]});
       }
+    }
+  }
+  // Pieces of a large cut facet still need their own edges (diagonals of the cut).
+  for (std::size_t li = 0; li < hull.face_count; ++li) {
+    if (hull.plane_of[li] == li || hull.loops[hull.plane_of[li]].size() <= kMaxMates) continue;
+    const std::vector<int>& loop = hull.loops[li];
+    for (std::size_t k = 0; k < loop.size(); ++k) {
+      const std::uint32_t a = remap[loop[k]];
+      const std::uint32_t b = remap[loop[(k + 1) % loop.size()]];
+      mates.push_back({a, b});
+      mates.push_back({b, a});
     }
   }
   std::sort(mates.begin(), mates.end());
@@ -571,9 +622,11 @@ Result<ConvexHull> ConvexHull::create(std::span<const Vec3> points) {
   const double far_ratio =
       std::max({std::abs(lo[0]), std::abs(lo[1]), std::abs(lo[2]), std::abs(hi[0]), std::abs(hi[1]), std::abs(hi[2])}) /
       extent;
-  // Flat below the resolution of Real at the hull's size, or below a few roundings of the
-  // input (a thinner solid would be made of rounding noise).
-  const double flat = std::max(kFlatRelative, 8.0 * double(kEpsilon) * far_ratio);
+  // Flat below the resolution of Real at the hull's size, below a few roundings of the
+  // input (a thinner solid would be made of rounding noise), or below 1e4 roundings of
+  // qhull's double arithmetic (thinner slabs come back with inverted slivers).
+  const double flat = std::max(
+      {kFlatRelative, 8.0 * double(kEpsilon) * far_ratio, 1e4 * double(std::numeric_limits<double>::epsilon())});
 
   // 3. Flatness: farthest pair (from the extremes of the longest box axis), farthest point
   // from their line, farthest point from the plane of the three.
@@ -668,31 +721,64 @@ Result<ConvexHull> ConvexHull::create(std::span<const Vec3> points) {
       off = std::max(off, dot(n, sub(vd[data->face_indices[f.first_index + k]], ref)));
     data->shifted_offsets.push_back(Real(off));
   }
+  // Faces are visited breadth-first over shared edges, each descent warm-started from
+  // its neighbour's answer (nearby normals have nearby deepest vertices): O(F) overall.
   double width = std::numeric_limits<double>::max();
-  std::uint32_t start = 0;
   std::vector<D3> shifted(vd.size());
   for (std::size_t i = 0; i < vd.size(); ++i) shifted[i] = sub(vd[i], ref);
-  for (std::size_t fi = 0; fi < data->faces.size(); ++fi) {
+  const std::size_t nf = data->faces.size();
+  std::vector<std::uint32_t> face_offsets(nf + 1, 0);
+  for (const HullEdge& e : data->edges) {
+    ++face_offsets[e.face0 + 1];
+    ++face_offsets[e.face1 + 1];
+  }
+  for (std::size_t f = 0; f < nf; ++f) face_offsets[f + 1] += face_offsets[f];
+  std::vector<std::uint32_t> face_adjacent(face_offsets[nf]);
+  {
+    std::vector<std::uint32_t> fill(face_offsets.begin(), face_offsets.end() - 1);
+    for (const HullEdge& e : data->edges) {
+      face_adjacent[fill[e.face0]++] = e.face1;
+      face_adjacent[fill[e.face1]++] = e.face0;
+    }
+  }
+  constexpr std::uint32_t kUnvisited = std::numeric_limits<std::uint32_t>::max();
+  std::vector<std::uint32_t> deepest(nf, kUnvisited);
+  std::vector<std::uint32_t> queue{0};
+  std::vector<std::uint32_t> start_of(nf, 0);
+  deepest[0] = 0;  // marks face 0 as queued; replaced below
+  for (std::size_t head = 0; head < queue.size(); ++head) {
+    const std::uint32_t fi = queue[head];
     const HullFace& f = data->faces[fi];
     const D3 n{double(f.normal.x), double(f.normal.y), double(f.normal.z)};
     // Deepest vertex below the face: steepest descent of n . v over the face mates,
     // relative to the box centre.
-    std::uint32_t cur = start;
+    std::uint32_t cur = start_of[fi];
     double cur_d = dot(n, shifted[cur]);
     for (bool moved = true; moved;) {
       moved = false;
-      for (std::uint32_t k = data->climb_offsets[cur]; k < data->climb_offsets[cur + 1]; ++k) {
+      const std::uint32_t begin = data->climb_offsets[cur];
+      const std::uint32_t end = data->climb_offsets[cur + 1];
+      std::uint32_t next = cur;
+      for (std::uint32_t k = begin; k < end; ++k) {
         const std::uint32_t nb = data->climb_neighbors[k];
         const double d = dot(n, shifted[nb]);
         if (d < cur_d) {
           cur_d = d;
-          cur = nb;
+          next = nb;
           moved = true;
         }
       }
+      cur = next;
     }
-    start = cur;
+    deepest[fi] = cur;
     width = std::min(width, double(data->shifted_offsets[fi]) - cur_d);
+    for (std::uint32_t k = face_offsets[fi]; k < face_offsets[fi + 1]; ++k) {
+      const std::uint32_t g = face_adjacent[k];
+      if (deepest[g] != kUnvisited) continue;
+      deepest[g] = cur;  // queued
+      start_of[g] = cur;
+      queue.push_back(g);
+    }
   }
   if (!(width > flat * extent)) return degenerate("all points are coplanar (within tolerance)");
   if (!detail::compute_hull_mass(*data)) return degenerate("the hull has no volume");

@@ -515,6 +515,70 @@ TEST(ConvexHull, FlatBelowTheInputResolutionIsDegenerate) {
   }
 }
 
+// Regression: the corners of a rotated box are coplanar only to the rounding of Real;
+// merging at the input's resolution keeps six quadrilaterals, also far from the origin.
+TEST(ConvexHull, RotatedBoxKeepsSixFaces) {
+  test::Random rng(13);
+  for (const Real offset : {Real(0), Real(1e4)}) {
+    for (int k = 0; k < 20; ++k) {
+      const Quat q = rng.rotation();
+      const Vec3 half = rng.vec3(Real(50), Real(100));
+      std::vector<Vec3> p;
+      for (int i = 0; i < 8; ++i) {
+        p.push_back(q * Vec3(i & 1 ? half.x : -half.x, i & 2 ? half.y : -half.y, i & 4 ? half.z : -half.z) +
+                    Vec3(offset, -offset, offset));
+      }
+      for (int i = 0; i < 200; ++i) {  // points on the faces and edges
+        Vec3 l = rng.vec3(Real(-1), Real(1));
+        l[i % 3] = l[i % 3] > 0 ? Real(1) : Real(-1);
+        if (i % 4 == 0) l[(i + 1) % 3] = l[(i + 1) % 3] > 0 ? Real(1) : Real(-1);
+        p.push_back(q * (l * half) + Vec3(offset, -offset, offset));
+      }
+      const ConvexHull h = build(p);
+      EXPECT_EQ(h.vertices().size(), 8u);
+      EXPECT_EQ(h.faces().size(), 6u);
+      check_structure(h, p);
+    }
+  }
+}
+
+// Regression: far from the origin in float the dot products of absolute coordinates lose
+// the differences between neighbouring vertices; hill-climbing works relative to the box
+// centre and over whole merged facets, and must reach the maximum from every vertex.
+TEST(ConvexHull, HillClimbingFarFromTheOrigin) {
+  test::Random rng(14);
+  std::vector<Vec3> p;
+  for (int i = 0; i < 400; ++i) p.push_back(rng.unit_vector() + Vec3(Real(1e4), Real(-1e4), Real(5e3)));
+  const ConvexHull h = build(p);
+  const Real tol = h.tolerance() + rounding_tol(h);
+  for (int k = 0; k < 50; ++k) {
+    const Vec3 d = rng.unit_vector();
+    Real best = -kRealMax;
+    for (const Vec3& q : p) best = std::max(best, glm::dot(q - h.local_aabb().center(), d));
+    for (std::uint32_t s = 0; s < h.vertices().size(); ++s) {
+      const Vec3 v = h.vertices()[h.support_index(d, s)];
+      ASSERT_NEAR(glm::dot(v - h.local_aabb().center(), d), best, tol) << "start " << s;
+    }
+  }
+}
+
+// Regression: a thin slab merged by plane distance would lose its rim sideways; the
+// merge radius is capped by the thickness, so the extreme points stay vertices.
+TEST(ConvexHull, ThinSlabKeepsItsRim) {
+  test::Random rng(15);
+  std::vector<Vec3> p;
+  // 1e3 roundings of Real, at least 1e-10 (double builds refuse slabs thinner than about
+  // 1e4 roundings of double, where qhull's output is no longer reliable).
+  const Real thickness = std::max(Real(1e3) * kEps, Real(1e-10));
+  for (int i = 0; i < 300; ++i) {
+    Vec3 q = rng.vec3(Real(-1), Real(1));
+    q.z *= thickness;
+    p.push_back(q);
+  }
+  const ConvexHull h = build(p);
+  check_structure(h, p);
+}
+
 TEST(ConvexHull, CopiesShareTheirData) {
   const ConvexHull a = build(cube_corners(Real(1)));
   const ConvexHull b = a;  // NOLINT(performance-unnecessary-copy-initialization)
