@@ -1,7 +1,7 @@
 // ConvexHull::mass_properties against references it does not compute itself: closed forms
-// for boxes and tetrahedra (Tonon's explicit tetrahedron formulas, written out here),
-// Monte-Carlo integration over contains, and CGAL's convex_hull_3 + Polygon Mesh
-// Processing volume and centroid when CGAL is available.
+// for boxes, a pyramid and tetrahedra (Tonon's explicit tetrahedron formulas, written out
+// here) and quasi-Monte-Carlo integration over contains. CGAL's volume and centroid are
+// compared in test_convex_hull_cgal.cpp.
 #include <gtest/gtest.h>
 
 #include <proxima/core/tolerance.hpp>
@@ -13,13 +13,6 @@
 #include <vector>
 
 #include "support/random.hpp"
-
-#if PROXIMA_HAVE_CGAL
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/Polygon_mesh_processing/measure.h>
-#include <CGAL/Surface_mesh.h>
-#include <CGAL/convex_hull_3.h>
-#endif
 
 namespace proxima {
 namespace {
@@ -270,49 +263,6 @@ TEST(ConvexHullMass, MatchesQuasiMonteCarloIntegrationOfContains) {
     }
   }
 }
-
-// ---------------------------------------------------------------------------------------
-// CGAL: convex_hull_3 on Epick, then Polygon Mesh Processing volume and centroid.
-
-#if PROXIMA_HAVE_CGAL
-TEST(ConvexHullMass, MatchesCgalVolumeAndCentroid) {
-  using K = CGAL::Exact_predicates_inexact_constructions_kernel;
-  using Mesh = CGAL::Surface_mesh<K::Point_3>;
-  test::Random rng(5);
-  for (int k = 0; k < 60; ++k) {
-    SCOPED_TRACE(k);
-    std::vector<Vec3> p;
-    const int n = rng.integer(4, 400);
-    const Real scale = k % 3 == 0 ? Real(1e-3) : (k % 3 == 1 ? Real(1) : Real(1e3));
-    const Vec3 shift = rng.vec3(Real(-2), Real(2)) * scale;
-    for (int i = 0; i < n; ++i) {
-      Vec3 v = k % 2 ? rng.unit_vector() : rng.vec3(Real(-1), Real(1));
-      if (k % 5 == 0) v = glm::round(v * Real(3)) / Real(3);  // many coplanar points
-      p.push_back(v * scale + shift);
-    }
-    auto r = ConvexHull::create(p);
-    if (!r.ok()) {
-      EXPECT_EQ(r.error().code, ErrorCode::Degenerate) << r.error().what();
-      continue;
-    }
-    std::vector<K::Point_3> cp;
-    for (const Vec3& v : p) cp.emplace_back(double(v.x), double(v.y), double(v.z));
-    Mesh mesh;
-    CGAL::convex_hull_3(cp.begin(), cp.end(), mesh);
-    const double volume = CGAL::to_double(CGAL::Polygon_mesh_processing::volume(mesh));
-    const K::Point_3 centroid = CGAL::Polygon_mesh_processing::centroid(mesh);
-    const MassProperties m = r->mass_properties();
-    const double size = double(r->scale());
-    // Merging within the hull's tolerance may move the surface by that much.
-    const double tol_volume = 64 * double(kEps) * volume + 8 * double(r->tolerance()) * size * size;
-    EXPECT_NEAR(double(m.volume), volume, tol_volume);
-    const double tol_centroid = 64 * double(kEps) * (size + 2 * double(scale)) + 8 * double(r->tolerance());
-    EXPECT_NEAR(double(m.centroid.x), centroid.x(), tol_centroid);
-    EXPECT_NEAR(double(m.centroid.y), centroid.y(), tol_centroid);
-    EXPECT_NEAR(double(m.centroid.z), centroid.z(), tol_centroid);
-  }
-}
-#endif
 
 }  // namespace
 }  // namespace proxima
