@@ -6,9 +6,11 @@
 //     solid is 0 <= z <= H and cos(alpha) rho <= sin(alpha) z, alpha the half angle
 //     (cos, sin = H, R over sqrt(H^2 + R^2): no division by a small height).
 //  2. Origin inside the closed solid: t = 0.
-//  3. The origin is moved along the line to the point nearest the cone's mid-height
-//     centre (and the shift added back at the end), so that the quadratic's coefficients
-//     stay of the size of the cone even for a far-away origin.
+//  3. The origin is moved along the line to the point nearest the apex (and the shift
+//     added back at the end), so that the quadratic's coefficients stay of the size of
+//     the cone even for a far-away origin, and so that a line through the apex (where the
+//     cone equation has a double root) has coefficients of the size of its distance to
+//     the apex: its roots come out accurate instead of to sqrt(epsilon).
 //  4. Slab 0 <= z <= H (the z = 0 "face" is the apex point, the z = H face the base disc).
 //  5. Double cone Q(s) = cos^2 rho^2 - sin^2 z^2 <= 0: quadratic with coefficients written
 //     as products of sums and differences, discriminant in wide precision; its solution
@@ -23,6 +25,7 @@
 // Ericson, Real-Time Collision Detection, 5.3 (slabs, convex pieces); Press et al.,
 // Numerical Recipes, 5.6 (quadratic roots without cancellation).
 
+#include <proxima/core/tolerance.hpp>
 #include <proxima/geometry/raycast.hpp>
 
 #include "geometry/raycast_detail.hpp"
@@ -60,10 +63,10 @@ std::optional<RayHit> ray_cone(const Ray& ray, Real max_t, const Vec3& apex, con
   }
   if (r.length == Real(0)) return std::nullopt;
 
-  // Shifted origin: the point of the line nearest the cone's centre (all in vectors
-  // relative to the apex, so that no sum is formed at the magnitude of the coordinates).
+  // Shifted origin: the point of the line nearest the apex (all in vectors relative to
+  // the apex, so that no sum is formed at the magnitude of the coordinates).
   const Vec3 m0 = ray.origin - apex;
-  const Real shift = glm::dot((Real(0.5) * height) * frame.axis - m0, r.unit);
+  const Real shift = -glm::dot(m0, r.unit);
   const Vec3 m = frame.local(m0 + shift * r.unit);
   const Vec3 u = frame.local(r.unit);
 
@@ -98,7 +101,14 @@ std::optional<RayHit> ray_cone(const Ray& ray, Real max_t, const Vec3& apex, con
       const Real x = m.x + s * u.x;
       const Real y = m.y + s * u.y;
       const Real rho = detail::safe_length(Vec3(x, y, Real(0)));
-      normal = rho > Real(0) ? frame.world(cos_a * x / rho, cos_a * y / rho, -sin_a) : -frame.axis;
+      if (rho > kRelativeTolerance * height) {
+        normal = frame.world(cos_a * x / rho, cos_a * y / rho, -sin_a);
+      } else {
+        // At the apex: the lateral normal on the generator facing the ray, which lies in
+        // the apex's normal cone and points against the ray whether it enters or touches.
+        const Real rho_dir = detail::safe_length(Vec3(u.x, u.y, Real(0)));
+        normal = rho_dir > Real(0) ? frame.world(-cos_a * u.x / rho_dir, -cos_a * u.y / rho_dir, -sin_a) : -frame.axis;
+      }
       break;
     }
     default: return detail::inside_hit(ray, r);
