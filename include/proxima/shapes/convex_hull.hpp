@@ -69,13 +69,16 @@ class ConvexHull {
   /// Errors: TooFew (fewer than 4 points, field "points"); NotFinite / OutOfRange
   /// ("points[i].x" etc.); Degenerate (all points coincident, collinear or coplanar within
   /// tolerance, field "points"); Internal (qhull failed, message says so). O(n log n)
-  /// expected.
+  /// expected; qhull's merging dominates for large clouds (100k points take seconds), so
+  /// build hulls once, offline or at load time.
   static Result<ConvexHull> create(std::span<const Vec3> points);
 
   /// Hull vertices (local frame), each one an input point; interior and duplicate input
   /// points are dropped.
   std::span<const Vec3> vertices() const { return data_->vertices; }
-  /// The planar polygonal faces (coplanar facets merged).
+  /// The faces: convex polygons, planar within tolerance(); facets coplanar within the
+  /// resolution of the input are merged into one face (a facet that merging left bent
+  /// comes as several convex pieces sharing its plane).
   std::span<const HullFace> faces() const { return data_->faces; }
   /// Concatenated CCW vertex loops of every face (indices into vertices()).
   std::span<const std::uint32_t> face_indices() const { return data_->face_indices; }
@@ -86,7 +89,8 @@ class ConvexHull {
   }
   /// Every edge once, with the faces on its two sides. V - E + F = 2.
   std::span<const HullEdge> edges() const { return data_->edges; }
-  /// Vertices joined to `vertex` by a hull edge (compressed sparse rows).
+  /// Vertices joined to `vertex` by a hull edge (compressed sparse rows). Use
+  /// support_index rather than climbing these edges: it also moves across faces.
   std::span<const std::uint32_t> vertex_neighbors(std::uint32_t vertex) const {
     const std::uint32_t b = data_->neighbor_offsets[vertex];
     const std::uint32_t e = data_->neighbor_offsets[vertex + 1];
