@@ -6,6 +6,7 @@
 #include <proxima/bounds/fit_kdop.hpp>
 #include <proxima/bounds/fit_obb.hpp>
 #include <proxima/bounds/fit_shape.hpp>
+#include <proxima/bounds/fit_shape_capsule.hpp>
 #include <proxima/bounds/fit_sphere.hpp>
 
 #include <string_view>
@@ -13,7 +14,6 @@
 
 #include "json_bounds.hpp"
 #include "json_shapes.hpp"
-#include "shape_capsule_bound.hpp"
 
 namespace proxima::tool {
 
@@ -70,8 +70,7 @@ Json op_bound(const Json& request) {
                            "a halfspace is unbounded: only the aabb and sphere bounds exist");
         } else {
           if (name == "obb") return put_volume(answer, fit_shape_obb(shape, pose));
-          if (name == "capsule")
-            return put_volume(answer, bound_shape_capsule(target.shape, pose, "target.shape.type"));
+          if (name == "capsule") return put_volume(answer, fit_shape_capsule(shape, pose));
           if (name == "kdop6") return put_volume(answer, fit_shape_kdop<6>(shape, pose));
           if (name == "kdop14") return put_volume(answer, fit_shape_kdop<14>(shape, pose));
           if (name == "kdop18") return put_volume(answer, fit_shape_kdop<18>(shape, pose));

@@ -6,10 +6,13 @@
 #include <gtest/gtest.h>
 
 #include <proxima/bounds/fit_shape.hpp>
+#include <proxima/bounds/fit_shape_capsule.hpp>
 #include <proxima/bounds/fit_sphere.hpp>
 #include <proxima/core/tolerance.hpp>
 #include <proxima/shapes/shape.hpp>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -84,6 +87,14 @@ void check_shape(const S& shape, const Transform& pose, test::Random& rng, bool 
   }
   const BoundingSphere sphere = fit_shape_sphere(shape, pose);
   for (const Vec3& p : pts) ASSERT_TRUE(sphere.contains(p)) << label;
+  const BoundingCapsule capsule = fit_shape_capsule(shape, pose);
+  for (const Vec3& p : pts) ASSERT_TRUE(capsule.contains(p)) << label;
+  // Not minimal, but never looser than the sphere around the oriented box's long axis
+  // allows: the radius is at most the box's half diagonal across the axis (+ 0.2 %).
+  const Obb around = fit_shape_obb(shape, pose);
+  Vec3 h = around.half_extents;
+  std::sort(&h[0], &h[0] + 3);
+  EXPECT_LE(capsule.radius, std::hypot(h[0], h[1]) * Real(1.002) + tol) << label;
   if (exact_sphere) {
     const Real ref = fit_sphere_minimal(pts)->radius;
     const double ratio = double(sphere.radius) / double(ref);
@@ -122,6 +133,23 @@ TEST(FitShape, EveryShapeTypeIsBounded) {
   }
   std::printf("placed shapes: %d cases, worst sphere / minimal-of-samples ratio %.4f (where rounding is negligible)\n",
               cases, stats.worst_sphere_ratio);
+}
+
+TEST(FitShape, CapsulesOfRoundShapesAreExact) {
+  const Transform pose{Vec3(1, -2, 3), glm::angleAxis(Real(0.7), glm::normalize(Vec3(1, 2, 3)))};
+  const BoundingCapsule c = fit_shape_capsule(*Capsule::create(Real(0.5), Real(2)), pose);
+  EXPECT_NEAR(c.radius, Real(0.5), Real(1e-5));
+  EXPECT_NEAR(glm::length(c.p1 - c.p0), Real(4), Real(1e-5));
+  const BoundingCapsule s = fit_shape_capsule(*Sphere::create(Real(2)), pose);
+  EXPECT_NEAR(s.radius, Real(2), Real(1e-5));
+  EXPECT_EQ(s.p0, pose.position);
+  const BoundingCapsule seg = fit_shape_capsule(*Segment::create(Vec3(0), Vec3(0, 0, 1)), pose);
+  EXPECT_LE(seg.radius, Real(1e-5));
+  EXPECT_EQ(fit_shape_capsule(*HalfSpace::create(Vec3(0, 0, 1), Real(0)), pose).radius, kRealMax);
+  // A cylinder of radius 1 and half length 3: the axis is found, the radius within 0.2 %.
+  const BoundingCapsule cyl = fit_shape_capsule(*Cylinder::create(Real(1), Real(3)), pose);
+  EXPECT_NEAR(cyl.radius, Real(1), Real(2e-3));
+  EXPECT_NEAR(glm::length(cyl.p1 - cyl.p0), Real(6), Real(1e-4));
 }
 
 TEST(FitShape, SpheresOfShapesAreTheAnalyticMinimalSpheres) {

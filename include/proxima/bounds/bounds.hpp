@@ -13,6 +13,7 @@
 #include <proxima/bounds/fit_kdop.hpp>
 #include <proxima/bounds/fit_obb.hpp>
 #include <proxima/bounds/fit_shape.hpp>
+#include <proxima/bounds/fit_shape_capsule.hpp>
 #include <proxima/bounds/fit_sphere.hpp>
 #include <proxima/bounds/kdop.hpp>
 #include <proxima/bounds/obb.hpp>
