@@ -15,7 +15,8 @@
 //    depth is the smallest plane distance and the projection lies on that face); outside,
 //    the nearest of the projections that fall inside their face polygon and the closest
 //    points on every edge.
-//  - world_aabb: box of the transformed vertices.
+//  - world_aabb: box of the transformed vertices; above kLinearScanMaxVertices, six
+//    hill-climbing support queries along the world axes seen in the local frame.
 // Every query works relative to the centre of the hull's box (shifted vertices and plane
 // offsets precomputed in double): for a hull far from its local origin the differences
 // are exact, so dot products and plane tests keep the hull's own resolution.
@@ -84,8 +85,22 @@ std::uint32_t ConvexHull::support_index(const Vec3& direction, std::uint32_t sta
 
 Aabb ConvexHull::world_aabb(const Transform& pose) const {
   const Mat3 r = pose.rotation_matrix();
+  const std::vector<Vec3>& v = data_->shifted_vertices;
   Aabb box = Aabb::empty();
-  for (const Vec3& v : data_->shifted_vertices) box.grow(r * v);
+  if (v.size() <= kLinearScanMaxVertices) {
+    for (const Vec3& p : v) box.grow(r * p);
+  } else {
+    // World axis i seen in the local frame is row i of R: one hill-climb per face of the
+    // box, each warm-started from the previous answer.
+    std::uint32_t hint = 0;
+    for (int i = 0; i < 3; ++i) {
+      const Vec3 row(r[0][i], r[1][i], r[2][i]);
+      hint = support_index(row, hint);
+      box.max[i] = glm::dot(row, v[hint]);
+      hint = support_index(-row, hint);
+      box.min[i] = glm::dot(row, v[hint]);
+    }
+  }
   const Vec3 c = pose.apply(data_->reference);
   box.min += c;
   box.max += c;

@@ -18,7 +18,7 @@
 //     where face outlines would be arbitrary and hill-climbing could stop short. For a
 //     thin cloud r is capped at kRelativeTolerance times its thickness: merging by plane
 //     distance moves a thin rim sideways by r / thickness. Qhull's messages go to a
-//     temporary file, read back for the error message. Its memory is freed on every path.
+//     memory stream, read back for the error message. Its memory is freed on every path.
 //  5. Each facet's vertex loop comes from qhull's own topology: the ridges of a merged
 //     facet are walked end to end (as qhull's qh_facet3vertex does), a simplicial facet's
 //     order follows its orientation flag, so every edge is traversed once in each
@@ -46,6 +46,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <limits>
 #include <memory>
@@ -76,21 +77,19 @@ double norm(const D3& a) { return std::sqrt(dot(a, a)); }
 // float and double builds reject what they cannot represent as a solid.
 constexpr double kFlatRelative = double(kRelativeTolerance);
 
-// Owns a temporary FILE for qhull's messages and closes it on every path.
+// Owns an in-memory FILE (POSIX open_memstream) for qhull's messages and closes it on every
+// path. (A temporary file on disk cost more than the whole hull build for small clouds.)
 class MessageFile {
  public:
-  MessageFile() : file_(std::tmpfile()) {
+  MessageFile() : file_(open_memstream(&buffer_, &size_)) {
     if (file_ == nullptr) {
-#if defined(_WIN32)
-      file_ = std::fopen("NUL", "w");
-#else
       file_ = std::fopen("/dev/null", "w");
-#endif
       readable_ = false;
     }
   }
   ~MessageFile() {
     if (file_ != nullptr) std::fclose(file_);
+    std::free(buffer_);
   }
   MessageFile(const MessageFile&) = delete;
   MessageFile& operator=(const MessageFile&) = delete;
@@ -99,27 +98,26 @@ class MessageFile {
 
   // The line of qhull's error (code QH6xxx and message) among what it wrote (warnings are
   // QH7xxx), else its first line, or "".
-  std::string error_line() const {
+  std::string error_line() {
     if (file_ == nullptr || !readable_) return {};
     std::fflush(file_);
-    std::rewind(file_);
+    const std::string text = buffer_ != nullptr ? std::string(buffer_, size_) : std::string();
     std::string first;
-    std::string line;
-    int c = 0;
-    do {
-      c = std::fgetc(file_);
-      if (c == EOF || c == '\n') {
-        if (line.rfind("QH6", 0) == 0) return line;
-        if (first.empty()) first = line;
-        line.clear();
-      } else if (line.size() < 300) {
-        line.push_back(static_cast<char>(c));
-      }
-    } while (c != EOF);
+    std::size_t begin = 0;
+    while (begin <= text.size()) {
+      std::size_t stop = text.find('\n', begin);
+      if (stop == std::string::npos) stop = text.size();
+      const std::string line = text.substr(begin, std::min<std::size_t>(stop - begin, 300));
+      if (line.rfind("QH6", 0) == 0) return line;
+      if (first.empty()) first = line;
+      begin = stop + 1;
+    }
     return first;
   }
 
  private:
+  char* buffer_ = nullptr;
+  std::size_t size_ = 0;
   FILE* file_ = nullptr;
   bool readable_ = true;
 };
