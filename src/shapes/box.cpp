@@ -18,23 +18,6 @@
 #include <limits>
 
 namespace proxima {
-namespace {
-
-Real max_abs(const Vec3& v) { return std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)}); }
-
-// Splits v into a unit vector and a length without overflow or underflow; false for zero.
-bool unit_and_length(const Vec3& v, Vec3& unit, Real& length) {
-  const Real m = max_abs(v);
-  if (!(m > Real(0))) return false;
-  const Vec3 w = v / m;
-  const Real l = glm::length(w);
-  unit = w / l;
-  length = m * l;
-  return true;
-}
-
-}  // namespace
-
 Result<Box> Box::create(const Vec3& half_extents) {
   if (auto e = validate::positive(half_extents.x, "half_extents.x")) return *e;
   if (auto e = validate::positive(half_extents.y, "half_extents.y")) return *e;

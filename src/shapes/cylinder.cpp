@@ -23,38 +23,12 @@
 #include <cmath>
 #include <limits>
 
+#include "shapes/radial.hpp"
+
 namespace proxima {
 
-namespace {
-
-// sqrt(a^2 + b^2) without overflow or underflow of the squares.
-Real robust_hypot(Real a, Real b) {
-  const Real m = std::max(std::abs(a), std::abs(b));
-  if (!(m > Real(0))) return Real(0);
-  const Real sa = a / m;
-  const Real sb = b / m;
-  return m * std::sqrt(sa * sa + sb * sb);
-}
-
-// The distance rho of (x, y) from the axis and the unit radial direction (ux, uy) towards
-// it ((1, 0) on the axis), computed from the scaled components so that denormal or huge
-// coordinates still give a unit direction.
-Real radial_direction(Real x, Real y, Real& ux, Real& uy) {
-  const Real m = std::max(std::abs(x), std::abs(y));
-  if (!(m > Real(0))) {
-    ux = Real(1);
-    uy = Real(0);
-    return Real(0);
-  }
-  const Real sx = x / m;
-  const Real sy = y / m;
-  const Real len = std::sqrt(sx * sx + sy * sy);
-  ux = sx / len;
-  uy = sy / len;
-  return m * len;
-}
-
-}  // namespace
+using detail::radial_direction;
+using detail::robust_hypot;
 
 Result<Cylinder> Cylinder::create(Real radius, Real half_length) {
   if (auto e = validate::positive(radius, "radius")) return *e;

@@ -27,8 +27,6 @@
 namespace proxima {
 namespace {
 
-Real max_abs(const Vec3& v) { return std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)}); }
-
 // Box of {x : n . x <= d} when n (unit, world or local) matches an axis exactly, else the
 // unbounded box.
 Aabb plane_box(const Vec3& n, Real d) {
@@ -51,7 +49,7 @@ Aabb plane_box(const Vec3& n, Real d) {
 
 Result<HalfSpace> HalfSpace::create(const Vec3& normal, Real offset) {
   if (auto e = validate::finite(normal, "normal")) return *e;
-  const Real m = max_abs(normal);
+  const Real m = max_abs_component(normal);
   if (!(m > Real(0))) return make_error(ErrorCode::Degenerate, "normal", "must not be the zero vector");
   if (auto e = validate::finite(offset, "offset")) return *e;
   const Vec3 w = normal / m;

@@ -16,23 +16,6 @@
 #include <limits>
 
 namespace proxima {
-namespace {
-
-Real max_abs(const Vec3& v) { return std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)}); }
-
-// Splits v into a unit vector and a length without overflow or underflow; false for zero.
-bool unit_and_length(const Vec3& v, Vec3& unit, Real& length) {
-  const Real m = max_abs(v);
-  if (!(m > Real(0))) return false;
-  const Vec3 w = v / m;
-  const Real l = glm::length(w);
-  unit = w / l;
-  length = m * l;
-  return true;
-}
-
-}  // namespace
-
 Result<Point> Point::create() { return Point(); }
 
 Aabb Point::local_aabb() const { return Aabb::from_point(Vec3(Real(0))); }
@@ -41,25 +24,25 @@ Aabb Point::world_aabb(const Transform& pose) const { return Aabb::from_point(po
 
 std::optional<RayHit> Point::raycast(const Ray& ray, Real max_t) const {
   if (!(max_t >= Real(0)) || !is_finite(ray.origin) || !is_finite(ray.direction)) return std::nullopt;
-  const Real tol = linear_tolerance(max_abs(ray.origin));
+  const Real tol = linear_tolerance(max_abs_component(ray.origin));
   Vec3 unit;
   Real len = Real(0);
   if (!unit_and_length(ray.direction, unit, len)) {
-    if (max_abs(ray.origin) > tol) return std::nullopt;
+    if (max_abs_component(ray.origin) > tol) return std::nullopt;
     return RayHit{Real(0), ray.origin, Vec3(Real(0), Real(0), Real(1))};
   }
   // Distance along the unit direction to the foot of the origin, then in units of |d|.
   const Real s = -glm::dot(ray.origin, unit);
   const Real t = std::min(std::max(s / len, Real(0)), max_t);
   const Vec3 p = ray.at(t);
-  if (max_abs(p) > tol || glm::length(p) > tol) return std::nullopt;
+  if (max_abs_component(p) > tol || glm::length(p) > tol) return std::nullopt;
   return RayHit{t, p, -unit};
 }
 
 bool Point::contains(const Vec3& point) const {
   if (!is_finite(point)) return false;
   const Real tol = linear_tolerance(Real(0));
-  return max_abs(point) <= tol && glm::length(point) <= tol;
+  return max_abs_component(point) <= tol && glm::length(point) <= tol;
 }
 
 SurfacePoint Point::closest_point(const Vec3& point) const {

@@ -21,19 +21,6 @@
 namespace proxima {
 namespace {
 
-Real max_abs(const Vec3& v) { return std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)}); }
-
-// Splits v into a unit vector and a length without overflow or underflow; false for zero.
-bool unit_and_length(const Vec3& v, Vec3& unit, Real& length) {
-  const Real m = max_abs(v);
-  if (!(m > Real(0))) return false;
-  const Vec3 w = v / m;
-  const Real l = glm::length(w);
-  unit = w / l;
-  length = m * l;
-  return true;
-}
-
 // Unit vector orthogonal to the unit vector `axis`.
 Vec3 any_orthogonal(const Vec3& axis) {
   Vec3 t1;
@@ -47,7 +34,7 @@ Vec3 any_orthogonal(const Vec3& axis) {
 Result<Segment> Segment::create(const Vec3& a, const Vec3& b) {
   if (auto e = validate::finite(a, "a")) return *e;
   if (auto e = validate::finite(b, "b")) return *e;
-  const Real scale = std::max(max_abs(a), max_abs(b));
+  const Real scale = std::max(max_abs_component(a), max_abs_component(b));
   const Real min_length = kRelativeTolerance * scale;
   const Vec3 e = b - a;
   if (!(glm::dot(e, e) > min_length * min_length) || !(glm::dot(e, e) > Real(0))) {
@@ -70,8 +57,8 @@ Aabb Segment::world_aabb(const Transform& pose) const {
 
 std::optional<RayHit> Segment::raycast(const Ray& ray, Real max_t) const {
   if (!(max_t >= Real(0)) || !is_finite(ray.origin) || !is_finite(ray.direction)) return std::nullopt;
-  const Real tol = std::max(tolerance_, linear_tolerance(max_abs(ray.origin)));
-  Vec3 w;
+  const Real tol = std::max(tolerance_, linear_tolerance(max_abs_component(ray.origin)));
+  Vec3 w(Real(0), Real(0), Real(1));
   Real seg_len = Real(0);
   unit_and_length(b_ - a_, w, seg_len);  // never zero: checked at construction
   Vec3 u;
@@ -135,7 +122,7 @@ bool Segment::contains(const Vec3& point) const {
 
 SurfacePoint Segment::closest_point(const Vec3& point) const {
   if (!is_finite(point)) {
-    Vec3 w;
+    Vec3 w(Real(0), Real(0), Real(1));
     Real len = Real(0);
     unit_and_length(b_ - a_, w, len);
     return SurfacePoint{a_, any_orthogonal(w), std::numeric_limits<Real>::infinity()};
@@ -148,7 +135,7 @@ SurfacePoint Segment::closest_point(const Vec3& point) const {
   if (unit_and_length(point - q.point, unit, dist) && dist > tolerance_) {
     r.normal = unit;
   } else {
-    Vec3 w;
+    Vec3 w(Real(0), Real(0), Real(1));
     Real len = Real(0);
     unit_and_length(b_ - a_, w, len);
     // Keep the direction towards the point when it is still meaningful.

@@ -20,22 +20,6 @@
 #include <limits>
 
 namespace proxima {
-namespace {
-
-// Unit vector along v without overflow or underflow; false for zero or non-finite v.
-bool unit_direction(const Vec3& v, Vec3& unit, Real& length) {
-  if (!is_finite(v)) return false;
-  const Real m = std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)});
-  if (!(m > Real(0))) return false;
-  const Vec3 w = v / m;
-  const Real l = glm::length(w);
-  unit = w / l;
-  length = m * l;
-  return true;
-}
-
-}  // namespace
-
 Result<Sphere> Sphere::create(Real radius) {
   if (auto e = validate::positive(radius, "radius")) return *e;
   return Sphere(radius);
@@ -44,7 +28,7 @@ Result<Sphere> Sphere::create(Real radius) {
 Vec3 Sphere::support(const Vec3& direction) const {
   Vec3 unit;
   Real length = Real(0);
-  if (!unit_direction(direction, unit, length)) return Vec3(Real(0), Real(0), radius_);
+  if (!unit_and_length(direction, unit, length)) return Vec3(Real(0), Real(0), radius_);
   return unit * radius_;
 }
 
@@ -76,7 +60,7 @@ SurfacePoint Sphere::closest_point(const Vec3& point) const {
   }
   Vec3 unit(Real(0), Real(0), Real(1));
   Real dist = Real(0);
-  unit_direction(point, unit, dist);  // the centre keeps +z
+  unit_and_length(point, unit, dist);  // the centre keeps +z
   r.normal = unit;
   r.point = unit * radius_;
   r.signed_distance = dist - radius_;

@@ -23,23 +23,6 @@
 #include <limits>
 
 namespace proxima {
-namespace {
-
-Real max_abs(const Vec3& v) { return std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)}); }
-
-// Splits v into a unit vector and a length without overflow or underflow; false for zero.
-bool unit_and_length(const Vec3& v, Vec3& unit, Real& length) {
-  const Real m = max_abs(v);
-  if (!(m > Real(0))) return false;
-  const Vec3 w = v / m;
-  const Real l = glm::length(w);
-  unit = w / l;
-  length = m * l;
-  return true;
-}
-
-}  // namespace
-
 Result<Triangle> Triangle::create(const Vec3& a, const Vec3& b, const Vec3& c) {
   if (auto e = validate::finite(a, "a")) return *e;
   if (auto e = validate::finite(b, "b")) return *e;
@@ -55,7 +38,7 @@ Result<Triangle> Triangle::create(const Vec3& a, const Vec3& b, const Vec3& c) {
       !(twice_area > kRelativeTolerance * longest * longest)) {
     return make_error(ErrorCode::Degenerate, "vertices", "the three vertices are collinear (zero area)");
   }
-  const Real scale = std::max({max_abs(a), max_abs(b), max_abs(c)});
+  const Real scale = std::max({max_abs_component(a), max_abs_component(b), max_abs_component(c)});
   return Triangle(a, b, c, normal, linear_tolerance(scale));
 }
 
@@ -102,7 +85,7 @@ bool Triangle::contains(const Vec3& point) const {
   if (!is_finite(point)) return false;
   const auto q = geometry::closest_point_triangle(point, v_[0], v_[1], v_[2]);
   const Vec3 d = point - q.point;
-  return max_abs(d) <= tolerance_ && glm::length(d) <= tolerance_;
+  return max_abs_component(d) <= tolerance_ && glm::length(d) <= tolerance_;
 }
 
 SurfacePoint Triangle::closest_point(const Vec3& point) const {

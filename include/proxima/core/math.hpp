@@ -20,6 +20,7 @@
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -65,6 +66,23 @@ inline bool is_finite(const Quat& q) {
 
 /// Squared Euclidean length.
 inline Real length_squared(const Vec3& v) { return glm::dot(v, v); }
+
+/// Largest absolute component, the scale of a vector for tolerances and safe normalisation.
+inline Real max_abs_component(const Vec3& v) { return std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)}); }
+
+/// Splits `v` into a unit vector and its length without overflow or underflow (v is
+/// divided by its largest component before the square root). Returns false, leaving
+/// `unit` and `length` untouched, when v is zero or not finite.
+inline bool unit_and_length(const Vec3& v, Vec3& unit, Real& length) {
+  if (!is_finite(v)) return false;
+  const Real m = max_abs_component(v);
+  if (!(m > Real(0))) return false;
+  const Vec3 w = v / m;
+  const Real l = glm::length(w);
+  unit = w / l;
+  length = m * l;
+  return true;
+}
 
 /// Component-wise minimum / maximum of two vectors.
 inline Vec3 min(const Vec3& a, const Vec3& b) { return glm::min(a, b); }
