@@ -15,57 +15,14 @@
 #include <cmath>
 #include <limits>
 
+#include "geometry/long_double_reference.hpp"
 #include "support/random.hpp"
 
 namespace proxima::geometry {
 namespace {
 
-using LD = long double;
-using LVec = glm::vec<3, LD, glm::defaultp>;
-
-LVec ld(const Vec3& v) { return LVec(v.x, v.y, v.z); }
-LD dist2(const LVec& a, const LVec& b) { return glm::dot(a - b, a - b); }
-
-Real tol_at(Real scale) { return Real(64) * kEpsilon * scale; }
-
-Real max_abs(std::initializer_list<Vec3> vs) {
-  Real m = Real(0);
-  for (const Vec3& v : vs) m = std::max({m, std::abs(v.x), std::abs(v.y), std::abs(v.z)});
-  return m;
-}
-
-template <class F>
-LD golden_min(F f, LD lo, LD hi, int iterations) {
-  const LD r = (std::sqrt(LD(5)) - LD(1)) / LD(2);
-  LD x1 = hi - r * (hi - lo);
-  LD x2 = lo + r * (hi - lo);
-  LD f1 = f(x1);
-  LD f2 = f(x2);
-  for (int i = 0; i < iterations; ++i) {
-    if (f1 <= f2) {
-      hi = x2;
-      x2 = x1;
-      f2 = f1;
-      x1 = hi - r * (hi - lo);
-      f1 = f(x1);
-    } else {
-      lo = x1;
-      x1 = x2;
-      f1 = f2;
-      x2 = lo + r * (hi - lo);
-      f2 = f(x2);
-    }
-  }
-  return std::min({f1, f2, f(lo), f(hi)});
-}
-
-LD ref_dist2_point_segment(const LVec& p, const LVec& a, const LVec& b) {
-  const LVec ab = b - a;
-  const LD den = glm::dot(ab, ab);
-  LD t = den > 0 ? glm::dot(p - a, ab) / den : LD(0);
-  t = std::clamp(t, LD(0), LD(1));
-  return dist2(p, a + t * ab);
-}
+using test::LD, test::LVec, test::ld, test::dist2, test::tol_at, test::max_abs, test::golden_min,
+    test::ref_dist2_point_segment;
 
 // Golden search over s of the exact distance from p0 + s (p1 - p0) to segment q0q1.
 LD ref_distance(const Vec3& p0, const Vec3& p1, const Vec3& q0, const Vec3& q1) {

@@ -14,78 +14,14 @@
 #include <cmath>
 #include <limits>
 
+#include "geometry/long_double_reference.hpp"
 #include "support/random.hpp"
 
 namespace proxima::geometry {
 namespace {
 
-using LD = long double;
-using LVec = glm::vec<3, LD, glm::defaultp>;
-
-LVec ld(const Vec3& v) { return LVec(v.x, v.y, v.z); }
-LD dist2(const LVec& a, const LVec& b) { return glm::dot(a - b, a - b); }
-
-Real tol_at(Real scale) { return Real(64) * kEpsilon * scale; }
-
-Real max_abs(std::initializer_list<Vec3> vs) {
-  Real m = Real(0);
-  for (const Vec3& v : vs) m = std::max({m, std::abs(v.x), std::abs(v.y), std::abs(v.z)});
-  return m;
-}
-
-template <class F>
-LD golden_min(F f, LD lo, LD hi, int iterations) {
-  const LD r = (std::sqrt(LD(5)) - LD(1)) / LD(2);
-  LD x1 = hi - r * (hi - lo);
-  LD x2 = lo + r * (hi - lo);
-  LD f1 = f(x1);
-  LD f2 = f(x2);
-  for (int i = 0; i < iterations; ++i) {
-    if (f1 <= f2) {
-      hi = x2;
-      x2 = x1;
-      f2 = f1;
-      x1 = hi - r * (hi - lo);
-      f1 = f(x1);
-    } else {
-      lo = x1;
-      x1 = x2;
-      f1 = f2;
-      x2 = lo + r * (hi - lo);
-      f2 = f(x2);
-    }
-  }
-  return std::min({f1, f2, f(lo), f(hi)});
-}
-
-LD ref_dist2_point_segment(const LVec& p, const LVec& a, const LVec& b) {
-  const LVec ab = b - a;
-  const LD den = glm::dot(ab, ab);
-  LD t = den > 0 ? glm::dot(p - a, ab) / den : LD(0);
-  t = std::clamp(t, LD(0), LD(1));
-  return dist2(p, a + t * ab);
-}
-
-// Gram normal equations for the projection, and the three edges.
-LD ref_dist2_point_triangle(const LVec& p, const LVec& a, const LVec& b, const LVec& c) {
-  const LVec ab = b - a;
-  const LVec ac = c - a;
-  const LVec ap = p - a;
-  const LD g11 = glm::dot(ab, ab), g12 = glm::dot(ab, ac), g22 = glm::dot(ac, ac);
-  const LD r1 = glm::dot(ab, ap), r2 = glm::dot(ac, ap);
-  const LD det = g11 * g22 - g12 * g12;
-  // Every candidate is a point of the triangle, so the minimum is never below the true
-  // distance, and equals it when the projection (well-conditioned triangles) or an edge is
-  // the answer.
-  LD best =
-      std::min({ref_dist2_point_segment(p, a, b), ref_dist2_point_segment(p, b, c), ref_dist2_point_segment(p, c, a)});
-  if (det > LD(0)) {
-    const LD v = (g22 * r1 - g12 * r2) / det;
-    const LD w = (g11 * r2 - g12 * r1) / det;
-    if (v >= 0 && w >= 0 && v + w <= 1) best = std::min(best, dist2(p, a + v * ab + w * ac));
-  }
-  return best;
-}
+using test::LD, test::LVec, test::ld, test::dist2, test::tol_at, test::max_abs, test::golden_min,
+    test::ref_dist2_point_segment, test::ref_dist2_point_triangle;
 
 LD ref_distance(const Vec3& p, const Vec3& q, const Vec3& a, const Vec3& b, const Vec3& c) {
   const LVec lp = ld(p), d = ld(q) - ld(p), la = ld(a), lb = ld(b), lc = ld(c);

@@ -18,19 +18,15 @@
 #include <cmath>
 #include <limits>
 
+#include "geometry/long_double_reference.hpp"
 #include "support/random.hpp"
 
 namespace proxima::geometry {
 namespace {
 
-using LD = long double;
-using LVec = glm::vec<3, LD, glm::defaultp>;
+using test::LD, test::LVec, test::ld, test::dist2, test::tol_at, test::golden_min, test::ref_dist2_point_triangle;
+
 using Tri = std::array<Vec3, 3>;
-
-LVec ld(const Vec3& v) { return LVec(v.x, v.y, v.z); }
-LD dist2(const LVec& a, const LVec& b) { return glm::dot(a - b, a - b); }
-
-Real tol_at(Real scale) { return Real(64) * kEpsilon * scale; }
 
 Real max_abs(const Tri& a, const Tri& b) {
   Real m = Real(0);
@@ -42,58 +38,6 @@ Real max_abs(const Tri& a, const Tri& b) {
 
 // The touching band of triangles_intersect at the scale of the pair.
 Real touch_tol(const Tri& a, const Tri& b) { return kRelativeTolerance * max_abs(a, b); }
-
-template <class F>
-LD golden_min(F f, LD lo, LD hi, int iterations) {
-  const LD r = (std::sqrt(LD(5)) - LD(1)) / LD(2);
-  LD x1 = hi - r * (hi - lo);
-  LD x2 = lo + r * (hi - lo);
-  LD f1 = f(x1);
-  LD f2 = f(x2);
-  for (int i = 0; i < iterations; ++i) {
-    if (f1 <= f2) {
-      hi = x2;
-      x2 = x1;
-      f2 = f1;
-      x1 = hi - r * (hi - lo);
-      f1 = f(x1);
-    } else {
-      lo = x1;
-      x1 = x2;
-      f1 = f2;
-      x2 = lo + r * (hi - lo);
-      f2 = f(x2);
-    }
-  }
-  return std::min({f1, f2, f(lo), f(hi)});
-}
-
-LD ref_dist2_point_segment(const LVec& p, const LVec& a, const LVec& b) {
-  const LVec ab = b - a;
-  const LD den = glm::dot(ab, ab);
-  LD t = den > 0 ? glm::dot(p - a, ab) / den : LD(0);
-  t = std::clamp(t, LD(0), LD(1));
-  return dist2(p, a + t * ab);
-}
-
-// Gram normal equations for the projection, and the three edges (all points of the
-// triangle, so never below the true distance).
-LD ref_dist2_point_triangle(const LVec& p, const LVec& a, const LVec& b, const LVec& c) {
-  const LVec ab = b - a;
-  const LVec ac = c - a;
-  const LVec ap = p - a;
-  const LD g11 = glm::dot(ab, ab), g12 = glm::dot(ab, ac), g22 = glm::dot(ac, ac);
-  const LD r1 = glm::dot(ab, ap), r2 = glm::dot(ac, ap);
-  const LD det = g11 * g22 - g12 * g12;
-  LD best =
-      std::min({ref_dist2_point_segment(p, a, b), ref_dist2_point_segment(p, b, c), ref_dist2_point_segment(p, c, a)});
-  if (det > LD(0)) {
-    const LD v = (g22 * r1 - g12 * r2) / det;
-    const LD w = (g11 * r2 - g12 * r1) / det;
-    if (v >= 0 && w >= 0 && v + w <= 1) best = std::min(best, dist2(p, a + v * ab + w * ac));
-  }
-  return best;
-}
 
 LD ref_dist_point_triangle(const Vec3& p, const Tri& t) {
   return std::sqrt(ref_dist2_point_triangle(ld(p), ld(t[0]), ld(t[1]), ld(t[2])));

@@ -20,133 +20,14 @@
 #include <utility>
 #include <vector>
 
+#include "shapes/reference_surface.hpp"
 #include "shapes/shape_test_util.hpp"
 #include "support/random.hpp"
 
 namespace proxima {
 namespace {
 
-using DVec3 = glm::dvec3;
-constexpr double kPiD = 3.14159265358979323846;
-
-// ---------------------------------------------------------------------------------------
-// Reference surface: parametric patches in double, dense samples, pattern-search refinement.
-
-struct Patch {
-  double a0, a1;  // first parameter range (an angle when wrap_a: then it is not clamped)
-  double b0, b1;  // second parameter range (clamped)
-  bool wrap_a;
-  int na, nb;  // sample counts
-  std::function<DVec3(double, double)> at;
-};
-
-struct Sample {
-  DVec3 p;
-  int patch;
-  double a, b;
-};
-
-class RefSurface {
- public:
-  explicit RefSurface(std::vector<Patch> patches) : patches_(std::move(patches)) {
-    for (int k = 0; k < static_cast<int>(patches_.size()); ++k) {
-      const Patch& pa = patches_[static_cast<std::size_t>(k)];
-      for (int i = 0; i < pa.na; ++i) {
-        for (int j = 0; j < pa.nb; ++j) {
-          const double a = pa.a0 + (pa.a1 - pa.a0) * i / (pa.na - 1);
-          const double b = pa.b0 + (pa.b1 - pa.b0) * j / (pa.nb - 1);
-          samples_.push_back({pa.at(a, b), k, a, b});
-        }
-      }
-    }
-  }
-
-  const std::vector<Sample>& samples() const { return samples_; }
-
-  // Minimum of f over the surface: the best sample of each patch refined by a pattern
-  // search (8 neighbours, steps halved when no neighbour improves). The value is always
-  // that of a true surface point, so it bounds the exact minimum from above.
-  template <class F>
-  std::pair<double, DVec3> minimize(F f) const {
-    const std::size_t np = patches_.size();
-    std::vector<double> best(np, std::numeric_limits<double>::infinity());
-    std::vector<const Sample*> arg(np, nullptr);
-    for (const Sample& s : samples_) {
-      const double v = f(s.p);
-      const std::size_t k = static_cast<std::size_t>(s.patch);
-      if (v < best[k]) {
-        best[k] = v;
-        arg[k] = &s;
-      }
-    }
-    std::pair<double, DVec3> result{std::numeric_limits<double>::infinity(), DVec3(0.0)};
-    for (std::size_t k = 0; k < np; ++k) {
-      if (arg[k] == nullptr) continue;
-      const auto r = refine(patches_[k], *arg[k], f);
-      if (r.first < result.first) result = r;
-    }
-    return result;
-  }
-
-  // Largest value of f over the surface (refined as minimize).
-  template <class F>
-  double maximize(F f) const {
-    return -minimize([&f](const DVec3& p) { return -f(p); }).first;
-  }
-
- private:
-  template <class F>
-  static std::pair<double, DVec3> refine(const Patch& pa, const Sample& s, F f) {
-    double a = s.a;
-    double b = s.b;
-    double sa = (pa.a1 - pa.a0) / (pa.na - 1);
-    double sb = (pa.b1 - pa.b0) / (pa.nb - 1);
-    const double stop_a = 1e-15 * (pa.a1 - pa.a0);
-    const double stop_b = 1e-15 * (pa.b1 - pa.b0);
-    DVec3 p = s.p;
-    double v = f(p);
-    for (int it = 0; it < 3000 && (sa > stop_a || sb > stop_b); ++it) {
-      bool moved = false;
-      for (int da = -1; da <= 1; ++da) {
-        for (int db = -1; db <= 1; ++db) {
-          if (da == 0 && db == 0) continue;
-          double na = a + da * sa;
-          if (!pa.wrap_a) na = std::clamp(na, pa.a0, pa.a1);
-          const double nb = std::clamp(b + db * sb, pa.b0, pa.b1);
-          const DVec3 q = pa.at(na, nb);
-          const double w = f(q);
-          if (w < v) {
-            v = w;
-            p = q;
-            a = na;
-            b = nb;
-            moved = true;
-          }
-        }
-      }
-      if (!moved) {
-        sa *= 0.5;
-        sb *= 0.5;
-      }
-    }
-    return {v, p};
-  }
-
-  std::vector<Patch> patches_;
-  std::vector<Sample> samples_;
-};
-
-DVec3 to_d(const Vec3& v) { return DVec3(v.x, v.y, v.z); }
-
-// A pose in double (the same rotation and position, evaluated without Real rounding).
-struct DPose {
-  glm::dmat3 r;
-  DVec3 t;
-  explicit DPose(const Transform& pose)
-      : r(glm::mat3_cast(glm::dquat(pose.rotation.w, pose.rotation.x, pose.rotation.y, pose.rotation.z))),
-        t(to_d(pose.position)) {}
-  DVec3 apply(const DVec3& p) const { return r * p + t; }
-};
+using test::DPose, test::DVec3, test::kPiD, test::Patch, test::RefSurface, test::Sample, test::to_d;
 
 // Length tolerance at scale `scale`: a fixed multiple of Real's relative tolerance.
 Real tol_at(double scale) { return static_cast<Real>(4.0 * static_cast<double>(kRelativeTolerance) * scale); }
