@@ -876,6 +876,26 @@ TEST(ConvexHull, PlacedClosestPointAndSupportMapFrames) {
   }
 }
 
+// Large hulls bound their world box by six hill-climbing support queries: the box must be
+// the exact box of the transformed vertices (reference: a scan written here).
+TEST(ConvexHull, WorldAabbOfLargeHullEqualsVertexScan) {
+  test::Random rng(4242);
+  std::vector<Vec3> cloud;
+  for (int i = 0; i < 3000; ++i) cloud.push_back(rng.unit_vector() * Vec3(Real(3), Real(1), Real(0.5)));
+  const ConvexHull h = ConvexHull::create(cloud).value();
+  ASSERT_GT(h.vertices().size(), 512u);
+  for (int k = 0; k < 300; ++k) {
+    const Transform pose = rng.pose(Real(100));
+    Aabb ref = Aabb::empty();
+    for (const Vec3& v : h.vertices()) ref.grow(pose.apply(v));
+    const Aabb box = h.world_aabb(pose);
+    for (int i = 0; i < 3; ++i) {
+      EXPECT_NEAR(box.min[i], ref.min[i], Real(64) * kEpsilon * Real(200)) << "pose " << k;
+      EXPECT_NEAR(box.max[i], ref.max[i], Real(64) * kEpsilon * Real(200)) << "pose " << k;
+    }
+  }
+}
+
 // ---------------------------------------------------------------------------------------
 // Ray casts against marching + bisection on contains.
 
