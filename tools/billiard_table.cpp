@@ -199,8 +199,8 @@ void BilliardTable::step() {
     v = speed > slow_down ? v * ((speed - slow_down) / speed) : Vec3(Real(0));
   }
 
-  std::vector<char> ball_seen(kBallCount * kBallCount, 0);
-  std::vector<char> cushion_seen(kBallCount * kCushionCount, 0);
+  std::vector<char> ball_seen(static_cast<std::size_t>(kBallCount) * kBallCount, 0);
+  std::vector<char> cushion_seen(static_cast<std::size_t>(kBallCount) * kCushionCount, 0);
   Real remaining = dt;
   sweep_boxes(remaining);
   find_candidates(ball_seen, cushion_seen);
@@ -225,7 +225,7 @@ void BilliardTable::step() {
 
   stats_.frames += 1;
   stats_.brute_ball_pairs += kBallCount * (kBallCount - 1) / 2;
-  stats_.brute_cushion_pairs += kBallCount * kCushionCount;
+  stats_.brute_cushion_pairs += static_cast<std::uint64_t>(kBallCount) * kCushionCount;
   stats_.candidate_ball_pairs += static_cast<std::uint64_t>(std::count(ball_seen.begin(), ball_seen.end(), 1));
   stats_.candidate_cushion_pairs += static_cast<std::uint64_t>(std::count(cushion_seen.begin(), cushion_seen.end(), 1));
   ++frame_;

@@ -85,9 +85,10 @@ std::string render_billiards_svg(const BilliardTable& table) {
     const SvgPoint p = to_svg(table.positions()[b]);
     svg.circle(p.x, p.y, r, ball_colour(b), "#000000", 1.0);
     if (b >= 9) svg.circle(p.x, p.y, 0.55 * r, "#f4f1e6");
-    if (b > 0)
+    if (b > 0) {
       svg.text(p.x, p.y + 0.35 * r, std::to_string(b), r, b == 8 || (b >= 2 && b <= 4) ? "#ffffff" : "#000000",
                "middle");
+    }
   }
   const BilliardStats& s = table.stats();
   const double bottom = 2.0 * (margin + rail) + width * scale;

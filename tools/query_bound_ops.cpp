@@ -27,7 +27,7 @@ constexpr std::string_view kFitVolumes[] = {"aabb",  "sphere",  "sphere_centroid
 
 template <std::size_t N>
 std::string read_volume_name(const Json& request, const std::string_view (&allowed)[N]) {
-  const std::string name = read_string(require_member(request, "", "volume"), "volume");
+  std::string name = read_string(require_member(request, "", "volume"), "volume");
   std::string list;
   for (std::string_view v : allowed) {
     if (v == name) return name;

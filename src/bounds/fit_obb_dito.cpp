@@ -33,7 +33,7 @@ Result<Obb> fit_obb_dito(std::span<const Vec3> points, int k) {
   const glm::dvec3 origin(points[0]);
   // 1. Extremal points.
   std::vector<glm::dvec3> extremal;
-  extremal.reserve(static_cast<std::size_t>(2 * directions));
+  extremal.reserve(2 * static_cast<std::size_t>(directions));
   for (int j = 0; j < directions; ++j) {
     const glm::dvec3 d(kdop_base_direction(j));
     glm::dvec3 lo_p(0.0), hi_p(0.0);

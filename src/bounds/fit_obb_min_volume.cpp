@@ -78,7 +78,6 @@ glm::dmat3 min_area_frame_for_axis(std::span<const glm::dvec3> points, const glm
   if (h.size() < 3) {
     // Collinear (or single) projection: the rectangle degenerates to a segment.
     if (h.size() == 2 && glm::length(h[1] - h[0]) > 0.0) best_dir = glm::normalize(h[1] - h[0]);
-    best_area = 0.0;
   } else {
     const std::size_t n = h.size();
     auto next = [n](std::size_t i) { return i + 1 == n ? 0 : i + 1; };

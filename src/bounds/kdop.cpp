@@ -24,17 +24,17 @@ namespace detail {
 template <int K>
 KdopPolytope make_kdop_polytope(const std::array<Real, K / 2>& lo, const std::array<Real, K / 2>& hi) {
   KdopPolytope p;
-  constexpr int n = K / 2;
+  constexpr int kSlabs = K / 2;
   // Local origin: centre of the axis slabs (only when they are consistent and finite).
   glm::dvec3 origin(0.0);
   double magnitude = 0.0;
-  for (int i = 0; i < n; ++i) magnitude = std::max({magnitude, std::abs(double(lo[i])), std::abs(double(hi[i]))});
+  for (int i = 0; i < kSlabs; ++i) magnitude = std::max({magnitude, std::abs(double(lo[i])), std::abs(double(hi[i]))});
   for (int a = 0; a < 3; ++a) {
     if (lo[a] <= hi[a]) origin[a] = 0.5 * double(lo[a]) + 0.5 * double(hi[a]);
   }
   p.origin = origin;
   double extent = 0.0;
-  for (int i = 0; i < n; ++i) {
+  for (int i = 0; i < kSlabs; ++i) {
     const Vec3 d = Kdop<K>::direction(i);
     p.dirs[i] = glm::dvec3(d);
     const double shift = glm::dot(p.dirs[i], origin);
@@ -42,7 +42,7 @@ KdopPolytope make_kdop_polytope(const std::array<Real, K / 2>& lo, const std::ar
     p.hi[i] = double(hi[i]) - shift;
     extent = std::max({extent, std::abs(p.lo[i]), std::abs(p.hi[i])});
   }
-  p.count = n;
+  p.count = kSlabs;
   // The bounds carry the rounding of Real at their own magnitude; geometry derived from
   // them is trusted to a few ulps of that plus a relative part of the local extent.
   p.slack = 16.0 * double(kEpsilon) * magnitude + 1e-12 * extent + 1e-300;

@@ -107,7 +107,7 @@ class MessageFile {
     while (begin <= text.size()) {
       std::size_t stop = text.find('\n', begin);
       if (stop == std::string::npos) stop = text.size();
-      const std::string line = text.substr(begin, std::min<std::size_t>(stop - begin, 300));
+      std::string line = text.substr(begin, std::min<std::size_t>(stop - begin, 300));
       if (line.rfind("QH6", 0) == 0) return line;
       if (first.empty()) first = line;
       begin = stop + 1;

@@ -91,12 +91,11 @@ std::optional<RayHit> Segment::raycast(const Ray& ray, Real max_t) const {
     const Real denom = Real(1) - cos_angle * cos_angle;
     s = denom > Real(0) ? (cos_angle * f - c) / denom : Real(0);
     s = std::min(std::max(s, Real(0)), s_max);
-    Real t = f + cos_angle * s;
+    // Clamp the segment parameter t = f + cos_angle * s to [0, seg_len], then re-solve s.
+    const Real t = f + cos_angle * s;
     if (t < Real(0)) {
-      t = Real(0);
       s = std::min(std::max(-c, Real(0)), s_max);
     } else if (t > seg_len) {
-      t = seg_len;
       s = std::min(std::max(cos_angle * seg_len - c, Real(0)), s_max);
     }
     const Vec3 on_ray = ray.origin + s * u;
