@@ -47,9 +47,7 @@ int run_query(const std::string& input) {
   return proxima::tool::exit_status(proxima::tool::run_queries(file, std::cout));
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int run(int argc, char** argv) {
   std::ios::sync_with_stdio(false);
   CLI::App app{"proxima: collision detection from the command line (demo, JSON queries)", "proxima"};
   app.set_version_flag("--version", version_line(), "Print the version and the scalar precision, then exit");
@@ -90,5 +88,18 @@ int main(int argc, char** argv) {
     return 1;
   }
   std::cout << app.help();
+  return 1;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return run(argc, argv);
+  } catch (const std::exception& e) {
+    std::cerr << "proxima: " << e.what() << "\n";
+  } catch (...) {
+    std::cerr << "proxima: unknown error\n";
+  }
   return 1;
 }
