@@ -26,7 +26,8 @@
 namespace proxima {
 namespace {
 
-using test::DPose, test::DVec3, test::kPiD, test::Patch, test::RefSurface, test::Sample, test::to_d;
+using test::DPose, test::DVec3, test::march, test::MarchResult, test::kPiD, test::Patch, test::RefSurface, test::Sample,
+    test::to_d;
 
 // Length tolerance at scale `scale`: a fixed multiple of Real's relative tolerance.
 Real tol_at(double scale) { return static_cast<Real>(4.0 * static_cast<double>(kRelativeTolerance) * scale); }
@@ -321,48 +322,6 @@ TEST(Cylinder, ClosestPointPlacedFarFromOrigin) {
     EXPECT_NEAR(glm::length(q - sp.point), std::abs(sp.signed_distance), tol);
     EXPECT_LE(std::abs(implicit(0.5, 2, to_d(pose.inverse_apply(sp.point)))), tol);
   }
-}
-
-// Reference ray cast: march on the test's implicit function, then bisect on contains().
-struct MarchResult {
-  bool deep = false;  // some sample is inside by more than the tolerance
-  double t_deep = 0;  // first such sample
-  bool entered = false;
-  double t_bisect = 0;  // entry refined by bisection on contains()
-};
-
-template <class Implicit, class Contains>
-MarchResult march(Implicit f, Contains contains, const Ray& ray, Real max_t, double tol, int steps) {
-  MarchResult m;
-  const DVec3 o = to_d(ray.origin);
-  const DVec3 d = to_d(ray.direction);
-  double prev = 0;
-  for (int i = 0; i <= steps; ++i) {
-    const double t = static_cast<double>(max_t) * i / steps;
-    const double v = f(o + t * d);
-    if (!m.entered && contains(ray.at(static_cast<Real>(t)))) {
-      m.entered = true;
-      double lo = prev;
-      double hi = t;
-      if (i == 0) {
-        m.t_bisect = 0;
-      } else {
-        for (int k = 0; k < 200; ++k) {
-          const double mid = 0.5 * (lo + hi);
-          if (mid <= lo || mid >= hi) break;
-          (contains(ray.at(static_cast<Real>(mid))) ? hi : lo) = mid;
-        }
-        m.t_bisect = hi;
-      }
-    }
-    if (v < -tol) {
-      m.deep = true;
-      m.t_deep = t;
-      break;
-    }
-    prev = t;
-  }
-  return m;
 }
 
 TEST(Cylinder, RaycastMatchesMarching) {
