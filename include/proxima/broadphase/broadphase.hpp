@@ -1,0 +1,118 @@
+#pragma once
+/// @file broadphase.hpp
+/// The broad phase's shared vocabulary: proxy ids, kinds, filters, pairs, the status of an
+/// update, statistics, and the `BroadPhaseStructure` concept that every structure
+/// (brute force, sweep-and-prune, grid, hash, octree, kd-tree, BSP, dynamic AABB tree)
+/// satisfies, so code templated on it runs on any of them with no virtual call.
+///
+/// Semantics shared by every structure (the differential tests hold them to it):
+/// - A proxy is a closed AABB in world coordinates with a caller-chosen id (dense small
+///   integers work best: structures index arrays by id), a kind and a filter.
+/// - Two proxies form a pair when their boxes overlap or touch (closed intervals on all three
+///   axes), at least one of them is Moving, and their filters accept each other.
+/// - find_pairs reports every pair exactly once as (lo, hi) with lo < hi, sorted by (lo, hi):
+///   the order is deterministic and independent of insertion history and thread count.
+/// - A rejected call (non-finite or inverted box, unknown or duplicate id) changes nothing.
+
+#include <proxima/geometry/aabb.hpp>
+#include <proxima/geometry/ray.hpp>
+
+#include <concepts>
+#include <cstdint>
+#include <functional>
+#include <span>
+#include <vector>
+
+namespace proxima {
+
+/// Caller-chosen identifier of a proxy (structures size their tables by the largest id).
+using ProxyId = std::uint32_t;
+
+/// Whether a proxy moves. Static-static pairs are never reported.
+enum class ProxyKind : std::uint8_t {
+  Static,  ///< rarely updated (level geometry); never paired with another Static proxy
+  Moving,  ///< updated every frame
+};
+
+/// Collision filter: two proxies may pair when each one's layer bits meet the other's mask.
+struct ProxyFilter {
+  std::uint32_t layer = 1;   ///< bits this proxy belongs to
+  std::uint32_t mask = ~0u;  ///< bits this proxy collides with
+
+  /// True when a and b accept each other.
+  friend constexpr bool can_pair(const ProxyFilter& a, const ProxyFilter& b) {
+    return (a.layer & b.mask) != 0 && (b.layer & a.mask) != 0;
+  }
+};
+
+/// A reported pair, lo < hi.
+struct ProxyPair {
+  ProxyId lo = 0;
+  ProxyId hi = 0;
+  friend constexpr bool operator==(const ProxyPair&, const ProxyPair&) = default;
+  friend constexpr auto operator<=>(const ProxyPair&, const ProxyPair&) = default;
+};
+
+/// One entry of a batch update: the new box of an existing proxy.
+struct ProxyUpdate {
+  ProxyId id = 0;
+  Aabb box;
+};
+
+/// Outcome of insert / remove / update. Anything but Ok leaves the structure unchanged.
+enum class BroadPhaseStatus : std::uint8_t {
+  Ok,
+  NotFinite,    ///< a coordinate of the box is NaN or infinite
+  InvalidBox,   ///< min > max on some axis, or |coordinate| > kMaxCoordinate
+  UnknownId,    ///< no proxy with this id
+  DuplicateId,  ///< insert of an id already present
+};
+
+/// Short name ("ok", "not_finite", ...).
+const char* to_string(BroadPhaseStatus status);
+
+/// Validates a box for insertion or update (finite, min <= max, within kMaxCoordinate).
+BroadPhaseStatus check_box(const Aabb& box);
+
+/// Counters of the last find_pairs / query call, for tests and benchmarks.
+struct BroadPhaseStats {
+  std::uint64_t nodes_visited = 0;  ///< tree nodes, cells or sweep steps visited
+  std::uint64_t pairs_tested = 0;   ///< box-box overlap tests run
+  std::uint64_t pairs_found = 0;    ///< pairs reported
+};
+
+/// Pairs begun and ended between two successive find_pairs results (both sorted).
+struct PairDelta {
+  std::vector<ProxyPair> begun;  ///< in the new set, not in the old; sorted
+  std::vector<ProxyPair> ended;  ///< in the old set, not in the new; sorted
+};
+
+/// Ray-query callback: receives a proxy whose box the ray enters at fraction t (in units of
+/// the ray's direction length, t <= the current max fraction) and returns the new max
+/// fraction: t' < current clips the ray, 0 stops the query, a negative value ignores the proxy.
+using RayQueryCallback = std::function<Real(ProxyId id, Real t)>;
+/// Overlap-query callback (box or point): return false to stop the query.
+using OverlapQueryCallback = std::function<bool(ProxyId id)>;
+
+/// What every broad-phase structure offers. Queries report each matching proxy once, in no
+/// particular order; find_pairs clears `out` and fills it sorted (see the file comment).
+template <class T>
+concept BroadPhaseStructure = requires(T& s, const T& cs, ProxyId id, const Aabb& box, ProxyKind kind,
+                                       ProxyFilter filter, std::span<const ProxyUpdate> updates,
+                                       std::vector<ProxyPair>& out, const Ray& ray, Real max_t, const Vec3& point,
+                                       const RayQueryCallback& on_ray, const OverlapQueryCallback& on_overlap) {
+  { s.insert(id, box, kind, filter) } -> std::same_as<BroadPhaseStatus>;
+  { s.remove(id) } -> std::same_as<BroadPhaseStatus>;
+  { s.update(id, box) } -> std::same_as<BroadPhaseStatus>;
+  { s.update(updates) } -> std::same_as<BroadPhaseStatus>;  // all or nothing
+  { s.rebuild() } -> std::same_as<void>;
+  { s.find_pairs(out) } -> std::same_as<void>;
+  { cs.query_aabb(box, on_overlap) } -> std::same_as<void>;
+  { cs.query_point(point, on_overlap) } -> std::same_as<void>;
+  { cs.query_ray(ray, max_t, on_ray) } -> std::same_as<void>;
+  { cs.validate() } -> std::same_as<bool>;
+  { cs.stats() } -> std::same_as<BroadPhaseStats>;
+  { cs.size() } -> std::same_as<std::size_t>;
+};
+
+}  // namespace proxima
