@@ -69,3 +69,13 @@ inline ContactManifold manifold_from_distance(const DistanceResult& d, const Pai
 }
 
 }  // namespace proxima::narrow
+
+namespace proxima::narrow {
+
+/// True for the pairs (A, B) served by a closed-form routine; each pair header specialises it
+/// next to the pair's declarations. The dispatch table sends every other pair to the generic
+/// GJK / EPA / SAT routines.
+template <class A, class B>
+inline constexpr bool kAnalyticPair = false;
+
+}  // namespace proxima::narrow
