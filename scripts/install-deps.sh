@@ -13,6 +13,9 @@ packages=(
   libcgal-dev                        # exact reference computations in tests
   clang-format                       # the formatting test
   libbenchmark-dev                   # benchmarks
+  # Peer libraries: references for the cross-validation tests and the side-by-side
+  # benchmarks only; the library never links them.
+  libfcl-dev libccd-dev libbullet-dev libode-dev libembree-dev
 )
 $SUDO apt-get update -qq
 $SUDO apt-get install -y -qq --no-install-recommends "${packages[@]}" >/dev/null
