@@ -3,9 +3,63 @@
 /// Declarations of the closed-form pair routines of this group (contract in pair_support.hpp):
 /// for each pair (A, B), A not after B in ShapeType order, the three functions pair_intersect,
 /// pair_distance, pair_collide and the trait kAnalyticPair<A, B> = true.
+///
+/// Rounded pairs: a sphere (point core) or capsule (segment core) against a sphere, capsule,
+/// box or triangle. Each routine finds the closest points of the cores with the
+/// geometry/closest_points.hpp routines and adds the radii; when the cores touch or overlap,
+/// the penetration direction comes from the pair's closed form (deepest box face,
+/// separating-axis test of segment against box or triangle, common normal of crossing
+/// segments). All O(1), no allocation.
+///
+/// Degenerate configurations get a deterministic normal, never NaN:
+///  - sphere-sphere with coincident centres: A's local +x axis (in world);
+///  - a sphere centre on a capsule's core: the capsule's local +x axis (perpendicular to it);
+///  - crossing capsule cores: the common normal of the axes, turned towards B's centre; for
+///    parallel or zero-length cores, A's local +x axis (B's when A is the zero-length one
+///    would not matter: every perpendicular is as good), turned towards B's centre;
+///  - a sphere centre on a triangle: the triangle's normal (b - a) x (c - a).
+/// intersect(...) is true iff distance(...).signed_distance <= request.contact_distance.
 
 #include <proxima/shapes/shape.hpp>
 
 #include "pair_support.hpp"
 
-namespace proxima::narrow {}  // namespace proxima::narrow
+/// Declares the three routines of the rounded pair (A, B) and marks it analytic.
+#define PROXIMA_ROUNDED_PAIR(A, B)                                                                       \
+  bool pair_intersect(const A& a, const Transform& pose_a, const B& b, const Transform& pose_b,          \
+                      const PairRequest& request, PairCache* cache);                                     \
+  DistanceResult pair_distance(const A& a, const Transform& pose_a, const B& b, const Transform& pose_b, \
+                               const PairRequest& request, PairCache* cache);                            \
+  ContactManifold pair_collide(const A& a, const Transform& pose_a, const B& b, const Transform& pose_b, \
+                               const PairRequest& request, PairCache* cache);                            \
+  template <>                                                                                            \
+  inline constexpr bool kAnalyticPair<A, B> = true;
+
+namespace proxima::narrow {
+
+// Triangle (two-sided, no thickness) against a sphere: closest point of the triangle to the
+// centre. Manifold: one point.
+PROXIMA_ROUNDED_PAIR(Triangle, Sphere)
+// Triangle against a capsule: segment-triangle closest points; segment-triangle SAT (triangle
+// normal, edge x axis, in-plane edge normals) when the core touches the triangle. Manifold: two
+// points (the core clipped to the triangle's prism) when the capsule lies along the triangle.
+PROXIMA_ROUNDED_PAIR(Triangle, Capsule)
+// Two spheres: centre to centre. Manifold: one point.
+PROXIMA_ROUNDED_PAIR(Sphere, Sphere)
+// Sphere against capsule: closest point of the core segment to the centre. Manifold: one point.
+PROXIMA_ROUNDED_PAIR(Sphere, Capsule)
+// Two capsules: segment-segment closest points. Manifold: two points (the ends of the overlap
+// of the cores) when the axes are parallel and overlap, else one.
+PROXIMA_ROUNDED_PAIR(Capsule, Capsule)
+// Sphere against box: closest point of the box to the centre; centre inside: the deepest
+// (nearest) face. Manifold: one point.
+PROXIMA_ROUNDED_PAIR(Sphere, Box)
+// Capsule against box: exact segment-box closest points (piecewise quadratic minimisation);
+// segment-box SAT (3 face axes, 3 edge axes) when the core touches the box. Manifold: two
+// points (the core clipped to the face) when the contact normal is a face normal and both
+// ends of the clipped core lie within the contact distance.
+PROXIMA_ROUNDED_PAIR(Capsule, Box)
+
+}  // namespace proxima::narrow
+
+#undef PROXIMA_ROUNDED_PAIR

@@ -1,0 +1,61 @@
+// Sphere against capsule (Ericson, Real-Time Collision Detection, 4.5.1 and 5.1.2).
+//
+// Steps:
+//  1. the capsule's core segment in world; the closest point q of it to the sphere centre c;
+//  2. signed distance |q - c| - both radii, normal (q - c) / |q - c| (A to B); a centre on
+//     the core takes the capsule's local +x axis (perpendicular to the core);
+//  3. witnesses: c and q pushed out along the normal by their radii.
+// Manifold: that single point; feature id: sphere surface against the capsule's bottom end
+// (vertex 0), top end (vertex 1) or side (edge 0).
+#include <proxima/geometry/closest_points.hpp>
+
+#include "narrowphase/pairs_rounded.hpp"
+#include "narrowphase/rounded_common.hpp"
+
+namespace proxima::narrow {
+
+namespace {
+
+struct SphereCapsule {
+  DistanceResult result;
+  Real t = Real(0);
+};
+
+SphereCapsule sphere_capsule(const Sphere& a, const Transform& pose_a, const Capsule& b, const Transform& pose_b,
+                             const PairRequest& request) {
+  const Vec3 c = pose_a.position;
+  const Vec3 p0 = pose_b.apply(b.bottom());
+  const Vec3 p1 = pose_b.apply(b.top());
+  const geometry::SegmentPoint q = geometry::closest_point_segment(c, p0, p1);
+  Real length = Real(0);
+  const Vec3 n = detail::unit_or(q.point - c, pose_b.apply_vector(Vec3(Real(1), Real(0), Real(0))), length);
+  const Real tol =
+      resolve_tolerance(request, detail::pair_scale(pose_a, pose_b, a.radius() + b.radius() + b.half_length()));
+  return {detail::rounded_result(c, q.point, n, length, a.radius(), b.radius(), tol), q.t};
+}
+
+}  // namespace
+
+DistanceResult pair_distance(const Sphere& a, const Transform& pose_a, const Capsule& b, const Transform& pose_b,
+                             const PairRequest& request, PairCache* /*cache*/) {
+  if (!finite_poses(pose_a, pose_b)) return invalid_distance();
+  return sphere_capsule(a, pose_a, b, pose_b, request).result;
+}
+
+bool pair_intersect(const Sphere& a, const Transform& pose_a, const Capsule& b, const Transform& pose_b,
+                    const PairRequest& request, PairCache* cache) {
+  if (!finite_poses(pose_a, pose_b)) return false;
+  return pair_distance(a, pose_a, b, pose_b, request, cache).signed_distance <= request.contact_distance;
+}
+
+ContactManifold pair_collide(const Sphere& a, const Transform& pose_a, const Capsule& b, const Transform& pose_b,
+                             const PairRequest& request, PairCache* /*cache*/) {
+  if (!finite_poses(pose_a, pose_b)) return invalid_manifold();
+  const SphereCapsule sc = sphere_capsule(a, pose_a, b, pose_b, request);
+  FeatureKind kind{};
+  std::uint32_t index = 0;
+  detail::capsule_feature(sc.t, kind, index);
+  return manifold_from_distance(sc.result, request, make_feature_id(FeatureKind::Surface, 0, kind, index));
+}
+
+}  // namespace proxima::narrow

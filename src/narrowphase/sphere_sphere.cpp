@@ -1,0 +1,37 @@
+// Sphere against sphere (Ericson, Real-Time Collision Detection, 4.3.1).
+//
+// Steps:
+//  1. v = centre_b - centre_a; its length minus both radii is the signed distance;
+//  2. the normal is v / |v|; coincident centres take A's local +x axis (world frame);
+//  3. witnesses: each centre pushed out along the normal by its radius.
+// Manifold: that single point (feature ids: the surfaces of both spheres).
+#include "narrowphase/pairs_rounded.hpp"
+#include "narrowphase/rounded_common.hpp"
+
+namespace proxima::narrow {
+
+DistanceResult pair_distance(const Sphere& a, const Transform& pose_a, const Sphere& b, const Transform& pose_b,
+                             const PairRequest& request, PairCache* /*cache*/) {
+  if (!finite_poses(pose_a, pose_b)) return invalid_distance();
+  const Vec3 ca = pose_a.position;
+  const Vec3 cb = pose_b.position;
+  Real length = Real(0);
+  const Vec3 n = detail::unit_or(cb - ca, pose_a.apply_vector(Vec3(Real(1), Real(0), Real(0))), length);
+  const Real tol = resolve_tolerance(request, detail::pair_scale(pose_a, pose_b, a.radius() + b.radius()));
+  return detail::rounded_result(ca, cb, n, length, a.radius(), b.radius(), tol);
+}
+
+bool pair_intersect(const Sphere& a, const Transform& pose_a, const Sphere& b, const Transform& pose_b,
+                    const PairRequest& request, PairCache* cache) {
+  if (!finite_poses(pose_a, pose_b)) return false;
+  return pair_distance(a, pose_a, b, pose_b, request, cache).signed_distance <= request.contact_distance;
+}
+
+ContactManifold pair_collide(const Sphere& a, const Transform& pose_a, const Sphere& b, const Transform& pose_b,
+                             const PairRequest& request, PairCache* cache) {
+  if (!finite_poses(pose_a, pose_b)) return invalid_manifold();
+  return manifold_from_distance(pair_distance(a, pose_a, b, pose_b, request, cache), request,
+                                make_feature_id(FeatureKind::Surface, 0, FeatureKind::Surface, 0));
+}
+
+}  // namespace proxima::narrow
