@@ -1,0 +1,291 @@
+#pragma once
+/// @file uniform_grid.hpp
+/// Cell-based broad phases: UniformGrid ("grid", a dense grid over growing world bounds),
+/// SpatialHash ("hash", cells hashed into an open-addressing table, unbounded worlds) and
+/// HierarchicalGrid ("hgrid", hashed levels of doubling cell size for widely varying box
+/// sizes). All three share one engine (detail::CellEngine).
+///
+/// Steps of find_pairs (Ericson, Real-Time Collision Detection, 7.1 and 7.2; Mirtich's
+/// hierarchical hash grid for "hgrid"):
+/// 1. If anything changed since the last build, bin every proxy: compute its integer cell
+///    range per axis (monotone floor of (x - origin) / cell size, clamped), emit one entry per
+///    covered cell, and counting-sort the entries by cell (boxes copied next to each other).
+///    Boxes covering more than 64 cells go to an "oversized" list tested against everyone.
+/// 2. In every cell, test every two entries; a pair is reported only in the cell that holds
+///    the lower corner of the two cell ranges' intersection (on each axis the cell equals the
+///    larger of the two lower cell indices), so each pair is found exactly once.
+/// 3. hgrid: each box also probes the cells of every coarser occupied level that its box
+///    covers, with the same once-only rule at that level.
+/// 4. Sort the pairs by (lo, hi) (radix sort), so the output is deterministic.
+///
+/// Box and point queries use the cells when the structure is built (after find_pairs or
+/// rebuild) and scan every proxy otherwise; ray queries scan every proxy (slab test, O(n)).
+/// Memory: O(largest id + entries + cells); after the first frames no allocation happens in
+/// steady state (buffers keep their capacity).
+
+#include <proxima/broadphase/broadphase.hpp>
+#include <proxima/broadphase/proxy_table.hpp>
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace proxima {
+
+namespace detail {
+
+/// How an engine maps cell coordinates to cells.
+enum class CellMode : std::uint8_t {
+  Dense,         ///< dense array over the world bounds (UniformGrid)
+  Hashed,        ///< one hashed level (SpatialHash)
+  Hierarchical,  ///< hashed levels of doubling cell size (HierarchicalGrid)
+};
+
+/// The engine behind UniformGrid, SpatialHash and HierarchicalGrid (see the file comment).
+class CellEngine {
+ public:
+  /// `cell_size` <= 0 chooses it from the boxes at each build.
+  CellEngine(CellMode mode, Real cell_size);
+
+  BroadPhaseStatus insert(ProxyId id, const Aabb& box, ProxyKind kind, ProxyFilter filter);
+  BroadPhaseStatus remove(ProxyId id);
+  BroadPhaseStatus update(ProxyId id, const Aabb& box);
+  BroadPhaseStatus update(std::span<const ProxyUpdate> updates);
+  void rebuild();
+  void find_pairs(std::vector<ProxyPair>& out);
+  void query_aabb(const Aabb& box, const OverlapQueryCallback& on_overlap) const;
+  void query_point(const Vec3& point, const OverlapQueryCallback& on_overlap) const;
+  void query_ray(const Ray& ray, Real max_t, const RayQueryCallback& on_ray) const;
+  bool validate() const;
+  BroadPhaseStats stats() const { return stats_; }
+  std::size_t size() const { return proxies_.size(); }
+  void set_thread_count(int threads) { threads_ = threads < 1 ? 1 : threads; }
+  Real cell_size() const { return cell_; }
+  std::size_t cell_count() const { return cell_start_.empty() ? 0 : cell_start_.size() - 1; }
+  std::size_t entry_count() const { return entries_.size(); }
+  std::size_t memory_bytes() const;
+
+  /// One binned proxy in a cell: its box, id and the "lower cell" bits (bit k set when this
+  /// cell is the proxy's lowest cell on axis k).
+  struct Entry {
+    Vec3 min;
+    Vec3 max;
+    ProxyId id = 0;
+    std::uint32_t bits = 0;
+  };
+
+ private:
+  struct Range {
+    std::int32_t lo[3];
+    std::int32_t hi[3];
+    std::int32_t level;
+  };
+  struct Slot {
+    std::uint64_t key = kEmptyKey;
+    std::uint32_t cell = 0;
+  };
+  static constexpr std::uint64_t kEmptyKey = ~std::uint64_t(0);
+
+  void build();
+  void choose_cell_size();
+  Range range_of(const Aabb& box, int level) const;
+  std::uint32_t find_cell(std::int32_t level, std::int32_t x, std::int32_t y, std::int32_t z) const;
+  std::uint32_t find_or_add_cell(std::int32_t level, std::int32_t x, std::int32_t y, std::int32_t z);
+  int level_of(const Aabb& box) const;
+  void pairs_in_cells(std::uint32_t cell_begin, std::uint32_t cell_end, std::vector<ProxyPair>& out,
+                      BroadPhaseStats& st) const;
+  void pairs_across_levels(std::size_t begin, std::size_t end, std::vector<ProxyPair>& out, BroadPhaseStats& st) const;
+  void pairs_oversized(std::size_t begin, std::size_t end, std::vector<ProxyPair>& out, BroadPhaseStats& st) const;
+  bool scan_query(const Aabb& box, const OverlapQueryCallback& on_overlap) const;
+
+  CellMode mode_;
+  Real fixed_cell_;    // user cell size, <= 0 for automatic
+  Real cell_ = 1;      // cell size of the last build (level 0 for hgrid)
+  Real inv_cell_ = 1;  // 1 / cell_
+  Vec3 origin_{0};     // dense grid origin (world bounds min)
+  Aabb bounds_;        // dense grid world bounds (grow only, reset by rebuild())
+  std::int32_t dims_[3] = {1, 1, 1};
+  std::uint32_t level_mask_ = 0;  // hgrid: occupied levels
+  int threads_ = 1;
+  bool dirty_ = true;
+
+  detail::ProxyTable proxies_;
+  std::vector<Range> ranges_;               // per dense slot
+  std::vector<std::uint32_t> raw_cell_;     // per raw entry: cell index
+  std::vector<std::uint32_t> raw_slot_;     // per raw entry: dense slot | bits << 29
+  std::vector<std::uint32_t> cell_start_;   // cells + 1 offsets into entries_
+  std::vector<std::uint64_t> cell_key_;     // hashed modes: key of each cell
+  std::vector<Slot> table_;                 // hashed modes: key -> cell
+  std::vector<Entry> entries_;              // entries sorted by cell
+  std::vector<std::uint32_t> oversized_;    // dense slots of oversized proxies
+  std::vector<std::uint8_t> is_oversized_;  // per dense slot
+  std::vector<std::vector<ProxyPair>> thread_pairs_;
+  std::vector<ProxyPair> sort_scratch_;
+  mutable BroadPhaseStats stats_;
+};
+
+}  // namespace detail
+
+/// Dense uniform grid over the world bounds (which grow as boxes leave them; rebuild()
+/// refits them). Best for bounded worlds of boxes of similar size. Cell size: the given one,
+/// or 1.5 x the mean largest box extent; the grid has at most max(64, 2 n) cells (the cell
+/// size grows when the bounds would need more). find_pairs: O(n + cells + k) for boxes of
+/// similar size (k = candidate pairs in shared cells).
+class UniformGrid {
+ public:
+  /// `cell_size` <= 0: automatic (see the class comment).
+  explicit UniformGrid(Real cell_size = 0) : engine_(detail::CellMode::Dense, cell_size) {}
+
+  /// Adds a proxy. O(1).
+  BroadPhaseStatus insert(ProxyId id, const Aabb& box, ProxyKind kind = ProxyKind::Moving, ProxyFilter filter = {}) {
+    return engine_.insert(id, box, kind, filter);
+  }
+  /// Removes a proxy. O(1).
+  BroadPhaseStatus remove(ProxyId id) { return engine_.remove(id); }
+  /// Moves a proxy. O(1) (binning happens at the next find_pairs / rebuild).
+  BroadPhaseStatus update(ProxyId id, const Aabb& box) { return engine_.update(id, box); }
+  /// Moves many proxies, all or nothing. O(m).
+  BroadPhaseStatus update(std::span<const ProxyUpdate> updates) { return engine_.update(updates); }
+  /// Refits the world bounds and cell size and bins every proxy. O(n + cells).
+  void rebuild() { engine_.rebuild(); }
+  /// Every pair, sorted (broadphase.hpp).
+  void find_pairs(std::vector<ProxyPair>& out) { engine_.find_pairs(out); }
+  /// Proxies whose box overlaps `box` (closed), each once.
+  void query_aabb(const Aabb& box, const OverlapQueryCallback& on_overlap) const {
+    engine_.query_aabb(box, on_overlap);
+  }
+  /// Proxies whose box contains `point`, each once.
+  void query_point(const Vec3& point, const OverlapQueryCallback& on_overlap) const {
+    engine_.query_point(point, on_overlap);
+  }
+  /// Proxies whose box the ray enters at t <= the current max fraction. O(n).
+  void query_ray(const Ray& ray, Real max_t, const RayQueryCallback& on_ray) const {
+    engine_.query_ray(ray, max_t, on_ray);
+  }
+  /// Checks the proxy table and, when built, that every proxy sits in exactly its cells.
+  bool validate() const { return engine_.validate(); }
+  /// Counters of the last find_pairs / query.
+  BroadPhaseStats stats() const { return engine_.stats(); }
+  /// Number of proxies.
+  std::size_t size() const { return engine_.size(); }
+  /// Worker threads used by find_pairs (1 = the calling thread only).
+  void set_thread_count(int threads) { engine_.set_thread_count(threads); }
+  /// Cell size of the last build.
+  Real cell_size() const { return engine_.cell_size(); }
+  /// Bytes held by the structure's buffers (capacity).
+  std::size_t memory_bytes() const { return engine_.memory_bytes(); }
+
+ private:
+  detail::CellEngine engine_;
+};
+
+/// Spatial hash: cells of a fixed (or automatic, as UniformGrid) size addressed by their
+/// integer coordinates through an open-addressing hash table, so the world is unbounded and
+/// memory follows the occupied cells only. Coordinates are clamped to +-2^18 cells (far
+/// cells merge; results stay exact). Same costs as UniformGrid plus one hash probe per entry.
+class SpatialHash {
+ public:
+  /// `cell_size` <= 0: automatic.
+  explicit SpatialHash(Real cell_size = 0) : engine_(detail::CellMode::Hashed, cell_size) {}
+
+  /// Adds a proxy. O(1).
+  BroadPhaseStatus insert(ProxyId id, const Aabb& box, ProxyKind kind = ProxyKind::Moving, ProxyFilter filter = {}) {
+    return engine_.insert(id, box, kind, filter);
+  }
+  /// Removes a proxy. O(1).
+  BroadPhaseStatus remove(ProxyId id) { return engine_.remove(id); }
+  /// Moves a proxy. O(1).
+  BroadPhaseStatus update(ProxyId id, const Aabb& box) { return engine_.update(id, box); }
+  /// Moves many proxies, all or nothing. O(m).
+  BroadPhaseStatus update(std::span<const ProxyUpdate> updates) { return engine_.update(updates); }
+  /// Re-chooses the cell size and bins every proxy. O(n).
+  void rebuild() { engine_.rebuild(); }
+  /// Every pair, sorted.
+  void find_pairs(std::vector<ProxyPair>& out) { engine_.find_pairs(out); }
+  /// Proxies whose box overlaps `box`, each once.
+  void query_aabb(const Aabb& box, const OverlapQueryCallback& on_overlap) const {
+    engine_.query_aabb(box, on_overlap);
+  }
+  /// Proxies whose box contains `point`, each once.
+  void query_point(const Vec3& point, const OverlapQueryCallback& on_overlap) const {
+    engine_.query_point(point, on_overlap);
+  }
+  /// Proxies whose box the ray enters at t <= the current max fraction. O(n).
+  void query_ray(const Ray& ray, Real max_t, const RayQueryCallback& on_ray) const {
+    engine_.query_ray(ray, max_t, on_ray);
+  }
+  /// Checks the proxy table and the cells.
+  bool validate() const { return engine_.validate(); }
+  /// Counters of the last find_pairs / query.
+  BroadPhaseStats stats() const { return engine_.stats(); }
+  /// Number of proxies.
+  std::size_t size() const { return engine_.size(); }
+  /// Worker threads used by find_pairs.
+  void set_thread_count(int threads) { engine_.set_thread_count(threads); }
+  /// Cell size of the last build.
+  Real cell_size() const { return engine_.cell_size(); }
+  /// Bytes held by the structure's buffers (capacity).
+  std::size_t memory_bytes() const { return engine_.memory_bytes(); }
+
+ private:
+  detail::CellEngine engine_;
+};
+
+/// Hierarchical hash grid: level l has cells of size s 2^l (s: the given size, or the
+/// smallest largest-extent of the boxes); a box lives at the lowest level whose cell is at
+/// least its largest extent, so it covers at most 2 cells per axis there, and probes the
+/// coarser occupied levels for partners. Up to 32 levels. Best when box sizes vary by orders
+/// of magnitude (a few huge static boxes among many small ones). find_pairs: O(n L + k).
+class HierarchicalGrid {
+ public:
+  /// `cell_size` <= 0: automatic (level-0 cell size).
+  explicit HierarchicalGrid(Real cell_size = 0) : engine_(detail::CellMode::Hierarchical, cell_size) {}
+
+  /// Adds a proxy. O(1).
+  BroadPhaseStatus insert(ProxyId id, const Aabb& box, ProxyKind kind = ProxyKind::Moving, ProxyFilter filter = {}) {
+    return engine_.insert(id, box, kind, filter);
+  }
+  /// Removes a proxy. O(1).
+  BroadPhaseStatus remove(ProxyId id) { return engine_.remove(id); }
+  /// Moves a proxy. O(1).
+  BroadPhaseStatus update(ProxyId id, const Aabb& box) { return engine_.update(id, box); }
+  /// Moves many proxies, all or nothing. O(m).
+  BroadPhaseStatus update(std::span<const ProxyUpdate> updates) { return engine_.update(updates); }
+  /// Re-chooses the level-0 cell size and bins every proxy. O(n).
+  void rebuild() { engine_.rebuild(); }
+  /// Every pair, sorted.
+  void find_pairs(std::vector<ProxyPair>& out) { engine_.find_pairs(out); }
+  /// Proxies whose box overlaps `box`, each once.
+  void query_aabb(const Aabb& box, const OverlapQueryCallback& on_overlap) const {
+    engine_.query_aabb(box, on_overlap);
+  }
+  /// Proxies whose box contains `point`, each once.
+  void query_point(const Vec3& point, const OverlapQueryCallback& on_overlap) const {
+    engine_.query_point(point, on_overlap);
+  }
+  /// Proxies whose box the ray enters at t <= the current max fraction. O(n).
+  void query_ray(const Ray& ray, Real max_t, const RayQueryCallback& on_ray) const {
+    engine_.query_ray(ray, max_t, on_ray);
+  }
+  /// Checks the proxy table and the cells.
+  bool validate() const { return engine_.validate(); }
+  /// Counters of the last find_pairs / query.
+  BroadPhaseStats stats() const { return engine_.stats(); }
+  /// Number of proxies.
+  std::size_t size() const { return engine_.size(); }
+  /// Worker threads used by find_pairs.
+  void set_thread_count(int threads) { engine_.set_thread_count(threads); }
+  /// Level-0 cell size of the last build.
+  Real cell_size() const { return engine_.cell_size(); }
+  /// Bytes held by the structure's buffers (capacity).
+  std::size_t memory_bytes() const { return engine_.memory_bytes(); }
+
+ private:
+  detail::CellEngine engine_;
+};
+
+static_assert(BroadPhaseStructure<UniformGrid>);
+static_assert(BroadPhaseStructure<SpatialHash>);
+static_assert(BroadPhaseStructure<HierarchicalGrid>);
+
+}  // namespace proxima
