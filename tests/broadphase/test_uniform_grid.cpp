@@ -5,10 +5,27 @@
 
 #include <proxima/broadphase/uniform_grid.hpp>
 
+#include "broadphase/broadphase_scenes.hpp"
 #include "broadphase/structure_checks.hpp"
 
 namespace proxima {
 namespace {
+
+// The shared differential harness: every standard scene against the brute-force reference.
+PROXIMA_BROADPHASE_DIFFERENTIAL_SUITE(
+    UniformGridDifferential, [] { return UniformGrid(); }, 12);
+PROXIMA_BROADPHASE_DIFFERENTIAL_SUITE(
+    SpatialHashDifferential, [] { return SpatialHash(); }, 12);
+PROXIMA_BROADPHASE_DIFFERENTIAL_SUITE(
+    HierarchicalGridDifferential, [] { return HierarchicalGrid(); }, 12);
+PROXIMA_BROADPHASE_DIFFERENTIAL_SUITE(
+    ThreadedHashDifferential,
+    [] {
+      SpatialHash s;
+      s.set_thread_count(2);
+      return s;
+    },
+    6);
 
 template <class S>
 class CellStructureTest : public testing::Test {};
