@@ -1,0 +1,740 @@
+/// @file dynamic_aabb_tree.cpp
+/// DynamicAabbTree: two pooled binary AABB trees (static, moving) with fat leaves.
+///
+/// Steps:
+/// 1. insert: make the fat box, find the SAH-best sibling by branch and bound (the cost of a
+///    sibling is the area of the new parent plus the area growth it inherits from its
+///    ancestors; a subtree is skipped when its lower bound cannot beat the best found), link a
+///    new parent, then walk up refitting boxes and heights and applying the best area-reducing
+///    rotation at each ancestor (child <-> grandchild or grandchild <-> grandchild swap).
+/// 2. update: O(1) while the new box fits in the fat box (and the fat box is not more than twice
+///    too large); otherwise remove and reinsert.
+/// 3. rebuild: top-down binned SAH over the leaves' fat boxes (16 bins, 3 axes), nodes emitted
+///    in depth-first order for locality.
+/// 4. find_pairs: simultaneous descent of node pairs (moving x moving, moving x static) with a
+///    fixed stack, splitting the node of larger area; leaf pairs test the real boxes and filters.
+///    Threads split the top node pairs; each keeps its own output; results are sorted.
+/// References: E. Catto, Box2D v3 dynamic_tree.c (design); J. Bittner et al. 2013 (insertion
+/// search); A. Kopta et al. 2012 (rotations); I. Wald 2007 (binned SAH); C. Ericson,
+/// Real-Time Collision Detection, 6.2 and 6.5.
+
+#include <proxima/broadphase/dynamic_aabb_tree.hpp>
+#include <proxima/broadphase/pair_tracker.hpp>
+#include <proxima/core/tolerance.hpp>
+#include <proxima/geometry/raycast.hpp>
+
+#include <algorithm>
+#include <atomic>
+#include <thread>
+
+#include "broadphase/tree_support.hpp"
+
+namespace proxima {
+
+namespace {
+
+constexpr int kBins = 16;
+constexpr int kMaxBuildDepth = 64;
+
+struct BuildItem {
+  Aabb box;
+  Vec3 centre;
+  ProxyId id;
+};
+
+}  // namespace
+
+DynamicAabbTree::DynamicAabbTree(const DynamicAabbTreeConfig& config) : config_(config) {
+  if (!(config_.margin_fraction >= Real(0))) config_.margin_fraction = Real(0);
+  if (!(config_.margin_min >= Real(0))) config_.margin_min = Real(0);
+}
+
+// ---- pool ---------------------------------------------------------------------------------
+
+std::uint32_t DynamicAabbTree::allocate(Tree& tree) {
+  std::uint32_t index;
+  if (tree.free_list != kNull) {
+    index = tree.free_list;
+    tree.free_list = tree.nodes[index].parent;
+  } else {
+    index = static_cast<std::uint32_t>(tree.nodes.size());
+    tree.nodes.emplace_back();
+  }
+  tree.nodes[index] = Node{};
+  ++tree.in_use;
+  return index;
+}
+
+void DynamicAabbTree::release(Tree& tree, std::uint32_t index) {
+  Node& n = tree.nodes[index];
+  n.child1 = kNull;
+  n.child2 = kNull;
+  n.height = -1;
+  n.parent = tree.free_list;
+  tree.free_list = index;
+  --tree.in_use;
+}
+
+// ---- insertion, removal, rotations --------------------------------------------------------
+
+void DynamicAabbTree::refit_up(Tree& tree, std::uint32_t index) {
+  while (index != kNull) {
+    Node& n = tree.nodes[index];
+    const Node& c1 = tree.nodes[n.child1];
+    const Node& c2 = tree.nodes[n.child2];
+    n.box = merge(c1.box, c2.box);
+    n.height = 1 + std::max(c1.height, c2.height);
+    index = n.parent;
+  }
+}
+
+void DynamicAabbTree::insert_leaf(Tree& tree, std::uint32_t leaf) {
+  ++tree.leaves;
+  if (tree.root == kNull) {
+    tree.root = leaf;
+    tree.nodes[leaf].parent = kNull;
+    return;
+  }
+  const Aabb box = tree.nodes[leaf].box;
+  const Real box_area = box.surface_area();
+
+  // Branch and bound over the SAH insertion cost.
+  std::uint32_t best = tree.root;
+  Real best_cost = merge(tree.nodes[tree.root].box, box).surface_area();
+  struct Entry {
+    std::uint32_t node;
+    Real inherited;
+  };
+  detail::TraversalStack<Entry, 256> stack;
+  stack.push({tree.root, Real(0)});
+  while (!stack.empty()) {
+    const Entry e = stack.pop();
+    const Node& n = tree.nodes[e.node];
+    const Real direct = merge(n.box, box).surface_area();
+    const Real cost = direct + e.inherited;
+    if (cost < best_cost) {
+      best_cost = cost;
+      best = e.node;
+    }
+    if (n.is_leaf()) continue;
+    const Real inherited = e.inherited + direct - n.box.surface_area();
+    if (box_area + inherited < best_cost) {
+      stack.push({n.child1, inherited});
+      stack.push({n.child2, inherited});
+    }
+  }
+
+  const std::uint32_t sibling = best;
+  const std::uint32_t parent = allocate(tree);  // may reallocate: no references held above
+  const std::uint32_t old_parent = tree.nodes[sibling].parent;
+  Node& p = tree.nodes[parent];
+  p.parent = old_parent;
+  p.box = merge(tree.nodes[sibling].box, box);
+  p.child1 = sibling;
+  p.child2 = leaf;
+  p.height = tree.nodes[sibling].height + 1;
+  if (old_parent != kNull) {
+    Node& op = tree.nodes[old_parent];
+    (op.child1 == sibling ? op.child1 : op.child2) = parent;
+  } else {
+    tree.root = parent;
+  }
+  tree.nodes[sibling].parent = parent;
+  tree.nodes[leaf].parent = parent;
+
+  std::uint32_t index = parent;
+  while (index != kNull) {
+    Node& n = tree.nodes[index];
+    n.box = merge(tree.nodes[n.child1].box, tree.nodes[n.child2].box);
+    n.height = 1 + std::max(tree.nodes[n.child1].height, tree.nodes[n.child2].height);
+    if (config_.rotations) rotate(tree, index);
+    index = tree.nodes[index].parent;
+  }
+}
+
+void DynamicAabbTree::remove_leaf(Tree& tree, std::uint32_t leaf) {
+  --tree.leaves;
+  if (leaf == tree.root) {
+    tree.root = kNull;
+    return;
+  }
+  const std::uint32_t parent = tree.nodes[leaf].parent;
+  const std::uint32_t grand = tree.nodes[parent].parent;
+  const std::uint32_t sibling =
+      tree.nodes[parent].child1 == leaf ? tree.nodes[parent].child2 : tree.nodes[parent].child1;
+  if (grand != kNull) {
+    Node& g = tree.nodes[grand];
+    (g.child1 == parent ? g.child1 : g.child2) = sibling;
+    tree.nodes[sibling].parent = grand;
+    release(tree, parent);
+    refit_up(tree, grand);
+  } else {
+    tree.root = sibling;
+    tree.nodes[sibling].parent = kNull;
+    release(tree, parent);
+  }
+  tree.nodes[leaf].parent = kNull;
+}
+
+void DynamicAabbTree::rotate(Tree& tree, std::uint32_t index) {
+  std::vector<Node>& nodes = tree.nodes;
+  const std::uint32_t b = nodes[index].child1;
+  const std::uint32_t c = nodes[index].child2;
+  const bool b_internal = !nodes[b].is_leaf();
+  const bool c_internal = !nodes[c].is_leaf();
+  if (!b_internal && !c_internal) return;
+
+  // Candidate swaps (x, y): x and y exchange places; cost is the change of summed area.
+  std::uint32_t best_x = kNull;
+  std::uint32_t best_y = kNull;
+  Real best_diff = Real(0);
+  auto consider = [&](std::uint32_t x, std::uint32_t y, Real diff) {
+    if (diff < best_diff) {
+      best_diff = diff;
+      best_x = x;
+      best_y = y;
+    }
+  };
+  if (c_internal) {
+    const std::uint32_t f = nodes[c].child1;
+    const std::uint32_t g = nodes[c].child2;
+    const Real area_c = nodes[c].box.surface_area();
+    consider(b, f, merge(nodes[b].box, nodes[g].box).surface_area() - area_c);
+    consider(b, g, merge(nodes[b].box, nodes[f].box).surface_area() - area_c);
+  }
+  if (b_internal) {
+    const std::uint32_t d = nodes[b].child1;
+    const std::uint32_t e = nodes[b].child2;
+    const Real area_b = nodes[b].box.surface_area();
+    consider(c, d, merge(nodes[c].box, nodes[e].box).surface_area() - area_b);
+    consider(c, e, merge(nodes[c].box, nodes[d].box).surface_area() - area_b);
+  }
+  if (b_internal && c_internal) {
+    const std::uint32_t d = nodes[b].child1;
+    const std::uint32_t e = nodes[b].child2;
+    const std::uint32_t f = nodes[c].child1;
+    const std::uint32_t g = nodes[c].child2;
+    const Real base = nodes[b].box.surface_area() + nodes[c].box.surface_area();
+    consider(
+        d, f,
+        merge(nodes[f].box, nodes[e].box).surface_area() + merge(nodes[d].box, nodes[g].box).surface_area() - base);
+    consider(
+        d, g,
+        merge(nodes[g].box, nodes[e].box).surface_area() + merge(nodes[f].box, nodes[d].box).surface_area() - base);
+  }
+  if (best_x == kNull) return;
+
+  // Exchange best_x and best_y under their parents, then refit the lower parents.
+  const std::uint32_t px = nodes[best_x].parent;
+  const std::uint32_t py = nodes[best_y].parent;
+  (nodes[px].child1 == best_x ? nodes[px].child1 : nodes[px].child2) = best_y;
+  (nodes[py].child1 == best_y ? nodes[py].child1 : nodes[py].child2) = best_x;
+  nodes[best_x].parent = py;
+  nodes[best_y].parent = px;
+  for (const std::uint32_t n : {b, c}) {
+    Node& m = nodes[n];
+    if (m.is_leaf()) continue;
+    m.box = merge(nodes[m.child1].box, nodes[m.child2].box);
+    m.height = 1 + std::max(nodes[m.child1].height, nodes[m.child2].height);
+  }
+  // b and c may have moved below each other's place; index keeps the same two children slots.
+  Node& a = nodes[index];
+  a.height = 1 + std::max(nodes[a.child1].height, nodes[a.child2].height);
+}
+
+// ---- fat boxes ------------------------------------------------------------------------------
+
+Aabb DynamicAabbTree::make_fat(const Aabb& box, ProxyKind kind) const {
+  if (kind == ProxyKind::Static) return box;
+  const Vec3 e = box.extents();
+  const Real margin = std::max(config_.margin_min, config_.margin_fraction * std::max(e.x, std::max(e.y, e.z)));
+  Aabb fat = box.inflated(margin);
+  // Keep fat boxes finite and within range even for boxes near kMaxCoordinate.
+  fat.min = glm::max(fat.min, Vec3(-kMaxCoordinate));
+  fat.max = glm::min(fat.max, Vec3(kMaxCoordinate));
+  return fat;
+}
+
+bool DynamicAabbTree::needs_reinsert(const Proxy& p, const Aabb& fat) const {
+  if (!fat.contains(p.box)) return true;
+  if (p.kind == ProxyKind::Static) return fat.min != p.box.min || fat.max != p.box.max;
+  // A fat box more than twice the size the new box would get is too loose: refresh it.
+  const Aabb ideal = make_fat(p.box, p.kind);
+  const Vec3 fe = fat.extents();
+  const Vec3 ie = ideal.extents();
+  return (fe.x + fe.y + fe.z) > Real(2) * (ie.x + ie.y + ie.z);
+}
+
+void DynamicAabbTree::reinsert(Proxy& p) {
+  Tree& tree = tree_of(p.kind);
+  remove_leaf(tree, p.leaf);
+  tree.nodes[p.leaf].box = make_fat(p.box, p.kind);
+  insert_leaf(tree, p.leaf);
+}
+
+// ---- public edits ---------------------------------------------------------------------------
+
+BroadPhaseStatus DynamicAabbTree::insert(ProxyId id, const Aabb& box, ProxyKind kind, ProxyFilter filter) {
+  const BroadPhaseStatus s = check_box(box);
+  if (s != BroadPhaseStatus::Ok) return s;
+  if (id < proxies_.size() && proxies_[id].leaf != kNull) return BroadPhaseStatus::DuplicateId;
+  if (id >= proxies_.size()) proxies_.resize(static_cast<std::size_t>(id) + 1);
+  Tree& tree = tree_of(kind);
+  const std::uint32_t leaf = allocate(tree);
+  tree.nodes[leaf].box = make_fat(box, kind);
+  tree.nodes[leaf].child2 = id;
+  Proxy& p = proxies_[id];
+  p.box = box;
+  p.filter = filter;
+  p.kind = kind;
+  p.leaf = leaf;
+  insert_leaf(tree, leaf);
+  ++count_;
+  return BroadPhaseStatus::Ok;
+}
+
+BroadPhaseStatus DynamicAabbTree::remove(ProxyId id) {
+  if (id >= proxies_.size() || proxies_[id].leaf == kNull) return BroadPhaseStatus::UnknownId;
+  Proxy& p = proxies_[id];
+  Tree& tree = tree_of(p.kind);
+  remove_leaf(tree, p.leaf);
+  release(tree, p.leaf);
+  p = Proxy{};
+  --count_;
+  return BroadPhaseStatus::Ok;
+}
+
+BroadPhaseStatus DynamicAabbTree::update(ProxyId id, const Aabb& box) {
+  if (id >= proxies_.size() || proxies_[id].leaf == kNull) return BroadPhaseStatus::UnknownId;
+  const BroadPhaseStatus s = check_box(box);
+  if (s != BroadPhaseStatus::Ok) return s;
+  Proxy& p = proxies_[id];
+  p.box = box;
+  if (needs_reinsert(p, tree_of(p.kind).nodes[p.leaf].box)) reinsert(p);
+  return BroadPhaseStatus::Ok;
+}
+
+BroadPhaseStatus DynamicAabbTree::update(std::span<const ProxyUpdate> updates) {
+  for (const ProxyUpdate& u : updates) {
+    if (u.id >= proxies_.size() || proxies_[u.id].leaf == kNull) return BroadPhaseStatus::UnknownId;
+    const BroadPhaseStatus s = check_box(u.box);
+    if (s != BroadPhaseStatus::Ok) return s;
+  }
+  // Apply the boxes; count the moving leaves that leave their fat boxes.
+  std::size_t moving_out = 0;
+  for (const ProxyUpdate& u : updates) {
+    Proxy& p = proxies_[u.id];
+    p.box = u.box;
+    if (p.kind == ProxyKind::Moving && needs_reinsert(p, moving_.nodes[p.leaf].box)) ++moving_out;
+  }
+  const bool rebuild_moving = moving_.leaves >= 64 && static_cast<Real>(moving_out) >
+                                                          config_.rebuild_fraction * static_cast<Real>(moving_.leaves);
+  for (const ProxyUpdate& u : updates) {
+    Proxy& p = proxies_[u.id];
+    Tree& tree = tree_of(p.kind);
+    if (!needs_reinsert(p, tree.nodes[p.leaf].box)) continue;
+    if (rebuild_moving && p.kind == ProxyKind::Moving) {
+      tree.nodes[p.leaf].box = make_fat(p.box, p.kind);  // internal nodes are rebuilt below
+    } else {
+      reinsert(p);
+    }
+  }
+  if (rebuild_moving) rebuild_tree(moving_);
+  return BroadPhaseStatus::Ok;
+}
+
+// ---- binned SAH rebuild -----------------------------------------------------------------------
+
+void DynamicAabbTree::rebuild() {
+  rebuild_tree(static_);
+  rebuild_tree(moving_);
+}
+
+void DynamicAabbTree::rebuild_tree(Tree& tree) {
+  std::vector<BuildItem> items;
+  items.reserve(tree.leaves);
+  for (const Node& n : tree.nodes) {
+    if (n.height == 0 && n.is_leaf() && n.child2 != kNull) items.push_back({n.box, n.box.center(), n.child2});
+  }
+  // Leaves must be exactly the proxies of this tree (freed nodes have height -1).
+  Tree fresh;
+  if (items.empty()) {
+    tree = fresh;
+    return;
+  }
+  fresh.nodes.reserve(2 * items.size() - 1);
+
+  struct Bin {
+    Aabb box;
+    std::size_t count = 0;
+  };
+  // Recursive lambda via explicit function object: returns the index of the subtree root.
+  auto build = [&](auto&& self, std::size_t begin, std::size_t end, std::uint32_t parent, int depth) -> std::uint32_t {
+    const auto index = static_cast<std::uint32_t>(fresh.nodes.size());
+    fresh.nodes.emplace_back();
+    fresh.nodes[index].parent = parent;
+    const std::size_t count = end - begin;
+    if (count == 1) {
+      Node& leaf = fresh.nodes[index];
+      leaf.box = items[begin].box;
+      leaf.child2 = items[begin].id;
+      leaf.height = 0;
+      proxies_[items[begin].id].leaf = index;
+      return index;
+    }
+    Aabb centres = Aabb::empty();
+    for (std::size_t i = begin; i < end; ++i) centres.grow(items[i].centre);
+    std::size_t mid = begin + count / 2;
+    bool split_found = false;
+    if (depth < kMaxBuildDepth) {
+      Real best_cost = kRealMax;
+      int best_axis = -1;
+      int best_bin = -1;
+      for (int axis = 0; axis < 3; ++axis) {
+        const Real lo = centres.min[axis];
+        const Real extent = centres.max[axis] - lo;
+        if (!(extent > Real(0))) continue;
+        const Real scale = Real(kBins) / extent;
+        Bin bins[kBins];
+        for (std::size_t i = begin; i < end; ++i) {
+          int bi = static_cast<int>((items[i].centre[axis] - lo) * scale);
+          bi = std::clamp(bi, 0, kBins - 1);
+          bins[bi].box.grow(items[i].box);
+          ++bins[bi].count;
+        }
+        Real right_area[kBins];
+        std::size_t right_count[kBins];
+        Aabb acc = Aabb::empty();
+        std::size_t cnt = 0;
+        for (int i = kBins - 1; i > 0; --i) {
+          acc.grow(bins[i].box);
+          cnt += bins[i].count;
+          right_area[i] = cnt ? acc.surface_area() : Real(0);
+          right_count[i] = cnt;
+        }
+        acc = Aabb::empty();
+        cnt = 0;
+        for (int i = 0; i < kBins - 1; ++i) {
+          acc.grow(bins[i].box);
+          cnt += bins[i].count;
+          if (cnt == 0 || right_count[i + 1] == 0) continue;
+          const Real cost =
+              acc.surface_area() * static_cast<Real>(cnt) + right_area[i + 1] * static_cast<Real>(right_count[i + 1]);
+          if (cost < best_cost) {
+            best_cost = cost;
+            best_axis = axis;
+            best_bin = i;
+          }
+        }
+      }
+      if (best_axis >= 0) {
+        const Real lo = centres.min[best_axis];
+        const Real scale = Real(kBins) / (centres.max[best_axis] - lo);
+        auto it = std::partition(items.begin() + static_cast<std::ptrdiff_t>(begin),
+                                 items.begin() + static_cast<std::ptrdiff_t>(end), [&](const BuildItem& it2) {
+                                   int bi = static_cast<int>((it2.centre[best_axis] - lo) * scale);
+                                   return std::clamp(bi, 0, kBins - 1) <= best_bin;
+                                 });
+        mid = static_cast<std::size_t>(it - items.begin());
+        split_found = mid > begin && mid < end;
+      }
+    }
+    if (!split_found) {
+      // Median split on the widest centre axis (also bounds the depth).
+      const Vec3 e = centres.extents();
+      const int axis = e.x >= e.y && e.x >= e.z ? 0 : (e.y >= e.z ? 1 : 2);
+      mid = begin + count / 2;
+      std::nth_element(
+          items.begin() + static_cast<std::ptrdiff_t>(begin), items.begin() + static_cast<std::ptrdiff_t>(mid),
+          items.begin() + static_cast<std::ptrdiff_t>(end), [axis](const BuildItem& x, const BuildItem& y) {
+            return x.centre[axis] < y.centre[axis] || (x.centre[axis] == y.centre[axis] && x.id < y.id);
+          });
+    }
+    const std::uint32_t c1 = self(self, begin, mid, index, depth + 1);
+    const std::uint32_t c2 = self(self, mid, end, index, depth + 1);
+    Node& n = fresh.nodes[index];
+    n.child1 = c1;
+    n.child2 = c2;
+    n.box = merge(fresh.nodes[c1].box, fresh.nodes[c2].box);
+    n.height = 1 + std::max(fresh.nodes[c1].height, fresh.nodes[c2].height);
+    return index;
+  };
+  fresh.root = build(build, 0, items.size(), kNull, 0);
+  fresh.in_use = fresh.nodes.size();
+  fresh.leaves = items.size();
+  tree = std::move(fresh);
+}
+
+// ---- pair finding -----------------------------------------------------------------------------
+
+void DynamicAabbTree::collide_task(const PairTask& task, std::vector<ProxyPair>& out, BroadPhaseStats& st) const {
+  const std::vector<Node>& na = moving_.nodes;
+  const std::vector<Node>& nb = task.cross ? static_.nodes : moving_.nodes;
+  struct Item {
+    std::uint32_t a;
+    std::uint32_t b;
+  };
+  detail::TraversalStack<Item, 512> stack;
+  stack.push({task.a, task.b});
+  while (!stack.empty()) {
+    const Item it = stack.pop();
+    ++st.nodes_visited;
+    const Node& a = na[it.a];
+    if (!task.cross && it.a == it.b) {
+      if (a.is_leaf()) continue;
+      stack.push({a.child1, a.child1});
+      stack.push({a.child2, a.child2});
+      stack.push({a.child1, a.child2});
+      continue;
+    }
+    const Node& b = nb[it.b];
+    if (!a.box.overlaps(b.box)) continue;
+    const bool a_leaf = a.is_leaf();
+    const bool b_leaf = b.is_leaf();
+    if (a_leaf && b_leaf) {
+      const Proxy& pa = proxies_[a.child2];
+      const Proxy& pb = proxies_[b.child2];
+      ++st.pairs_tested;
+      if (pa.box.overlaps(pb.box) && can_pair(pa.filter, pb.filter)) {
+        out.push_back(a.child2 < b.child2 ? ProxyPair{a.child2, b.child2} : ProxyPair{b.child2, a.child2});
+      }
+      continue;
+    }
+    if (b_leaf || (!a_leaf && a.box.surface_area() >= b.box.surface_area())) {
+      stack.push({a.child1, it.b});
+      stack.push({a.child2, it.b});
+    } else {
+      stack.push({it.a, b.child1});
+      stack.push({it.a, b.child2});
+    }
+  }
+}
+
+void DynamicAabbTree::find_pairs(std::vector<ProxyPair>& out) {
+  out.clear();
+  BroadPhaseStats st;
+  std::vector<PairTask> tasks;
+  if (moving_.root != kNull) {
+    tasks.push_back({moving_.root, moving_.root, false});
+    if (static_.root != kNull) tasks.push_back({moving_.root, static_.root, true});
+  }
+  unsigned threads = config_.threads == 0 ? std::max(1u, std::thread::hardware_concurrency()) : config_.threads;
+  if (moving_.leaves < 256) threads = 1;
+
+  if (threads <= 1) {
+    for (const PairTask& t : tasks) collide_task(t, out, st);
+  } else {
+    // Split the top of the traversal into independent node-pair tasks (same rules as
+    // collide_task), until there are enough to balance the threads.
+    const std::size_t wanted = static_cast<std::size_t>(threads) * 16;
+    for (int round = 0; round < 24 && tasks.size() < wanted; ++round) {
+      std::vector<PairTask> next;
+      next.reserve(tasks.size() * 3);
+      bool expanded = false;
+      for (const PairTask& t : tasks) {
+        const Node& a = moving_.nodes[t.a];
+        if (!t.cross && t.a == t.b) {
+          if (a.is_leaf()) continue;
+          next.push_back({a.child1, a.child1, false});
+          next.push_back({a.child2, a.child2, false});
+          next.push_back({a.child1, a.child2, false});
+          expanded = true;
+          continue;
+        }
+        const Node& b = (t.cross ? static_ : moving_).nodes[t.b];
+        if (!a.box.overlaps(b.box)) continue;
+        if (a.is_leaf() && b.is_leaf()) {
+          next.push_back(t);
+          continue;
+        }
+        expanded = true;
+        if (b.is_leaf() || (!a.is_leaf() && a.box.surface_area() >= b.box.surface_area())) {
+          next.push_back({a.child1, t.b, t.cross});
+          next.push_back({a.child2, t.b, t.cross});
+        } else {
+          next.push_back({t.a, b.child1, t.cross});
+          next.push_back({t.a, b.child2, t.cross});
+        }
+      }
+      tasks.swap(next);
+      if (!expanded) break;
+    }
+    std::vector<std::vector<ProxyPair>> outs(threads);
+    std::vector<BroadPhaseStats> stats(threads);
+    std::atomic<std::size_t> cursor{0};
+    auto worker = [&](unsigned t) {
+      for (;;) {
+        const std::size_t i = cursor.fetch_add(1, std::memory_order_relaxed);
+        if (i >= tasks.size()) break;
+        collide_task(tasks[i], outs[t], stats[t]);
+      }
+    };
+    std::vector<std::thread> pool;
+    pool.reserve(threads - 1);
+    for (unsigned t = 1; t < threads; ++t) pool.emplace_back(worker, t);
+    worker(0);
+    for (std::thread& th : pool) th.join();
+    std::size_t total = 0;
+    for (const auto& o : outs) total += o.size();
+    out.reserve(total);
+    for (unsigned t = 0; t < threads; ++t) {
+      out.insert(out.end(), outs[t].begin(), outs[t].end());
+      st.nodes_visited += stats[t].nodes_visited;
+      st.pairs_tested += stats[t].pairs_tested;
+    }
+  }
+  sort_pairs(out, sort_scratch_);
+  st.pairs_found = out.size();
+  stats_ = st;
+}
+
+// ---- queries ----------------------------------------------------------------------------------
+
+void DynamicAabbTree::query_aabb(const Aabb& box, const OverlapQueryCallback& on_overlap) const {
+  BroadPhaseStats st;
+  if (detail::query_box_ok(box)) {
+    for (const Tree* tree : {&moving_, &static_}) {
+      if (tree->root == kNull) continue;
+      detail::TraversalStack<std::uint32_t, 256> stack;
+      stack.push(tree->root);
+      bool stop = false;
+      while (!stack.empty() && !stop) {
+        const Node& n = tree->nodes[stack.pop()];
+        ++st.nodes_visited;
+        if (!n.box.overlaps(box)) continue;
+        if (n.is_leaf()) {
+          ++st.pairs_tested;
+          if (proxies_[n.child2].box.overlaps(box)) {
+            ++st.pairs_found;
+            if (!on_overlap(n.child2)) stop = true;
+          }
+          continue;
+        }
+        stack.push(n.child1);
+        stack.push(n.child2);
+      }
+      if (stop) break;
+    }
+  }
+  stats_ = st;
+}
+
+void DynamicAabbTree::query_point(const Vec3& point, const OverlapQueryCallback& on_overlap) const {
+  if (!detail::point_ok(point)) {
+    stats_ = {};
+    return;
+  }
+  query_aabb(Aabb::from_point(point), on_overlap);
+}
+
+void DynamicAabbTree::query_ray(const Ray& ray, Real max_t, const RayQueryCallback& on_ray) const {
+  BroadPhaseStats st;
+  if (detail::ray_input_ok(ray, max_t)) {
+    const detail::SlabRay slab(ray);
+    Real limit = max_t;
+    bool stop = false;
+    for (const Tree* tree : {&moving_, &static_}) {
+      if (tree->root == kNull || stop) continue;
+      detail::TraversalStack<std::uint32_t, 256> stack;
+      stack.push(tree->root);
+      while (!stack.empty() && !stop) {
+        const Node& n = tree->nodes[stack.pop()];
+        ++st.nodes_visited;
+        Real t;
+        if (!slab.enter(n.box, limit, t)) continue;
+        if (n.is_leaf()) {
+          ++st.pairs_tested;
+          const auto hit = geometry::ray_aabb(ray, limit, proxies_[n.child2].box);
+          if (!hit) continue;
+          ++st.pairs_found;
+          if (!detail::apply_ray_result(on_ray(n.child2, hit->t), limit)) stop = true;
+          continue;
+        }
+        stack.push(n.child1);
+        stack.push(n.child2);
+      }
+    }
+  }
+  stats_ = st;
+}
+
+// ---- inspection -------------------------------------------------------------------------------
+
+bool DynamicAabbTree::validate_tree(const Tree& tree, ProxyKind kind) const {
+  std::size_t reachable = 0;
+  std::size_t leaves = 0;
+  if (tree.root != kNull) {
+    if (tree.root >= tree.nodes.size() || tree.nodes[tree.root].parent != kNull) return false;
+    std::vector<std::uint32_t> stack{tree.root};
+    while (!stack.empty()) {
+      const std::uint32_t i = stack.back();
+      stack.pop_back();
+      if (i >= tree.nodes.size() || ++reachable > tree.nodes.size()) return false;
+      const Node& n = tree.nodes[i];
+      if (n.is_leaf()) {
+        ++leaves;
+        if (n.height != 0 || n.child2 >= proxies_.size()) return false;
+        const Proxy& p = proxies_[n.child2];
+        if (p.leaf != i || p.kind != kind || !n.box.contains(p.box)) return false;
+        continue;
+      }
+      if (n.child1 >= tree.nodes.size() || n.child2 >= tree.nodes.size() || n.child1 == n.child2) return false;
+      const Node& c1 = tree.nodes[n.child1];
+      const Node& c2 = tree.nodes[n.child2];
+      if (c1.parent != i || c2.parent != i) return false;
+      if (n.height != 1 + std::max(c1.height, c2.height)) return false;
+      if (!n.box.contains(c1.box) || !n.box.contains(c2.box)) return false;
+      stack.push_back(n.child1);
+      stack.push_back(n.child2);
+    }
+  }
+  std::size_t free_count = 0;
+  for (std::uint32_t f = tree.free_list; f != kNull; f = tree.nodes[f].parent) {
+    if (f >= tree.nodes.size() || ++free_count > tree.nodes.size()) return false;
+  }
+  return reachable == tree.in_use && leaves == tree.leaves && reachable + free_count == tree.nodes.size();
+}
+
+bool DynamicAabbTree::validate() const {
+  if (!validate_tree(static_, ProxyKind::Static) || !validate_tree(moving_, ProxyKind::Moving)) return false;
+  std::size_t count = 0;
+  for (const Proxy& p : proxies_) count += p.leaf != kNull ? 1 : 0;
+  return count == count_ && count == static_.leaves + moving_.leaves;
+}
+
+Real DynamicAabbTree::sah_cost() const {
+  Real total = Real(0);
+  for (const Tree* tree : {&static_, &moving_}) {
+    if (tree->root == kNull) continue;
+    const Real root_area = tree->nodes[tree->root].box.surface_area();
+    if (!(root_area > Real(0))) continue;
+    Real sum = Real(0);
+    std::vector<std::uint32_t> stack{tree->root};
+    while (!stack.empty()) {
+      const Node& n = tree->nodes[stack.back()];
+      stack.pop_back();
+      if (n.is_leaf()) continue;
+      sum += n.box.surface_area();
+      stack.push_back(n.child1);
+      stack.push_back(n.child2);
+    }
+    total += sum / root_area;
+  }
+  return total;
+}
+
+int DynamicAabbTree::height() const {
+  const int hs = static_.root == kNull ? -1 : static_.nodes[static_.root].height;
+  const int hm = moving_.root == kNull ? -1 : moving_.nodes[moving_.root].height;
+  return std::max(hs, hm);
+}
+
+std::size_t DynamicAabbTree::node_count() const { return static_.in_use + moving_.in_use; }
+
+Aabb DynamicAabbTree::fat_box(ProxyId id) const {
+  if (id >= proxies_.size() || proxies_[id].leaf == kNull) return Aabb::empty();
+  const Proxy& p = proxies_[id];
+  return tree_of(p.kind).nodes[p.leaf].box;
+}
+
+}  // namespace proxima
