@@ -3,9 +3,34 @@
 /// Declarations of the closed-form pair routines of this group (contract in pair_support.hpp):
 /// for each pair (A, B), A not after B in ShapeType order, the three functions pair_intersect,
 /// pair_distance, pair_collide and the trait kAnalyticPair<A, B> = true.
+///
+/// The polyhedral pairs (box-box, triangle-box, triangle-triangle) decide overlap with the
+/// separating-axis test over face normals and edge-pair cross products, whose minimum overlap
+/// is the exact penetration depth of two polytopes; separated pairs get exact distances from
+/// their closest features; manifolds come from clipping the incident face against the
+/// reference face (face_clipping.hpp) or from the closest points of two edges. Triangles are
+/// two-sided and have no thickness.
 
 #include <proxima/shapes/shape.hpp>
 
 #include "pair_support.hpp"
 
-namespace proxima::narrow {}  // namespace proxima::narrow
+namespace proxima::narrow {
+
+/// Box-box overlap (within request.contact_distance): SAT over 15 axes with early exit;
+/// `cache->sat_feature` holds the last separating axis, tried first. O(1).
+bool pair_intersect(const Box& a, const Transform& pose_a, const Box& b, const Transform& pose_b,
+                    const PairRequest& request, PairCache* cache);
+/// Box-box signed distance: exact penetration depth by SAT over the 15 axes; when
+/// separated, the exact distance from the closest vertex-face and edge-edge feature pairs.
+DistanceResult pair_distance(const Box& a, const Transform& pose_a, const Box& b, const Transform& pose_b,
+                             const PairRequest& request, PairCache* cache);
+/// Box-box manifold: SAT axis (face axes preferred over nearly as shallow edge axes), then
+/// reference-face / incident-face clipping or the closest points of two edges; up to 4
+/// points reduced by area, stable feature ids.
+ContactManifold pair_collide(const Box& a, const Transform& pose_a, const Box& b, const Transform& pose_b,
+                             const PairRequest& request, PairCache* cache);
+template <>
+inline constexpr bool kAnalyticPair<Box, Box> = true;
+
+}  // namespace proxima::narrow

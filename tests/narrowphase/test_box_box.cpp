@@ -1,0 +1,266 @@
+// Box-box pair: signed distance against a long double separating-axis reference and an
+// exhaustive feature-pair distance, depth bounded by a dense-direction search, manifold
+// invariants (points on both surfaces, depths bounded by the pair's, shared normal), the
+// analytic overlap area of a box resting flat on a box, degenerate poses and scales.
+#include <gtest/gtest.h>
+
+#include <proxima/shapes/box.hpp>
+
+#include <cmath>
+
+#include "../../src/narrowphase/pairs_polyhedral.hpp"
+#include "polytope_reference.hpp"
+#include "support/random.hpp"
+
+namespace proxima::test {
+namespace {
+
+constexpr bool kFloat = sizeof(Real) == 4;
+
+Box make_box(const Vec3& h) { return Box::create(h).value(); }
+
+Real rel_tol(Real scale) { return (kFloat ? Real(2e-4) : Real(1e-9)) * scale; }
+
+// Distance of a world point to the box's surface (0 on the surface).
+Real surface_gap(const Box& box, const Transform& pose, const Vec3& p) {
+  return std::abs(box.closest_point(pose.inverse_apply(p)).signed_distance);
+}
+
+// Checks the sign convention and the manifold invariants of one pair.
+void check_pair(const Box& a, const Transform& pa, const Box& b, const Transform& pb, Real scale, Random& rng,
+                bool dense) {
+  const PairRequest req;
+  const DistanceResult d = narrow::pair_distance(a, pa, b, pb, req, nullptr);
+  const Real tol = rel_tol(scale);
+  const LPolytope la = box_polytope(a, pa);
+  const LPolytope lb = box_polytope(b, pb);
+  const LD ov = sat_overlap(la, lb);
+  ASSERT_NEAR(glm::length(d.normal), 1, 1e-4);
+  if (ov >= 0) {
+    EXPECT_NEAR(d.signed_distance, -static_cast<Real>(ov), tol) << "depth";
+    if (dense) {
+      // Any direction's overlap bounds the depth from above.
+      EXPECT_GE(d.signed_distance, -static_cast<Real>(dense_overlap(la, lb, rng, 64)) - tol);
+    }
+  } else {
+    EXPECT_NEAR(d.signed_distance, brute_box_box_distance(a, pa, b, pb), tol) << "gap";
+  }
+  // Witnesses on the surfaces, sign convention.
+  EXPECT_LE(surface_gap(a, pa, d.point_a), tol);
+  EXPECT_LE(surface_gap(b, pb, d.point_b), tol);
+  const Vec3 expect_b = d.point_a + d.signed_distance * d.normal;
+  EXPECT_LE(max_abs_component(expect_b - d.point_b), tol);
+  // Moving B along the normal changes the distance by the same amount.
+  const Real step = Real(0.01) * scale;
+  Transform moved = pb;
+  moved.position += step * d.normal;
+  const DistanceResult d2 = narrow::pair_distance(a, pa, b, moved, req, nullptr);
+  EXPECT_NEAR(d2.signed_distance - d.signed_distance, step, Real(0.02) * scale + tol);
+
+  // Manifold.
+  PairRequest creq;
+  creq.contact_distance = Real(0.05) * scale;
+  const ContactManifold m = narrow::pair_collide(a, pa, b, pb, creq, nullptr);
+  if (d.signed_distance > creq.contact_distance + tol) {
+    EXPECT_EQ(m.count, 0);
+    return;
+  }
+  if (d.signed_distance < creq.contact_distance - tol) {
+    ASSERT_GE(m.count, 1);
+  }
+  ASSERT_LE(m.count, 4);
+  const Real pair_depth = -d.signed_distance;
+  Real deepest = -std::numeric_limits<Real>::infinity();
+  for (int i = 0; i < m.count; ++i) {
+    const ContactPoint& c = m.points[i];
+    EXPECT_LE(surface_gap(a, pa, c.point_a), tol) << "contact " << i;
+    EXPECT_LE(surface_gap(b, pb, c.point_b), tol) << "contact " << i;
+    EXPECT_LE(max_abs_component(c.point_a - c.depth * c.normal - c.point_b), tol) << "contact " << i;
+    // A face axis preferred to a slightly shallower axis (at most 2% shallower) may go
+    // that much deeper.
+    const bool same_axis = glm::dot(m.normal, d.normal) >= Real(1) - Real(1e-5);
+    EXPECT_LE(c.depth, (same_axis ? pair_depth : pair_depth / Real(0.98)) + tol) << "contact " << i;
+    EXPECT_GE(c.depth, -creq.contact_distance - tol);
+    EXPECT_EQ(c.normal, m.normal);
+    deepest = std::max(deepest, c.depth);
+  }
+  // The manifold's normal is the distance normal unless a face axis was preferred to a
+  // marginally shallower edge axis (then the depths agree within that bias).
+  if (glm::dot(m.normal, d.normal) < Real(1) - Real(1e-5)) {
+    EXPECT_GE(deepest, pair_depth - tol);
+  } else if (m.count > 0) {
+    EXPECT_NEAR(deepest, pair_depth, tol + Real(1e-3) * scale);
+  }
+}
+
+TEST(BoxBox, RandomSweepAgainstReferences) {
+  Random rng(20240611);
+  for (int n = 0; n < 3000; ++n) {
+    const Box a = make_box(rng.vec3(Real(0.1), Real(2)));
+    const Box b = make_box(rng.vec3(Real(0.1), Real(2)));
+    const Transform pa = rng.pose(Real(1.5));
+    const Transform pb = rng.pose(Real(1.5));
+    SCOPED_TRACE(n);
+    check_pair(a, pa, b, pb, Real(4), rng, n < 500);
+    if (HasFatalFailure()) return;
+  }
+}
+
+TEST(BoxBox, ScalesAndFarFromOrigin) {
+  Random rng(77);
+  for (const Real s : {Real(1e-4), Real(1), Real(1e4)}) {
+    for (int n = 0; n < 300; ++n) {
+      const Box a = make_box(s * rng.vec3(Real(0.2), Real(1)));
+      const Box b = make_box(s * rng.vec3(Real(0.2), Real(1)));
+      Transform pa = rng.pose(s);
+      Transform pb = rng.pose(s);
+      SCOPED_TRACE(::testing::Message() << "scale " << s << " case " << n);
+      check_pair(a, pa, b, pb, Real(3) * s, rng, false);
+    }
+  }
+  // Far from the origin: offset both by the same large vector (tolerance grows with it).
+  for (int n = 0; n < 300; ++n) {
+    const Box a = make_box(rng.vec3(Real(0.2), Real(1)));
+    const Box b = make_box(rng.vec3(Real(0.2), Real(1)));
+    Transform pa = rng.pose(Real(1));
+    Transform pb = rng.pose(Real(1));
+    const Vec3 far(Real(1000), Real(-2000), Real(500));
+    pa.position += far;
+    pb.position += far;
+    SCOPED_TRACE(n);
+    check_pair(a, pa, b, pb, Real(2000), rng, false);
+  }
+}
+
+TEST(BoxBox, RestingFlatGivesOverlapRectangle) {
+  const Box ground = make_box(Vec3(2, 2, Real(0.5)));
+  const Box top = make_box(Vec3(Real(0.5), Real(0.7), Real(0.3)));
+  const Transform pa;
+  for (const Real x : {Real(0), Real(1), Real(1.8), Real(-2.2)}) {
+    for (const Real y : {Real(0), Real(1.5)}) {
+      Transform pb;
+      pb.position = Vec3(x, y, Real(0.79));
+      const ContactManifold m = narrow::pair_collide(ground, pa, top, pb, {}, nullptr);
+      const Real wx = std::min(Real(2), x + Real(0.5)) - std::max(Real(-2), x - Real(0.5));
+      const Real wy = std::min(Real(2), y + Real(0.7)) - std::max(Real(-2), y - Real(0.7));
+      SCOPED_TRACE(::testing::Message() << x << " " << y);
+      ASSERT_EQ(m.count, 4);
+      EXPECT_NEAR(manifold_area(m), wx * wy, Real(1e-4));
+      EXPECT_NEAR(m.normal.z, 1, 1e-6);
+      for (int i = 0; i < 4; ++i) EXPECT_NEAR(m.points[i].depth, Real(0.01), Real(1e-5));
+    }
+  }
+  // Rotated about the normal, fully on the ground: the whole bottom face.
+  Transform pb;
+  pb.position = Vec3(Real(0.3), Real(-0.2), Real(0.79));
+  pb.rotation = glm::angleAxis(Real(0.7), Vec3(0, 0, 1));
+  const ContactManifold m = narrow::pair_collide(ground, pa, top, pb, {}, nullptr);
+  ASSERT_EQ(m.count, 4);
+  EXPECT_NEAR(manifold_area(m), Real(1.4), Real(1e-4));
+  // Seen from the other side (top as A): same area, opposite normal.
+  const ContactManifold mm = narrow::pair_collide(top, pb, ground, pa, {}, nullptr);
+  ASSERT_EQ(mm.count, 4);
+  EXPECT_NEAR(manifold_area(mm), Real(1.4), Real(1e-4));
+  EXPECT_NEAR(mm.normal.z, -1, 1e-6);
+}
+
+TEST(BoxBox, FeatureIdsStableUnderSmallMotion) {
+  const Box ground = make_box(Vec3(2, 2, Real(0.5)));
+  const Box top = make_box(Vec3(Real(0.5), Real(0.5), Real(0.5)));
+  Transform pb;
+  pb.position = Vec3(Real(0.1), 0, Real(0.99));
+  pb.rotation = glm::angleAxis(Real(0.3), Vec3(0, 0, 1));
+  const ContactManifold m0 = narrow::pair_collide(ground, {}, top, pb, {}, nullptr);
+  pb.position += Vec3(Real(0.01), Real(-0.005), Real(-0.001));
+  pb.rotation = glm::angleAxis(Real(0.31), Vec3(0, 0, 1));
+  const ContactManifold m1 = narrow::pair_collide(ground, {}, top, pb, {}, nullptr);
+  ASSERT_EQ(m0.count, 4);
+  ASSERT_EQ(m1.count, 4);
+  for (int i = 0; i < 4; ++i) {
+    bool found = false;
+    for (int j = 0; j < 4; ++j) found = found || m0.points[i].feature_id == m1.points[j].feature_id;
+    EXPECT_TRUE(found) << i;
+  }
+}
+
+TEST(BoxBox, Degenerate) {
+  Random rng(5);
+  const Box a = make_box(Vec3(1, Real(0.5), Real(0.25)));
+  // Identical boxes at identical poses: depth is the smallest full width.
+  for (int n = 0; n < 50; ++n) {
+    const Transform p = rng.pose(2);
+    const DistanceResult d = narrow::pair_distance(a, p, a, p, {}, nullptr);
+    EXPECT_NEAR(d.signed_distance, Real(-0.5), rel_tol(4));
+    const ContactManifold m = narrow::pair_collide(a, p, a, p, {}, nullptr);
+    EXPECT_EQ(m.count, 4);
+    check_pair(a, p, a, p, Real(4), rng, true);
+  }
+  // Touching faces: status Touching, distance 0.
+  Transform pb;
+  pb.position = Vec3(2, Real(0.3), 0);
+  const DistanceResult t = narrow::pair_distance(a, {}, a, pb, {}, nullptr);
+  EXPECT_NEAR(t.signed_distance, 0, 1e-6);
+  EXPECT_EQ(t.status, PairStatus::Touching);
+  EXPECT_TRUE(narrow::pair_intersect(a, {}, a, pb, {}, nullptr));
+  EXPECT_EQ(narrow::pair_collide(a, {}, a, pb, {}, nullptr).count, 4);
+  // Parallel edges: boxes rotated by 45 degrees about the same axis, edge on edge.
+  const Box c = make_box(Vec3(1, 1, 1));
+  Transform r1;
+  r1.rotation = glm::angleAxis(kPi / 4, Vec3(0, 0, 1));
+  Transform r2 = r1;
+  r2.position = Vec3(std::sqrt(Real(8)) - Real(0.1), 0, Real(0.5));
+  check_pair(c, r1, c, r2, Real(4), rng, true);
+  const DistanceResult pe = narrow::pair_distance(c, r1, c, r2, {}, nullptr);
+  // The shallowest way out is along a face normal of A: 0.1 / sqrt(2).
+  EXPECT_NEAR(pe.signed_distance, Real(-0.1) / std::sqrt(Real(2)), rel_tol(4));
+  EXPECT_NEAR(pe.normal.x, std::sqrt(Real(0.5)), 1e-5);
+  // Separated parallel edges.
+  r2.position.x = std::sqrt(Real(8)) + Real(0.25);
+  const DistanceResult ps = narrow::pair_distance(c, r1, c, r2, {}, nullptr);
+  EXPECT_NEAR(ps.signed_distance, Real(0.25), rel_tol(4));
+  // Crossed edges, separated and penetrating, with exact answers.
+  Transform e1;
+  e1.rotation = glm::angleAxis(kPi / 4, Vec3(1, 0, 0));
+  Transform e2;
+  e2.rotation = glm::angleAxis(kPi / 4, Vec3(0, 1, 0));
+  e2.position = Vec3(0, 0, 2 * std::sqrt(Real(2)) + Real(0.3));
+  EXPECT_NEAR(narrow::pair_distance(c, e1, c, e2, {}, nullptr).signed_distance, Real(0.3), rel_tol(4));
+  e2.position.z -= Real(0.4);
+  const DistanceResult ee = narrow::pair_distance(c, e1, c, e2, {}, nullptr);
+  EXPECT_NEAR(ee.signed_distance, Real(-0.1), rel_tol(4));
+  const ContactManifold em = narrow::pair_collide(c, e1, c, e2, {}, nullptr);
+  ASSERT_EQ(em.count, 1);
+  EXPECT_NEAR(em.points[0].depth, Real(0.1), rel_tol(4));
+  EXPECT_NEAR(em.normal.z, 1, 1e-5);
+}
+
+TEST(BoxBox, IntersectAgreesWithDistanceAndCache) {
+  Random rng(99);
+  PairCache cache;
+  for (int n = 0; n < 2000; ++n) {
+    const Box a = make_box(rng.vec3(Real(0.1), Real(1)));
+    const Box b = make_box(rng.vec3(Real(0.1), Real(1)));
+    const Transform pa = rng.pose(Real(1.5));
+    const Transform pb = rng.pose(Real(1.5));
+    PairRequest req;
+    req.contact_distance = n % 2 == 0 ? Real(0) : Real(0.2);
+    const DistanceResult d = narrow::pair_distance(a, pa, b, pb, req, nullptr);
+    if (std::abs(d.signed_distance - req.contact_distance) < Real(1e-3)) continue;
+    const bool expected = d.signed_distance <= req.contact_distance;
+    EXPECT_EQ(narrow::pair_intersect(a, pa, b, pb, req, nullptr), expected) << n;
+    EXPECT_EQ(narrow::pair_intersect(a, pa, b, pb, req, &cache), expected) << n;
+    EXPECT_EQ(narrow::pair_collide(a, pa, b, pb, req, &cache).count > 0, expected) << n;
+  }
+}
+
+TEST(BoxBox, NonFinitePose) {
+  const Box a = make_box(Vec3(1));
+  Transform bad;
+  bad.position.x = std::numeric_limits<Real>::infinity();
+  EXPECT_EQ(narrow::pair_distance(a, {}, a, bad, {}, nullptr).status, PairStatus::InvalidInput);
+  EXPECT_EQ(narrow::pair_collide(a, bad, a, {}, {}, nullptr).status, PairStatus::InvalidInput);
+  EXPECT_FALSE(narrow::pair_intersect(a, {}, a, bad, {}, nullptr));
+}
+
+}  // namespace
+}  // namespace proxima::test
