@@ -24,9 +24,9 @@
 #include <cmath>
 #include <limits>
 
-#include "narrowphase/face_clipping.hpp"
-#include "narrowphase/pairs_polyhedral.hpp"
-#include "narrowphase/supporting_face.hpp"
+#include "face_clipping.hpp"
+#include "pairs_polyhedral.hpp"
+#include "supporting_face.hpp"
 
 namespace proxima::narrow {
 namespace {
@@ -48,6 +48,7 @@ struct BoxPair {
   Real ar[3][3]{};  // |r|
   Vec3 t{Real(0)};  // B's centre in A's frame
   Real tol = Real(0);
+  Real rounding = Real(0);  // a few rounding errors at the pair's own size (not clamped to 1)
 };
 
 BoxPair make_pair(const Box& a, const Transform& pose_a, const Box& b, const Transform& pose_b,
@@ -67,6 +68,7 @@ BoxPair make_pair(const Box& a, const Transform& pose_a, const Box& b, const Tra
   p.t = Vec3(glm::dot(d, ma[0]), glm::dot(d, ma[1]), glm::dot(d, ma[2]));
   const Real scale = std::max({max_abs_component(p.a), max_abs_component(p.b), max_abs_component(p.t)});
   p.tol = resolve_tolerance(request, scale);
+  p.rounding = kRelativeTolerance * scale;
   return p;
 }
 
@@ -142,7 +144,10 @@ SatResult run_sat(const BoxPair& p, Real limit, const PairCache* cache) {
     Real sep = Real(0);
     Vec3 axis;
     if (!axis_separation(p, k, sep, axis)) continue;
-    if (sep > s.max_sep) {
+    // An edge axis must beat the face axes by more than the tolerance: nearly parallel
+    // edges give an axis next to a face normal with the same separation up to rounding,
+    // and its supporting edges would not witness it.
+    if (sep > s.max_sep + (k >= 6 && s.max_axis < 6 ? p.rounding : Real(0))) {
       s.max_sep = sep;
       s.max_axis = k;
       s.max_normal = axis;

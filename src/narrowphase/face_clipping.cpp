@@ -12,13 +12,13 @@
 //  4. each remaining point is projected along the normal onto the reference plane; its gap
 //     is the projection length minus the two core radii, and points with a gap above the
 //     contact distance are dropped.
-#include "narrowphase/face_clipping.hpp"
+#include "face_clipping.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <span>
 
-#include "narrowphase/manifold_reduction.hpp"
+#include "manifold_reduction.hpp"
 
 namespace proxima::narrow {
 namespace {

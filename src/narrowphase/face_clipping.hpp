@@ -10,7 +10,7 @@
 
 #include <array>
 
-#include "narrowphase/supporting_face.hpp"
+#include "supporting_face.hpp"
 
 namespace proxima::narrow {
 

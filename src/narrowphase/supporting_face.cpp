@@ -7,7 +7,7 @@
 // normal is within acos(kCurvedFaceCosine) of the direction, else their support point.
 // The points are mapped to the world frame. This is the "supporting face" step of the
 // clipping manifolds of Box2D (b2ClipPolygons) and Jolt (GetSupportingFace).
-#include "narrowphase/supporting_face.hpp"
+#include "supporting_face.hpp"
 
 #include <cmath>
 
