@@ -1,0 +1,131 @@
+#pragma once
+/// @file kd_tree.hpp
+/// KdTree ("kdtree"): a kd-tree over box centres in the bounding-interval-hierarchy form
+/// (Wächter and Keller, "Instant ray tracing: the bounding interval hierarchy", 2006).
+///
+/// Design:
+/// - Each internal node splits its proxies at the median of their centres along the axis of
+///   largest centre spread. Every proxy goes to exactly one side (the side of its centre), so a
+///   proxy lives in exactly one leaf and pairs are never duplicated. Straddling is handled by
+///   two clip planes per node instead of one: `clip_left` is the largest coordinate, along the
+///   node's axis, of any box in the left subtree, `clip_right` the smallest of the right
+///   subtree. The two children's slabs may overlap.
+/// - Leaves hold up to `leaf_size` proxies in one contiguous array of (box, id) records.
+/// - Updates write the box in place and widen the clip planes on the leaf's path: O(depth).
+///   find_pairs first refits every clip plane exactly (O(n)) and rebuilds the tree
+///   (O(n log n)) when quality has degraded: proxies inserted since the last build (they wait
+///   in a pending list scanned linearly by queries), many removals, or clip slabs whose mean
+///   overlap grew by more than `rebuild_overlap` of the node widths since the build.
+/// - Pair finding: one box query per Moving proxy against the whole tree (moving-moving pairs
+///   kept once by id order), results sorted.
+///
+/// Complexity: build O(n log n); update O(log n); queries O(log n + k) for well-spread data;
+/// find_pairs O(n log n + k) plus any refit/rebuild. Not safe for concurrent calls.
+
+#include <proxima/broadphase/broadphase.hpp>
+#include <proxima/broadphase/pair_tracker.hpp>
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace proxima {
+
+/// Tuning of a KdTree.
+struct KdTreeConfig {
+  /// Largest number of proxies in a leaf (>= 1).
+  int leaf_size = 6;
+  /// Rebuild when the mean overlap of sibling slabs (as a fraction of the node's width along
+  /// its axis) exceeds the value at the last build by this much.
+  Real rebuild_overlap = Real(0.15);
+};
+
+/// kd-tree broad phase (see the file comment). Satisfies BroadPhaseStructure.
+class KdTree {
+ public:
+  /// Creates an empty tree.
+  explicit KdTree(const KdTreeConfig& config = {});
+
+  /// Adds a proxy (pending until the next find_pairs or rebuild; queries see it at once).
+  BroadPhaseStatus insert(ProxyId id, const Aabb& box, ProxyKind kind, ProxyFilter filter = {});
+  /// Removes a proxy. O(1).
+  BroadPhaseStatus remove(ProxyId id);
+  /// Moves a proxy: box written in place, clip planes widened on its path. O(depth).
+  BroadPhaseStatus update(ProxyId id, const Aabb& box);
+  /// Moves many proxies, all or nothing.
+  BroadPhaseStatus update(std::span<const ProxyUpdate> updates);
+  /// Rebuilds the tree from scratch over every proxy (median splits). O(n log n).
+  void rebuild();
+  /// Every pair (see broadphase.hpp), sorted. May refit or rebuild first.
+  void find_pairs(std::vector<ProxyPair>& out);
+
+  /// Every proxy whose box overlaps `box` (closed); stops when the callback returns false.
+  void query_aabb(const Aabb& box, const OverlapQueryCallback& on_overlap) const;
+  /// Every proxy whose box contains `point`.
+  void query_point(const Vec3& point, const OverlapQueryCallback& on_overlap) const;
+  /// Every proxy whose box the ray enters within [0, max_t]; the callback clips the ray.
+  void query_ray(const Ray& ray, Real max_t, const RayQueryCallback& on_ray) const;
+
+  /// Checks the invariants: each proxy in exactly one place, leaf records equal to the proxy
+  /// table, every box within the clip planes of all its ancestors, parent links. O(n log n).
+  bool validate() const;
+  /// Counters of the last find_pairs or query.
+  BroadPhaseStats stats() const { return stats_; }
+  /// Number of proxies.
+  std::size_t size() const { return count_; }
+  /// Number of rebuilds done so far (explicit and automatic).
+  std::size_t rebuild_count() const { return rebuilds_; }
+  /// Depth of the tree (0 for a single leaf or an empty tree).
+  int depth() const;
+
+ private:
+  static constexpr std::uint32_t kNull = 0xffffffffu;
+
+  struct Node {
+    Real clip_left = Real(0);     ///< max coordinate along `axis` of the left subtree's boxes
+    Real clip_right = Real(0);    ///< min coordinate along `axis` of the right subtree's boxes
+    std::uint32_t right = kNull;  ///< internal: right child (left child = this + 1)
+    std::uint32_t begin = 0;      ///< leaf: first record
+    std::uint32_t count = 0;      ///< leaf: number of records
+    std::uint32_t parent = kNull;
+    std::uint8_t axis = 0;
+    bool leaf = true;
+  };
+  struct Record {
+    Aabb box;
+    ProxyId id;  ///< kDead when removed
+  };
+  enum class Place : std::uint8_t { None, Tree, Pending };
+  struct Proxy {
+    Aabb box;
+    ProxyFilter filter;
+    std::uint32_t slot = kNull;  ///< record index (Tree) or pending index (Pending)
+    std::uint32_t leaf = kNull;  ///< leaf node (Tree)
+    ProxyKind kind = ProxyKind::Static;
+    Place place = Place::None;
+  };
+  static constexpr ProxyId kDead = 0xffffffffu;
+
+  std::uint32_t build(std::uint32_t begin, std::uint32_t end, std::uint32_t parent, int depth);
+  Aabb refit(std::uint32_t node, double& overlap_sum, std::size_t& internal_count);
+  void widen(std::uint32_t leaf, const Aabb& box);
+  template <class Visit>
+  void visit_box(const Aabb& box, BroadPhaseStats& st, Visit&& visit) const;
+
+  KdTreeConfig config_;
+  std::vector<Node> nodes_;
+  std::vector<Record> records_;
+  std::vector<ProxyId> pending_;
+  std::vector<Proxy> proxies_;
+  std::size_t count_ = 0;
+  std::size_t dead_ = 0;
+  bool dirty_ = false;  ///< clip planes widened since the last exact refit
+  double build_overlap_ = 0;
+  std::size_t rebuilds_ = 0;
+  PairSortScratch sort_scratch_;
+  mutable BroadPhaseStats stats_;
+};
+
+static_assert(BroadPhaseStructure<KdTree>);
+
+}  // namespace proxima
