@@ -1,0 +1,128 @@
+#pragma once
+/// @file loose_octree.hpp
+/// LooseTree<Dim>: the loose octree ("octree", Dim = 3) and the loose quadtree ("quadtree",
+/// Dim = 2, which partitions x and y only: z is never split, so 3D boxes stacked in z share
+/// nodes), with looseness factor 2 (Ulrich, "Loose Octrees", Game Programming Gems 1, 4.11;
+/// Ericson, Real-Time Collision Detection, 7.3.6).
+///
+/// A node of half size H (its cell is centre +- H) has loose bounds centre +- 2H. A box is
+/// stored in the deepest node, reached from the root by following the child whose cell holds
+/// the box centre, whose loose bounds still contain the box (so a box of half extent h sits
+/// at the depth where H/2 < h <= H, whatever its position). Nodes are created on demand and
+/// deleted when empty; the root doubles towards a box that leaves it.
+///
+/// Steps of find_pairs: every box walks down the nodes whose loose bounds it overlaps (boxes
+/// in sibling nodes can overlap: loose bounds overlap) and tests the boxes of the nodes at its
+/// own depth (larger ids only) and deeper, so each pair is tested once, by its shallower box.
+/// The boxes are split among threads (set_thread_count). Pairs are radix-sorted.
+/// O(n (d + v) + k') with d the depth, v the neighbour nodes met (<= 27 per level for similar
+/// sizes) and k' the candidates.
+/// Queries walk the nodes whose loose bounds the box, point or ray meets.
+
+#include <proxima/broadphase/broadphase.hpp>
+#include <proxima/broadphase/pair_tracker.hpp>
+#include <proxima/broadphase/proxy_table.hpp>
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace proxima {
+
+/// Loose 2^Dim-tree over x, y (and z when Dim = 3). See the file comment.
+template <int Dim>
+class LooseTree {
+  static_assert(Dim == 2 || Dim == 3, "LooseTree partitions 2 or 3 axes");
+
+ public:
+  /// Number of children of a node.
+  static constexpr int kChildren = 1 << Dim;
+
+  /// Adds a proxy. O(depth).
+  BroadPhaseStatus insert(ProxyId id, const Aabb& box, ProxyKind kind = ProxyKind::Moving, ProxyFilter filter = {});
+  /// Removes a proxy (empty nodes are deleted). O(depth).
+  BroadPhaseStatus remove(ProxyId id);
+  /// Moves a proxy to the node its new box belongs to. O(depth).
+  BroadPhaseStatus update(ProxyId id, const Aabb& box);
+  /// Moves many proxies, all or nothing. O(m depth).
+  BroadPhaseStatus update(std::span<const ProxyUpdate> updates);
+  /// Rebuilds the tree around the current boxes (fits the root, resets the depth limit).
+  void rebuild();
+  /// Every pair, sorted (broadphase.hpp).
+  void find_pairs(std::vector<ProxyPair>& out);
+  /// Proxies whose box overlaps `box` (closed), each once.
+  void query_aabb(const Aabb& box, const OverlapQueryCallback& on_overlap) const;
+  /// Proxies whose box contains `point`, each once.
+  void query_point(const Vec3& point, const OverlapQueryCallback& on_overlap) const;
+  /// Proxies whose box the ray enters at t <= the current max fraction (t of
+  /// geometry::ray_aabb), nodes pruned by their loose bounds against the clipped ray.
+  void query_ray(const Ray& ray, Real max_t, const RayQueryCallback& on_ray) const;
+  /// Checks the links, counts and that every box lies in its node's loose bounds. O(n + nodes).
+  bool validate() const;
+  /// Counters of the last find_pairs / query.
+  BroadPhaseStats stats() const { return stats_; }
+  /// Number of proxies.
+  std::size_t size() const { return proxies_.size(); }
+  /// Worker threads used by find_pairs (1 = the calling thread only).
+  void set_thread_count(int threads) { threads_ = threads < 1 ? 1 : threads; }
+  /// Number of live nodes.
+  std::size_t node_count() const { return nodes_.size() - free_.size(); }
+  /// Depth of the deepest live node (root = 0). O(nodes).
+  int depth() const;
+  /// Bytes held by the structure's buffers (capacity).
+  std::size_t memory_bytes() const;
+
+ private:
+  static constexpr std::int32_t kNil = -1;
+  static constexpr std::uint32_t kNone = 0xffffffffu;
+  struct Node {
+    Vec3 center{0};
+    Real half = 1;
+    Aabb loose;  // center +- 2 half on the partitioned axes, unbounded on the others
+    std::int32_t child[kChildren];
+    std::int32_t parent = kNil;
+    std::uint32_t first = kNone;  // first proxy id of the node's list
+    std::uint32_t count = 0;      // proxies in this node
+    std::uint32_t children = 0;   // live children
+  };
+
+  std::int32_t new_node(const Vec3& center, Real half, std::int32_t parent);
+  static Aabb loose_of(const Vec3& center, Real half);
+  static bool contains(const Aabb& outer, const Aabb& inner);
+  void make_room(const Aabb& box);
+  std::int32_t descend(const Aabb& box);
+  void link(ProxyId id, std::int32_t node);
+  void unlink(ProxyId id);
+  void prune(std::int32_t node);
+  void pairs_of(std::size_t begin, std::size_t end, std::vector<std::int32_t>& stack, std::vector<ProxyPair>& out,
+                BroadPhaseStats& st) const;
+  bool query_node(std::int32_t node, const Aabb& box, const OverlapQueryCallback& on_overlap) const;
+
+  detail::ProxyTable proxies_;
+  std::vector<std::int32_t> node_of_;  // by id
+  std::vector<std::uint32_t> next_;    // by id: next in the node's list
+  std::vector<std::uint32_t> prev_;    // by id: previous in the node's list
+  std::vector<Node> nodes_;
+  std::vector<std::int32_t> free_;
+  std::int32_t root_ = kNil;
+  Real min_half_ = 0;  // nodes are not split below this half size
+  int threads_ = 1;
+  std::vector<std::int32_t> stack_;
+  std::vector<std::vector<std::int32_t>> thread_stacks_;
+  std::vector<std::vector<ProxyPair>> thread_pairs_;
+  PairSortScratch sort_scratch_;
+  mutable BroadPhaseStats stats_;
+};
+
+/// Loose octree ("octree").
+using LooseOctree = LooseTree<3>;
+/// Loose quadtree on x, y ("quadtree").
+using LooseQuadtree = LooseTree<2>;
+
+extern template class LooseTree<2>;
+extern template class LooseTree<3>;
+
+static_assert(BroadPhaseStructure<LooseOctree>);
+static_assert(BroadPhaseStructure<LooseQuadtree>);
+
+}  // namespace proxima

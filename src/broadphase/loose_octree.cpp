@@ -1,0 +1,462 @@
+/// @file loose_octree.cpp
+/// Loose octree and quadtree (looseness 2), after Ulrich, "Loose Octrees" (Game Programming
+/// Gems 1, 4.11) and Ericson, Real-Time Collision Detection 7.3.6.
+///
+/// Steps: 1. the root covers the boxes (doubling towards any box outside its loose bounds);
+/// 2. a box goes down the child holding its centre while that child's loose bounds (centre
+/// +- 2 half) contain it, children created on demand; the stored loose bounds are the only
+/// numbers the placement, the pair walk and the queries compare with, so "every box lies in
+/// its node's loose bounds" holds exactly despite rounding; 3. find_pairs walks the tree
+/// depth-first, carrying the ancestors' boxes that overlap the current node's loose bounds;
+/// 4. empty leaves are deleted as boxes leave them.
+
+#include <proxima/broadphase/loose_octree.hpp>
+#include <proxima/broadphase/pair_tracker.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <thread>
+
+namespace proxima {
+
+namespace {
+
+ProxyPair ordered(ProxyId a, ProxyId b) { return a < b ? ProxyPair{a, b} : ProxyPair{b, a}; }
+
+template <class T>
+std::size_t capacity_bytes(const std::vector<T>& v) {
+  return v.capacity() * sizeof(T);
+}
+
+// Slab test of the clipped ray against a node's loose bounds on the first `dims` axes.
+bool ray_meets(const Ray& ray, Real max_t, const Aabb& box, int dims) {
+  Real t0 = 0;
+  Real t1 = max_t;
+  for (int k = 0; k < dims; ++k) {
+    const Real o = ray.origin[k];
+    const Real d = ray.direction[k];
+    if (d == Real(0)) {
+      if (o < box.min[k] || o > box.max[k]) return false;
+      continue;
+    }
+    Real ta = (box.min[k] - o) / d;
+    Real tb = (box.max[k] - o) / d;
+    if (ta > tb) std::swap(ta, tb);
+    t0 = std::max(t0, ta);
+    t1 = std::min(t1, tb);
+    // A small slack: the node test only prunes, the boxes themselves are tested exactly.
+    if (t0 > t1 + std::abs(t1) * Real(1e-4) + Real(1e-30)) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+template <int Dim>
+Aabb LooseTree<Dim>::loose_of(const Vec3& center, Real half) {
+  Aabb loose{Vec3(-kRealMax), Vec3(kRealMax)};
+  for (int k = 0; k < Dim; ++k) {
+    loose.min[k] = center[k] - Real(2) * half;
+    loose.max[k] = center[k] + Real(2) * half;
+  }
+  return loose;
+}
+
+template <int Dim>
+bool LooseTree<Dim>::contains(const Aabb& outer, const Aabb& inner) {
+  for (int k = 0; k < Dim; ++k) {
+    if (inner.min[k] < outer.min[k] || inner.max[k] > outer.max[k]) return false;
+  }
+  return true;
+}
+
+template <int Dim>
+std::int32_t LooseTree<Dim>::new_node(const Vec3& center, Real half, std::int32_t parent) {
+  std::int32_t index;
+  if (!free_.empty()) {
+    index = free_.back();
+    free_.pop_back();
+  } else {
+    index = std::int32_t(nodes_.size());
+    nodes_.emplace_back();
+  }
+  Node& n = nodes_[std::size_t(index)];
+  n.center = center;
+  n.half = half;
+  n.loose = loose_of(center, half);
+  if (parent != kNil) {
+    // Clip to the parent's loose bounds, so that nesting holds exactly despite rounding.
+    const Aabb& outer = nodes_[std::size_t(parent)].loose;
+    n.loose.min = glm::max(n.loose.min, outer.min);
+    n.loose.max = glm::min(n.loose.max, outer.max);
+  }
+  std::fill(std::begin(n.child), std::end(n.child), kNil);
+  n.parent = parent;
+  n.first = kNone;
+  n.count = 0;
+  n.children = 0;
+  return index;
+}
+
+template <int Dim>
+void LooseTree<Dim>::make_room(const Aabb& box) {
+  if (root_ == kNil) {
+    Real half = 0;
+    const Vec3 h = box.half_extents();
+    for (int k = 0; k < Dim; ++k) half = std::max(half, h[k]);
+    if (!(half > 0)) half = std::max(Real(1), max_abs_component(box.center()) * Real(1e-6));
+    root_ = new_node(box.center(), half, kNil);
+    min_half_ = half * Real(1.0 / 1048576.0);
+    return;
+  }
+  while (!contains(nodes_[std::size_t(root_)].loose, box)) {
+    const Node old = nodes_[std::size_t(root_)];
+    const Vec3 c = box.center();
+    Vec3 center = old.center;
+    int index = 0;
+    for (int k = 0; k < Dim; ++k) {
+      if (c[k] < old.center[k]) {
+        center[k] = old.center[k] - old.half;  // the old root is the upper child on axis k
+        index |= 1 << k;
+      } else {
+        center[k] = old.center[k] + old.half;
+      }
+    }
+    const std::int32_t top = new_node(center, old.half * Real(2), kNil);
+    nodes_[std::size_t(top)].loose.grow(old.loose);  // nesting holds exactly
+    nodes_[std::size_t(top)].child[index] = root_;
+    nodes_[std::size_t(top)].children = 1;
+    nodes_[std::size_t(root_)].parent = top;
+    root_ = top;
+  }
+}
+
+template <int Dim>
+std::int32_t LooseTree<Dim>::descend(const Aabb& box) {
+  const Vec3 c = box.center();
+  std::int32_t node = root_;
+  for (;;) {
+    const Node& n = nodes_[std::size_t(node)];
+    const Real child_half = n.half * Real(0.5);
+    if (child_half < min_half_) return node;
+    int index = 0;
+    Vec3 center = n.center;
+    for (int k = 0; k < Dim; ++k) {
+      if (c[k] >= n.center[k]) {
+        index |= 1 << k;
+        center[k] = n.center[k] + child_half;
+      } else {
+        center[k] = n.center[k] - child_half;
+      }
+    }
+    const std::int32_t existing = n.child[index];
+    if (existing != kNil) {
+      if (!contains(nodes_[std::size_t(existing)].loose, box)) return node;
+      node = existing;
+      continue;
+    }
+    Aabb loose = loose_of(center, child_half);
+    loose.min = glm::max(loose.min, n.loose.min);
+    loose.max = glm::min(loose.max, n.loose.max);
+    if (!contains(loose, box)) return node;
+    const std::int32_t created = new_node(center, child_half, node);  // may reallocate nodes_
+    nodes_[std::size_t(node)].child[index] = created;
+    ++nodes_[std::size_t(node)].children;
+    node = created;
+  }
+}
+
+template <int Dim>
+void LooseTree<Dim>::link(ProxyId id, std::int32_t node) {
+  Node& n = nodes_[std::size_t(node)];
+  node_of_[id] = node;
+  prev_[id] = kNone;
+  next_[id] = n.first;
+  if (n.first != kNone) prev_[n.first] = id;
+  n.first = id;
+  ++n.count;
+}
+
+template <int Dim>
+void LooseTree<Dim>::unlink(ProxyId id) {
+  Node& n = nodes_[std::size_t(node_of_[id])];
+  if (prev_[id] != kNone) {
+    next_[prev_[id]] = next_[id];
+  } else {
+    n.first = next_[id];
+  }
+  if (next_[id] != kNone) prev_[next_[id]] = prev_[id];
+  --n.count;
+  node_of_[id] = kNil;
+}
+
+template <int Dim>
+void LooseTree<Dim>::prune(std::int32_t node) {
+  while (node != kNil && node != root_) {
+    Node& n = nodes_[std::size_t(node)];
+    if (n.count != 0 || n.children != 0) return;
+    const std::int32_t parent = n.parent;
+    Node& p = nodes_[std::size_t(parent)];
+    for (std::int32_t& ch : p.child) {
+      if (ch == node) ch = kNil;
+    }
+    --p.children;
+    free_.push_back(node);
+    node = parent;
+  }
+}
+
+template <int Dim>
+BroadPhaseStatus LooseTree<Dim>::insert(ProxyId id, const Aabb& box, ProxyKind kind, ProxyFilter filter) {
+  const BroadPhaseStatus status = proxies_.insert(id, box, kind, filter);
+  if (status != BroadPhaseStatus::Ok) return status;
+  if (id >= node_of_.size()) {
+    node_of_.resize(std::size_t(id) + 1, kNil);
+    next_.resize(std::size_t(id) + 1, kNone);
+    prev_.resize(std::size_t(id) + 1, kNone);
+  }
+  make_room(box);
+  link(id, descend(box));
+  return status;
+}
+
+template <int Dim>
+BroadPhaseStatus LooseTree<Dim>::remove(ProxyId id) {
+  if (!proxies_.contains(id)) return BroadPhaseStatus::UnknownId;
+  const std::int32_t node = node_of_[id];
+  unlink(id);
+  prune(node);
+  return proxies_.remove(id);
+}
+
+template <int Dim>
+BroadPhaseStatus LooseTree<Dim>::update(ProxyId id, const Aabb& box) {
+  const BroadPhaseStatus status = proxies_.check_update(id, box);
+  if (status != BroadPhaseStatus::Ok) return status;
+  proxies_[id].box = box;
+  make_room(box);
+  const std::int32_t target = descend(box);
+  const std::int32_t current = node_of_[id];
+  if (target != current) {
+    unlink(id);
+    link(id, target);
+    prune(current);
+  }
+  return status;
+}
+
+template <int Dim>
+BroadPhaseStatus LooseTree<Dim>::update(std::span<const ProxyUpdate> updates) {
+  const BroadPhaseStatus status = proxies_.check_updates(updates);
+  if (status != BroadPhaseStatus::Ok) return status;
+  for (const ProxyUpdate& u : updates) update(u.id, u.box);
+  return status;
+}
+
+template <int Dim>
+void LooseTree<Dim>::rebuild() {
+  nodes_.clear();
+  free_.clear();
+  root_ = kNil;
+  const auto ids = proxies_.ids();
+  if (ids.empty()) return;
+  Aabb world = Aabb::empty();
+  Real largest = 0;
+  for (const ProxyId id : ids) {
+    const Aabb& b = proxies_[id].box;
+    world.grow(b);
+    const Vec3 h = b.half_extents();
+    for (int k = 0; k < Dim; ++k) largest = std::max(largest, h[k]);
+  }
+  // Root: the world box's centre, half = half the world's largest edge (its loose bounds,
+  // twice that, hold every box); depth limit 2^-20 of it (or of the largest box).
+  Real half = 0;
+  const Vec3 wh = world.half_extents();
+  for (int k = 0; k < Dim; ++k) half = std::max(half, wh[k]);
+  if (!(half > 0)) half = std::max(Real(1), max_abs_component(world.center()) * Real(1e-6));
+  root_ = new_node(world.center(), half, kNil);
+  min_half_ = std::max(half, largest) * Real(1.0 / 1048576.0);
+  for (const ProxyId id : ids) {
+    make_room(proxies_[id].box);
+    link(id, descend(proxies_[id].box));
+  }
+}
+
+template <int Dim>
+void LooseTree<Dim>::pairs_of(std::size_t begin, std::size_t end, std::vector<std::int32_t>& stack,
+                              std::vector<ProxyPair>& out, BroadPhaseStats& st) const {
+  const auto ids = proxies_.ids();
+  for (std::size_t s = begin; s < end; ++s) {
+    const ProxyId id = ids[s];
+    const detail::ProxyRecord& a = proxies_[id];
+    const Real own_half = nodes_[std::size_t(node_of_[id])].half;
+    stack.clear();
+    stack.push_back(root_);
+    while (!stack.empty()) {
+      const Node& n = nodes_[std::size_t(stack.back())];
+      stack.pop_back();
+      ++st.nodes_visited;
+      if (n.half <= own_half) {
+        // Same depth (equal halves: they are the root's half times exact powers of two):
+        // the larger id reports; deeper nodes: this box reports.
+        const bool same_depth = n.half == own_half;
+        for (std::uint32_t other = n.first; other != kNone; other = next_[other]) {
+          if (same_depth && other <= id) continue;
+          ++st.pairs_tested;
+          const detail::ProxyRecord& b = proxies_[other];
+          if (a.box.overlaps(b.box) && detail::may_pair(a, b)) out.push_back(ordered(id, other));
+        }
+      }
+      for (const std::int32_t child : n.child) {
+        if (child != kNil && nodes_[std::size_t(child)].loose.overlaps(a.box)) stack.push_back(child);
+      }
+    }
+  }
+}
+
+template <int Dim>
+void LooseTree<Dim>::find_pairs(std::vector<ProxyPair>& out) {
+  out.clear();
+  stats_ = {};
+  const std::size_t n = proxies_.size();
+  if (root_ == kNil || n == 0) return;
+  const int threads = std::max(1, std::min(threads_, int(n / 1024) + 1));
+  if (threads == 1) {
+    pairs_of(0, n, stack_, out, stats_);
+  } else {
+    thread_pairs_.resize(std::size_t(threads));
+    thread_stacks_.resize(std::size_t(threads));
+    std::vector<BroadPhaseStats> st(static_cast<std::size_t>(threads));
+    const auto nt = std::size_t(threads);
+    auto work = [&](std::size_t t) {
+      thread_pairs_[t].clear();
+      pairs_of(n * t / nt, n * (t + 1) / nt, thread_stacks_[t], thread_pairs_[t], st[t]);
+    };
+    std::vector<std::thread> pool;
+    for (std::size_t t = 1; t < nt; ++t) pool.emplace_back(work, t);
+    work(0);
+    for (std::thread& th : pool) th.join();
+    for (std::size_t t = 0; t < nt; ++t) {
+      out.insert(out.end(), thread_pairs_[t].begin(), thread_pairs_[t].end());
+      stats_.nodes_visited += st[t].nodes_visited;
+      stats_.pairs_tested += st[t].pairs_tested;
+    }
+  }
+  sort_pairs(out, sort_scratch_);
+  stats_.pairs_found = out.size();
+}
+
+template <int Dim>
+bool LooseTree<Dim>::query_node(std::int32_t node, const Aabb& box, const OverlapQueryCallback& on_overlap) const {
+  const Node& n = nodes_[std::size_t(node)];
+  ++stats_.nodes_visited;
+  for (std::uint32_t id = n.first; id != kNone; id = next_[id]) {
+    ++stats_.pairs_tested;
+    if (proxies_[id].box.overlaps(box) && !on_overlap(id)) return false;
+  }
+  for (const std::int32_t child : n.child) {
+    if (child == kNil || !nodes_[std::size_t(child)].loose.overlaps(box)) continue;
+    if (!query_node(child, box, on_overlap)) return false;
+  }
+  return true;
+}
+
+template <int Dim>
+void LooseTree<Dim>::query_aabb(const Aabb& box, const OverlapQueryCallback& on_overlap) const {
+  stats_ = {};
+  if (root_ == kNil || !box.is_valid() || !nodes_[std::size_t(root_)].loose.overlaps(box)) return;
+  query_node(root_, box, on_overlap);
+}
+
+template <int Dim>
+void LooseTree<Dim>::query_point(const Vec3& point, const OverlapQueryCallback& on_overlap) const {
+  query_aabb(Aabb::from_point(point), on_overlap);
+}
+
+template <int Dim>
+void LooseTree<Dim>::query_ray(const Ray& ray, Real max_t, const RayQueryCallback& on_ray) const {
+  stats_ = {};
+  if (root_ == kNil) return;
+  Real limit = max_t;
+  std::vector<std::int32_t> stack{root_};
+  while (!stack.empty()) {
+    const std::int32_t node = stack.back();
+    stack.pop_back();
+    const Node& n = nodes_[std::size_t(node)];
+    if (!ray_meets(ray, limit, n.loose, Dim)) continue;
+    ++stats_.nodes_visited;
+    for (std::uint32_t id = n.first; id != kNone; id = next_[id]) {
+      ++stats_.pairs_tested;
+      Real t = 0;
+      if (!detail::ray_enters_box(ray, limit, proxies_[id].box, t)) continue;
+      const Real next = on_ray(id, t);
+      if (next < 0) continue;
+      if (next == 0) return;
+      limit = std::min(limit, next);
+    }
+    for (const std::int32_t child : n.child) {
+      if (child != kNil) stack.push_back(child);
+    }
+  }
+}
+
+template <int Dim>
+bool LooseTree<Dim>::validate() const {
+  if (!proxies_.validate()) return false;
+  const auto ids = proxies_.ids();
+  if (root_ == kNil) return ids.empty() && node_count() == 0;
+  if (nodes_[std::size_t(root_)].parent != kNil) return false;
+  std::vector<char> is_free(nodes_.size(), 0);
+  for (const std::int32_t f : free_) is_free[std::size_t(f)] = 1;
+  std::size_t listed = 0;
+  for (std::size_t i = 0; i < nodes_.size(); ++i) {
+    if (is_free[i] != 0) continue;
+    const Node& n = nodes_[i];
+    std::uint32_t children = 0;
+    for (const std::int32_t ch : n.child) {
+      if (ch == kNil) continue;
+      ++children;
+      if (is_free[std::size_t(ch)] != 0 || nodes_[std::size_t(ch)].parent != std::int32_t(i)) return false;
+      if (!contains(n.loose, nodes_[std::size_t(ch)].loose)) return false;
+    }
+    if (children != n.children) return false;
+    if (std::int32_t(i) != root_ && n.count == 0 && n.children == 0) return false;  // empty leaf kept
+    std::uint32_t count = 0;
+    std::uint32_t previous = kNone;
+    for (std::uint32_t id = n.first; id != kNone; id = next_[id]) {
+      if (!proxies_.contains(id) || node_of_[id] != std::int32_t(i) || prev_[id] != previous) return false;
+      if (!contains(n.loose, proxies_[id].box)) return false;
+      previous = id;
+      if (++count > ids.size()) return false;
+    }
+    if (count != n.count) return false;
+    listed += count;
+  }
+  return listed == ids.size();
+}
+
+template <int Dim>
+int LooseTree<Dim>::depth() const {
+  int deepest = 0;
+  std::vector<char> is_free(nodes_.size(), 0);
+  for (const std::int32_t f : free_) is_free[std::size_t(f)] = 1;
+  for (std::size_t i = 0; i < nodes_.size(); ++i) {
+    if (is_free[i] != 0) continue;
+    int d = 0;
+    for (std::int32_t p = nodes_[i].parent; p != kNil; p = nodes_[std::size_t(p)].parent) ++d;
+    deepest = std::max(deepest, d);
+  }
+  return deepest;
+}
+
+template <int Dim>
+std::size_t LooseTree<Dim>::memory_bytes() const {
+  return capacity_bytes(node_of_) + capacity_bytes(next_) + capacity_bytes(prev_) + capacity_bytes(nodes_) +
+         capacity_bytes(free_) + capacity_bytes(stack_) + sort_scratch_.keys.capacity() * 16 +
+         proxies_.size() * (sizeof(detail::ProxyRecord) + sizeof(ProxyId));
+}
+
+template class LooseTree<2>;
+template class LooseTree<3>;
+
+}  // namespace proxima
