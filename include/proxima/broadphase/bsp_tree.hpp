@@ -1,0 +1,129 @@
+#pragma once
+/// @file bsp_tree.hpp
+/// BspTree ("bsp"): a binary space partition with arbitrary (not only axis-aligned) splitting
+/// planes, meant for scenes dominated by static geometry (levels, terrain pieces, walls along
+/// diagonal directions).
+///
+/// Design:
+/// - Each internal node holds a plane n . x = d. Candidate normals are the principal axis of
+///   the node's box centres (power iteration on their covariance), the three coordinate axes
+///   and the four cube diagonals; each candidate's offset is the median of the projected
+///   centres; the plane that straddles the fewest boxes (ties: the most balanced) wins.
+/// - Straddling boxes STAY AT THE NODE (no reference splitting): every proxy is stored at
+///   exactly one node, so pairs are never produced twice and need no dedupe set. A box goes to
+///   the back child when its projection lies entirely below d, to the front child when
+///   entirely above, else it stays.
+/// - Each node keeps, besides the plane, `back_max` (the largest projection of any box in its
+///   back subtree) and `front_min` (the smallest of its front subtree), so queries visit a side
+///   only when the query's projection reaches it, and the AABB of its whole subtree (ray
+///   queries use it). Projections are padded by a rounding bound, so the pruning is exact.
+/// - Moving proxies are supported: an update detaches the proxy and re-descends from the root
+///   (O(depth)); bounds only grow, so after many updates the tree is loose. find_pairs rebuilds
+///   when the edits since the last build exceed `rebuild_edits` times the proxy count.
+/// - Pair finding: one box query per Moving proxy (moving-moving pairs kept by id order).
+///
+/// Complexity: build O(n log n) (seven candidate planes per node); insert/update/remove
+/// O(depth + node occupancy); queries O(depth + visited occupancy + k). Not safe for
+/// concurrent calls.
+
+#include <proxima/broadphase/broadphase.hpp>
+#include <proxima/broadphase/pair_tracker.hpp>
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace proxima {
+
+/// Tuning of a BspTree.
+struct BspTreeConfig {
+  /// Largest number of proxies a node keeps before the build splits it (>= 1).
+  int leaf_size = 8;
+  /// find_pairs rebuilds once inserts + updates + removes since the last build exceed this
+  /// many times the proxy count (plus 16).
+  Real rebuild_edits = Real(2);
+};
+
+/// BSP-tree broad phase (see the file comment). Satisfies BroadPhaseStructure.
+class BspTree {
+ public:
+  /// Creates an empty tree.
+  explicit BspTree(const BspTreeConfig& config = {});
+
+  /// Adds a proxy by descent from the root. O(depth).
+  BroadPhaseStatus insert(ProxyId id, const Aabb& box, ProxyKind kind, ProxyFilter filter = {});
+  /// Removes a proxy. O(node occupancy).
+  BroadPhaseStatus remove(ProxyId id);
+  /// Moves a proxy (detach and re-descend). O(depth).
+  BroadPhaseStatus update(ProxyId id, const Aabb& box);
+  /// Moves many proxies, all or nothing.
+  BroadPhaseStatus update(std::span<const ProxyUpdate> updates);
+  /// Rebuilds the planes over the current boxes. O(n log n).
+  void rebuild();
+  /// Every pair (see broadphase.hpp), sorted. May rebuild first.
+  void find_pairs(std::vector<ProxyPair>& out);
+
+  /// Every proxy whose box overlaps `box` (closed); stops when the callback returns false.
+  void query_aabb(const Aabb& box, const OverlapQueryCallback& on_overlap) const;
+  /// Every proxy whose box contains `point`.
+  void query_point(const Vec3& point, const OverlapQueryCallback& on_overlap) const;
+  /// Every proxy whose box the ray enters within [0, max_t]; the callback clips the ray.
+  void query_ray(const Ray& ray, Real max_t, const RayQueryCallback& on_ray) const;
+
+  /// Checks the invariants: each proxy at one node, each box on the proper side of every
+  /// ancestor plane and within the ancestors' side bounds and subtree boxes, parent links.
+  bool validate() const;
+  /// Counters of the last find_pairs or query.
+  BroadPhaseStats stats() const { return stats_; }
+  /// Number of proxies.
+  std::size_t size() const { return count_; }
+  /// Number of nodes.
+  std::size_t node_count() const { return nodes_.size(); }
+  /// Number of internal nodes whose plane is not axis-aligned.
+  std::size_t oblique_plane_count() const;
+  /// Number of rebuilds done so far (explicit and automatic).
+  std::size_t rebuild_count() const { return rebuilds_; }
+
+ private:
+  static constexpr std::uint32_t kNull = 0xffffffffu;
+
+  struct Node {
+    Vec3 normal{Real(0)};   ///< unit plane normal (internal nodes)
+    Real offset = Real(0);  ///< plane offset d
+    Real back_max = -kRealMax;
+    Real front_min = kRealMax;
+    Aabb bounds;  ///< contains every box of the subtree (grown, exact after rebuild)
+    std::uint32_t back = kNull;
+    std::uint32_t front = kNull;
+    std::uint32_t parent = kNull;
+    std::vector<ProxyId> items;  ///< proxies stored here
+    bool internal() const { return back != kNull; }
+  };
+  struct Proxy {
+    Aabb box;
+    ProxyFilter filter;
+    std::uint32_t node = kNull;  ///< kNull when unused
+    std::uint32_t index = 0;     ///< position in the node's items
+    ProxyKind kind = ProxyKind::Static;
+  };
+
+  void place(ProxyId id);
+  void detach(ProxyId id);
+  std::uint32_t build(std::vector<ProxyId>& ids, std::uint32_t parent, int depth);
+  template <class Visit>
+  void visit_box(const Aabb& box, BroadPhaseStats& st, Visit&& visit) const;
+
+  BspTreeConfig config_;
+  std::vector<Node> nodes_;
+  std::vector<Proxy> proxies_;
+  std::size_t count_ = 0;
+  std::size_t edits_ = 0;
+  std::size_t rebuilds_ = 0;
+  bool overfull_ = false;  ///< a leaf grew past 4 leaf_size + 16 by insertion
+  PairSortScratch sort_scratch_;
+  mutable BroadPhaseStats stats_;
+};
+
+static_assert(BroadPhaseStructure<BspTree>);
+
+}  // namespace proxima
