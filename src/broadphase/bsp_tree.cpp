@@ -6,15 +6,18 @@
 ///    principal axis of the centres by power iteration, x, y, z, four cube diagonals), put the
 ///    plane at the median projected centre and count the boxes entirely behind, entirely in
 ///    front and straddling; keep the plane with the fewest straddlers (then the best balance);
-///    recurse on both sides; straddlers stay at the node.
+///    recurse on both sides; straddlers stay at the node, or, when more than leaf_size of
+///    them, form a third ("middle") subtree built the same way with other planes.
 /// 2. projections of a box on a normal use the corner that minimises (maximises) n . x and are
 ///    padded by a bound on the dot product's rounding, so they contain the exact projection.
 /// 3. insert/update: descend from the root, growing each visited node's subtree box and the
-///    back_max / front_min bound of the side taken; stop at a straddled plane or a leaf.
+///    back_max / front_min bound of the side taken; at a straddled plane continue into the
+///    middle subtree if there is one, else stop there; stop at a leaf.
 /// 4. queries visit a node when its subtree box overlaps the query, test the node's proxies,
 ///    and go behind when the query's projection reaches back_max, in front when it reaches
 ///    front_min. Rays prune by the subtree boxes.
-/// 5. find_pairs: rebuild when edits accumulated or a leaf overflowed; one box query per
+/// 5. find_pairs: rebuild when the search work grew past rebuild_work times its value after
+///    the last build, when edits accumulated, or when a leaf overflowed; one box query per
 ///    Moving proxy; moving-moving pairs kept when the other id is larger; radix-sorted.
 /// References: H. Fuchs, Z. Kedem, B. Naylor, "On visible surface generation by a priori tree
 /// structures", SIGGRAPH 1980; C. Ericson, Real-Time Collision Detection, chapter 8 (BSP trees)
@@ -88,6 +91,8 @@ void BspTree::place(ProxyId id) {
     } else if (iv.lo > n.offset) {
       n.front_min = std::min(n.front_min, iv.lo);
       index = n.front;
+    } else if (n.middle != kNull) {
+      index = n.middle;
     } else {
       break;
     }
@@ -226,16 +231,24 @@ std::uint32_t BspTree::build(std::vector<ProxyId>& ids, std::uint32_t parent, in
     n.offset = best_offset;
     n.back_max = back_max;
     n.front_min = front_min;
-    n.items = stay;
-    for (std::uint32_t i = 0; i < n.items.size(); ++i) {
-      proxies_[n.items[i]].node = index;
-      proxies_[n.items[i]].index = i;
+    if (stay.size() <= static_cast<std::size_t>(config_.leaf_size)) {
+      n.items = stay;
+      for (std::uint32_t i = 0; i < n.items.size(); ++i) {
+        proxies_[n.items[i]].node = index;
+        proxies_[n.items[i]].index = i;
+      }
+      stay.clear();
     }
   }
   const std::uint32_t back = build(back_ids, index, depth + 1);
   const std::uint32_t front = build(front_ids, index, depth + 1);
   nodes_[index].back = back;
   nodes_[index].front = front;
+  if (!stay.empty()) {
+    // Many straddlers: they get a subtree of their own, split by other planes.
+    const std::uint32_t middle = build(stay, index, depth + 1);
+    nodes_[index].middle = middle;
+  }
   return index;
 }
 
@@ -319,6 +332,7 @@ void BspTree::visit_box(const Aabb& box, BroadPhaseStats& st, Visit&& visit) con
     }
     if (!n.internal()) continue;
     const Interval iv = project(n.normal, box);
+    if (n.middle != kNull) stack.push(n.middle);
     if (iv.hi >= n.front_min) stack.push(n.front);
     if (iv.lo <= n.back_max) stack.push(n.back);
   }
@@ -367,6 +381,7 @@ void BspTree::query_ray(const Ray& ray, Real max_t, const RayQueryCallback& on_r
         }
       }
       if (n.internal()) {
+        if (n.middle != kNull) stack.push(n.middle);
         stack.push(n.front);
         stack.push(n.back);
       }
@@ -379,8 +394,11 @@ void BspTree::query_ray(const Ray& ray, Real max_t, const RayQueryCallback& on_r
 
 void BspTree::find_pairs(std::vector<ProxyPair>& out) {
   out.clear();
-  if (overfull_ || static_cast<Real>(edits_) > config_.rebuild_edits * static_cast<Real>(count_) + Real(16)) {
+  bool rebuilt = false;
+  if (overfull_ || degraded_ ||
+      static_cast<Real>(edits_) > config_.rebuild_edits * static_cast<Real>(count_) + Real(16)) {
     rebuild();
+    rebuilt = true;
   }
   BroadPhaseStats st;
   for (std::size_t i = 0; i < proxies_.size(); ++i) {
@@ -398,6 +416,17 @@ void BspTree::find_pairs(std::vector<ProxyPair>& out) {
   sort_pairs(out, sort_scratch_);
   st.pairs_found = out.size();
   stats_ = st;
+  // Quality watch: the work of the first pair search after a build is the baseline; when the
+  // work grows past rebuild_work times it (plus slack for the pairs themselves), the next
+  // find_pairs rebuilds.
+  const double work = static_cast<double>(st.nodes_visited + st.pairs_tested);
+  const double slack = 2.0 * static_cast<double>(st.pairs_found) + 64.0;
+  if (rebuilt) {
+    baseline_work_ = work;
+    degraded_ = false;
+  } else {
+    degraded_ = work > static_cast<double>(config_.rebuild_work) * baseline_work_ + slack;
+  }
 }
 
 // ---- inspection -------------------------------------------------------------------------------
@@ -433,6 +462,8 @@ bool BspTree::validate() const {
         if (!(iv.hi < n.offset) || iv.hi > n.back_max) return false;
       } else if (child == n.front) {
         if (!(iv.lo > n.offset) || iv.lo < n.front_min) return false;
+      } else if (child == n.middle) {
+        if (iv.hi < n.offset || iv.lo > n.offset) return false;
       } else {
         return false;
       }
@@ -445,7 +476,8 @@ bool BspTree::validate() const {
     const Node& n = nodes_[i];
     stored += n.items.size();
     if (n.internal() && (n.back >= nodes_.size() || n.front >= nodes_.size() || nodes_[n.back].parent != i ||
-                         nodes_[n.front].parent != i)) {
+                         nodes_[n.front].parent != i ||
+                         (n.middle != kNull && (n.middle >= nodes_.size() || nodes_[n.middle].parent != i)))) {
       return false;
     }
   }

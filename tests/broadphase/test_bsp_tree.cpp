@@ -30,6 +30,7 @@ TEST(BspTree, StandardScenes) {
 TEST(BspTree, StandardScenesNeverRebuilt) {
   BspTreeConfig c;
   c.rebuild_edits = Real(1e6);  // only explicit rebuilds and overflowing leaves
+  c.rebuild_work = Real(1e6);
   test::run_standard_scenes([c] { return BspTree(c); });
 }
 

@@ -12,14 +12,17 @@
 /// - Straddling boxes STAY AT THE NODE (no reference splitting): every proxy is stored at
 ///   exactly one node, so pairs are never produced twice and need no dedupe set. A box goes to
 ///   the back child when its projection lies entirely below d, to the front child when
-///   entirely above, else it stays.
+///   entirely above, else it stays. When the build finds more than `leaf_size` straddlers at a
+///   node, they form the node's third, "middle" subtree, partitioned by other planes (they all
+///   cross this one), so queries never scan a long straddler list.
 /// - Each node keeps, besides the plane, `back_max` (the largest projection of any box in its
 ///   back subtree) and `front_min` (the smallest of its front subtree), so queries visit a side
 ///   only when the query's projection reaches it, and the AABB of its whole subtree (ray
 ///   queries use it). Projections are padded by a rounding bound, so the pruning is exact.
 /// - Moving proxies are supported: an update detaches the proxy and re-descends from the root
 ///   (O(depth)); bounds only grow, so after many updates the tree is loose. find_pairs rebuilds
-///   when the edits since the last build exceed `rebuild_edits` times the proxy count.
+///   when its own work has grown by `rebuild_work` since the last build, or when the edits
+///   since the last build exceed `rebuild_edits` times the proxy count.
 /// - Pair finding: one box query per Moving proxy (moving-moving pairs kept by id order).
 ///
 /// Complexity: build O(n log n) (seven candidate planes per node); insert/update/remove
@@ -41,7 +44,10 @@ struct BspTreeConfig {
   int leaf_size = 8;
   /// find_pairs rebuilds once inserts + updates + removes since the last build exceed this
   /// many times the proxy count (plus 16).
-  Real rebuild_edits = Real(2);
+  Real rebuild_edits = Real(16);
+  /// find_pairs rebuilds once its work (nodes visited + boxes tested) exceeds this many times
+  /// the work of the first find_pairs after the last build.
+  Real rebuild_work = Real(1.5);
 };
 
 /// BSP-tree broad phase (see the file comment). Satisfies BroadPhaseStructure.
@@ -95,6 +101,7 @@ class BspTree {
     Aabb bounds;  ///< contains every box of the subtree (grown, exact after rebuild)
     std::uint32_t back = kNull;
     std::uint32_t front = kNull;
+    std::uint32_t middle = kNull;  ///< subtree of the straddlers (kNull: they are in `items`)
     std::uint32_t parent = kNull;
     std::vector<ProxyId> items;  ///< proxies stored here
     bool internal() const { return back != kNull; }
@@ -119,7 +126,10 @@ class BspTree {
   std::size_t count_ = 0;
   std::size_t edits_ = 0;
   std::size_t rebuilds_ = 0;
-  bool overfull_ = false;  ///< a leaf grew past 4 leaf_size + 16 by insertion
+  bool overfull_ = false;
+  bool degraded_ = false;  ///< the last find_pairs found the tree degraded
+  double baseline_work_ =
+      0;  ///< work of the first find_pairs after the last build  ///< a leaf grew past 4 leaf_size + 16 by insertion
   PairSortScratch sort_scratch_;
   mutable BroadPhaseStats stats_;
 };
