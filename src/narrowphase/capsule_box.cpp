@@ -5,7 +5,8 @@
 //     (detail::closest_segment_box, piecewise quadratic minimisation);
 //  2. core apart from the box: normal = (on_box - on_segment) / distance, signed distance =
 //     distance - r;
-//  3. core touching the box: separating-axis test of segment against box over the 3 face
+//  3. core touching the box (within the tolerance, where the direction of on_box - on_segment
+//     is rounding noise): separating-axis test of segment against box over the 3 face
 //     axes and the 3 axes d x e_i (the face normals of their Minkowski difference, so the
 //     minimum overlap is the exact core penetration; face axes win ties within tolerance);
 //     normal turned from the segment's centre towards the box centre; segment witness its
@@ -48,7 +49,7 @@ CapsuleBox capsule_box(const Capsule& a, const Transform& pose_a, const Box& b, 
   Vec3 on_a = sb.on_segment;
   Vec3 on_b = sb.on_box;
   cb.t = sb.t;
-  if (!unit_and_length(sb.on_box - sb.on_segment, n, core)) {
+  if (!(unit_and_length(sb.on_box - sb.on_segment, n, core) && core > cb.tolerance)) {
     // The core touches the box: SAT over the face axes and the edge axes d x e_i.
     const Vec3 d = cb.p1 - cb.p0;
     const Vec3 half = Real(0.5) * d;

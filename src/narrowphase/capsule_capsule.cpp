@@ -5,7 +5,8 @@
 //     segment, robust for parallel and zero-length segments);
 //  2. cores apart: normal = (on_b - on_a) / |on_b - on_a|, signed distance = |on_b - on_a| -
 //     both radii;
-//  3. cores crossing: the Minkowski difference of two segments is flat, so the exact
+//  3. cores crossing (apart by at most the tolerance, where the direction of on_b - on_a is
+//     rounding noise): the Minkowski difference of two segments is flat, so the exact
 //     penetration of the capsules is ra + rb along the common normal dA x dB (turned towards
 //     B's centre); parallel or zero-length cores take A's local +x axis (B's when A is a
 //     point), turned the same way;
@@ -46,7 +47,7 @@ CapsuleCapsule capsule_capsule(const Capsule& a, const Transform& pose_a, const 
   cc.t = sp.t;
   Vec3 n;
   Real length = Real(0);
-  if (!unit_and_length(sp.on_b - sp.on_a, n, length)) {
+  if (!(unit_and_length(sp.on_b - sp.on_a, n, length) && length > cc.tolerance)) {
     length = Real(0);
     const Vec3 da = cc.a1 - cc.a0;
     const Vec3 db = cc.b1 - cc.b0;

@@ -11,13 +11,17 @@
 /// separating-axis test of segment against box or triangle, common normal of crossing
 /// segments). All O(1), no allocation.
 ///
-/// Degenerate configurations get a deterministic normal, never NaN:
+/// Degenerate configurations get a deterministic normal, never NaN. Cores closer than the
+/// pair's tolerance (request.tolerance, else linear_tolerance of the pair's scale) count as
+/// touching, because the direction between their closest points is then rounding noise:
 ///  - sphere-sphere with coincident centres: A's local +x axis (in world);
 ///  - a sphere centre on a capsule's core: the capsule's local +x axis (perpendicular to it);
 ///  - crossing capsule cores: the common normal of the axes, turned towards B's centre; for
 ///    parallel or zero-length cores, A's local +x axis (B's when A is the zero-length one
 ///    would not matter: every perpendicular is as good), turned towards B's centre;
-///  - a sphere centre on a triangle: the triangle's normal (b - a) x (c - a).
+///  - a sphere centre on a triangle: the triangle's normal (b - a) x (c - a), turned to the
+///    centre's side;
+///  - a capsule core touching a box or a triangle: the separating-axis test's axis.
 /// intersect(...) is true iff distance(...).signed_distance <= request.contact_distance.
 
 #include <proxima/shapes/shape.hpp>

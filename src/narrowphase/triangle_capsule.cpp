@@ -6,7 +6,8 @@
 //     (geometry::closest_points_segment_triangle);
 //  2. core apart: normal = (on_segment - on_triangle) / distance (A to B), signed distance =
 //     distance - r;
-//  3. core touching the triangle: separating-axis test over the face normals of the
+//  3. core touching the triangle (within the tolerance, where the direction of on_segment -
+//     on_triangle is rounding noise): separating-axis test over the face normals of the
 //     Minkowski difference of segment and triangle: the triangle normal N, d x e_k and the
 //     in-plane edge normals N x e_k (the normal wins ties within tolerance); the minimum
 //     overlap is the exact core penetration; capsule witness its deepest core point;
@@ -46,7 +47,7 @@ TriangleCapsule triangle_capsule(const Triangle& a, const Transform& pose_a, con
   Real core = Real(0);
   Vec3 on_tri = cp.on_b;
   Vec3 on_seg = cp.on_a;
-  if (!unit_and_length(cp.on_a - cp.on_b, n, core)) {
+  if (!(unit_and_length(cp.on_a - cp.on_b, n, core) && core > tc.tolerance)) {
     // The core touches the triangle: SAT over the faces of the Minkowski difference.
     const Vec3 d = tc.p1 - tc.p0;
     const Vec3& nt = a.normal();

@@ -5,7 +5,9 @@
 //  1. the sphere centre c; the closest point q of the triangle to it (Voronoi regions);
 //  2. normal = (c - q) / |c - q| (A to B), signed distance |c - q| - r (exact also when the
 //     sphere overlaps: the triangle is convex, so the depth is r - |c - q|);
-//  3. a centre on the triangle takes the triangle's normal (b - a) x (c - a) (depth r).
+//  3. a centre on the triangle (within the pair's tolerance, where the direction of c - q is
+//     rounding noise) takes the triangle's normal (b - a) x (c - a) turned to the centre's side
+//     (+normal when exactly in the plane), depth r.
 // Manifold: that single point; feature id: triangle vertex / edge / face against the sphere
 // surface.
 #include <proxima/geometry/closest_points.hpp>
@@ -26,10 +28,15 @@ TriangleSphere triangle_sphere(const Triangle& a, const Transform& pose_a, const
                                const PairRequest& request) {
   const Vec3 c = pose_a.inverse_apply(pose_b.position);
   const geometry::TrianglePoint q = geometry::closest_point_triangle(c, a.a(), a.b(), a.c());
-  Real length = Real(0);
-  const Vec3 n = detail::unit_or(c - q.point, a.normal(), length);
   const Real size = geometry::detail::magnitude({a.a(), a.b(), a.c()});
   const Real tol = resolve_tolerance(request, detail::pair_scale(pose_a, pose_b, size + b.radius()));
+  Real length = Real(0);
+  Vec3 n = detail::unit_or(c - q.point, a.normal(), length);
+  if (!(length > tol)) {
+    // Centre on the triangle (within tolerance): the normal, turned to the centre's side.
+    n = glm::dot(c - a.a(), a.normal()) < Real(0) ? -a.normal() : a.normal();
+    length = Real(0);
+  }
   TriangleSphere ts;
   ts.result = detail::rounded_result(pose_a.apply(q.point), pose_b.position, pose_a.apply_vector(n), length, Real(0),
                                      b.radius(), tol);
