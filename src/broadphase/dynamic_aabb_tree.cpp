@@ -36,6 +36,14 @@ namespace {
 constexpr int kBins = 16;
 constexpr int kMaxBuildDepth = 64;
 
+/// Closed box overlap without short-circuit branches (the six comparisons are unpredictable in
+/// tree traversal; evaluating all of them is cheaper than mispredicting).
+inline bool overlap(const Aabb& a, const Aabb& b) {
+  return static_cast<bool>(static_cast<int>(a.min.x <= b.max.x) & static_cast<int>(b.min.x <= a.max.x) &
+                           static_cast<int>(a.min.y <= b.max.y) & static_cast<int>(b.min.y <= a.max.y) &
+                           static_cast<int>(a.min.z <= b.max.z) & static_cast<int>(b.min.z <= a.max.z));
+}
+
 struct BuildItem {
   Aabb box;
   Vec3 centre;
@@ -46,6 +54,7 @@ struct BuildItem {
 
 DynamicAabbTree::DynamicAabbTree(const DynamicAabbTreeConfig& config) : config_(config) {
   if (!(config_.margin_fraction >= Real(0))) config_.margin_fraction = Real(0);
+  if (!(config_.refit_margin_fraction >= Real(0))) config_.refit_margin_fraction = Real(0);
   if (!(config_.margin_min >= Real(0))) config_.margin_min = Real(0);
 }
 
@@ -59,6 +68,7 @@ std::uint32_t DynamicAabbTree::allocate(Tree& tree) {
   } else {
     index = static_cast<std::uint32_t>(tree.nodes.size());
     tree.nodes.emplace_back();
+    tree.real.emplace_back();
   }
   tree.nodes[index] = Node{};
   ++tree.in_use;
@@ -90,6 +100,7 @@ void DynamicAabbTree::refit_up(Tree& tree, std::uint32_t index) {
 
 void DynamicAabbTree::insert_leaf(Tree& tree, std::uint32_t leaf) {
   ++tree.leaves;
+  tree.order_valid = false;
   if (tree.root == kNull) {
     tree.root = leaf;
     tree.nodes[leaf].parent = kNull;
@@ -154,6 +165,7 @@ void DynamicAabbTree::insert_leaf(Tree& tree, std::uint32_t leaf) {
 
 void DynamicAabbTree::remove_leaf(Tree& tree, std::uint32_t leaf) {
   --tree.leaves;
+  tree.order_valid = false;
   if (leaf == tree.root) {
     tree.root = kNull;
     return;
@@ -283,6 +295,7 @@ BroadPhaseStatus DynamicAabbTree::insert(ProxyId id, const Aabb& box, ProxyKind 
   const std::uint32_t leaf = allocate(tree);
   tree.nodes[leaf].box = make_fat(box, kind);
   tree.nodes[leaf].child2 = id;
+  tree.real[leaf] = box;
   Proxy& p = proxies_[id];
   p.box = box;
   p.filter = filter;
@@ -310,7 +323,9 @@ BroadPhaseStatus DynamicAabbTree::update(ProxyId id, const Aabb& box) {
   if (s != BroadPhaseStatus::Ok) return s;
   Proxy& p = proxies_[id];
   p.box = box;
-  if (needs_reinsert(p, tree_of(p.kind).nodes[p.leaf].box)) reinsert(p);
+  Tree& tree = tree_of(p.kind);
+  tree.real[p.leaf] = box;
+  if (needs_reinsert(p, tree.nodes[p.leaf].box)) reinsert(p);
   return BroadPhaseStatus::Ok;
 }
 
@@ -325,22 +340,77 @@ BroadPhaseStatus DynamicAabbTree::update(std::span<const ProxyUpdate> updates) {
   for (const ProxyUpdate& u : updates) {
     Proxy& p = proxies_[u.id];
     p.box = u.box;
+    tree_of(p.kind).real[p.leaf] = u.box;
     if (p.kind == ProxyKind::Moving && needs_reinsert(p, moving_.nodes[p.leaf].box)) ++moving_out;
   }
-  const bool rebuild_moving = moving_.leaves >= 64 && static_cast<Real>(moving_out) >
-                                                          config_.rebuild_fraction * static_cast<Real>(moving_.leaves);
+  const bool refit_moving = moving_.leaves >= 64 &&
+                            static_cast<Real>(moving_out) > config_.refit_fraction * static_cast<Real>(moving_.leaves);
   for (const ProxyUpdate& u : updates) {
     Proxy& p = proxies_[u.id];
     Tree& tree = tree_of(p.kind);
     if (!needs_reinsert(p, tree.nodes[p.leaf].box)) continue;
-    if (rebuild_moving && p.kind == ProxyKind::Moving) {
-      tree.nodes[p.leaf].box = make_fat(p.box, p.kind);  // internal nodes are rebuilt below
-    } else {
-      reinsert(p);
+    if (refit_moving && p.kind == ProxyKind::Moving) continue;  // handled below
+    reinsert(p);
+  }
+  if (refit_moving) {
+    // Every updated moving leaf gets a fat box with the refit margin (tight by default: the
+    // whole tree is refitted anyway, and tight boxes find pairs faster).
+    for (const ProxyUpdate& u : updates) {
+      const Proxy& p = proxies_[u.id];
+      if (p.kind != ProxyKind::Moving) continue;
+      const Vec3 e = p.box.extents();
+      const Real margin = config_.refit_margin_fraction * std::max(e.x, std::max(e.y, e.z));
+      Aabb fat = margin > Real(0) ? p.box.inflated(margin) : p.box;
+      fat.min = glm::max(fat.min, Vec3(-kMaxCoordinate));
+      fat.max = glm::min(fat.max, Vec3(kMaxCoordinate));
+      moving_.nodes[p.leaf].box = fat;
     }
   }
-  if (rebuild_moving) rebuild_tree(moving_);
+  if (refit_moving) {
+    const Real cost = refit_all(moving_);
+    if (cost > (Real(1) + config_.rebuild_degradation) * moving_.built_cost) rebuild_tree(moving_);
+  }
   return BroadPhaseStatus::Ok;
+}
+
+Real DynamicAabbTree::tree_cost(const Tree& tree) {
+  if (tree.root == kNull) return Real(0);
+  const Real root_area = tree.nodes[tree.root].box.surface_area();
+  if (!(root_area > Real(0))) return Real(0);
+  Real sum = Real(0);
+  for (std::size_t i = 0; i < tree.nodes.size(); ++i) {
+    const Node& n = tree.nodes[i];
+    if (n.height > 0) sum += n.box.surface_area();  // internal nodes in use (free ones: -1)
+  }
+  return sum / root_area;
+}
+
+Real DynamicAabbTree::refit_all(Tree& tree) {
+  if (tree.root == kNull) return Real(0);
+  if (!tree.order_valid) {
+    // Pre-order of the internal nodes, reversed: children come before their parents.
+    tree.refit_order.clear();
+    std::vector<std::uint32_t> stack{tree.root};
+    while (!stack.empty()) {
+      const std::uint32_t i = stack.back();
+      stack.pop_back();
+      const Node& n = tree.nodes[i];
+      if (n.is_leaf()) continue;
+      tree.refit_order.push_back(i);
+      stack.push_back(n.child1);
+      stack.push_back(n.child2);
+    }
+    std::reverse(tree.refit_order.begin(), tree.refit_order.end());
+    tree.order_valid = true;
+  }
+  Real sum = Real(0);
+  for (const std::uint32_t i : tree.refit_order) {
+    Node& n = tree.nodes[i];
+    n.box = merge(tree.nodes[n.child1].box, tree.nodes[n.child2].box);
+    sum += n.box.surface_area();
+  }
+  const Real root_area = tree.nodes[tree.root].box.surface_area();
+  return root_area > Real(0) ? sum / root_area : Real(0);
 }
 
 // ---- binned SAH rebuild -----------------------------------------------------------------------
@@ -462,19 +532,38 @@ void DynamicAabbTree::rebuild_tree(Tree& tree) {
   fresh.root = build(build, 0, items.size(), kNull, 0);
   fresh.in_use = fresh.nodes.size();
   fresh.leaves = items.size();
+  // Pre-order layout: children have larger indices than parents, so the reversed list of
+  // internal nodes is a valid refit order.
+  fresh.real.resize(fresh.nodes.size());
+  for (std::size_t i = fresh.nodes.size(); i-- > 0;) {
+    const Node& n = fresh.nodes[i];
+    if (n.is_leaf()) {
+      fresh.real[i] = proxies_[n.child2].box;
+    } else {
+      fresh.refit_order.push_back(static_cast<std::uint32_t>(i));
+    }
+  }
+  fresh.order_valid = true;
+  fresh.built_cost = tree_cost(fresh);
   tree = std::move(fresh);
 }
 
 // ---- pair finding -----------------------------------------------------------------------------
 
 void DynamicAabbTree::collide_task(const PairTask& task, std::vector<ProxyPair>& out, BroadPhaseStats& st) const {
-  const std::vector<Node>& na = moving_.nodes;
-  const std::vector<Node>& nb = task.cross ? static_.nodes : moving_.nodes;
+  const Tree& ta = moving_;
+  const Tree& tb = task.cross ? static_ : moving_;
+  const Node* na = ta.nodes.data();
+  const Node* nb = tb.nodes.data();
   struct Item {
     std::uint32_t a;
     std::uint32_t b;
   };
   detail::TraversalStack<Item, 512> stack;
+  // Invariant: every pushed cross item has overlapping node boxes.
+  if (task.cross || task.a != task.b) {
+    if (!overlap(na[task.a].box, nb[task.b].box)) return;
+  }
   stack.push({task.a, task.b});
   while (!stack.empty()) {
     const Item it = stack.pop();
@@ -484,28 +573,43 @@ void DynamicAabbTree::collide_task(const PairTask& task, std::vector<ProxyPair>&
       if (a.is_leaf()) continue;
       stack.push({a.child1, a.child1});
       stack.push({a.child2, a.child2});
-      stack.push({a.child1, a.child2});
+      if (overlap(na[a.child1].box, na[a.child2].box)) stack.push({a.child1, a.child2});
       continue;
     }
     const Node& b = nb[it.b];
-    if (!a.box.overlaps(b.box)) continue;
     const bool a_leaf = a.is_leaf();
     const bool b_leaf = b.is_leaf();
     if (a_leaf && b_leaf) {
-      const Proxy& pa = proxies_[a.child2];
-      const Proxy& pb = proxies_[b.child2];
       ++st.pairs_tested;
-      if (pa.box.overlaps(pb.box) && can_pair(pa.filter, pb.filter)) {
-        out.push_back(a.child2 < b.child2 ? ProxyPair{a.child2, b.child2} : ProxyPair{b.child2, a.child2});
+      if (overlap(ta.real[it.a], tb.real[it.b])) {
+        const Proxy& pa = proxies_[a.child2];
+        const Proxy& pb = proxies_[b.child2];
+        if (can_pair(pa.filter, pb.filter)) {
+          out.push_back(a.child2 < b.child2 ? ProxyPair{a.child2, b.child2} : ProxyPair{b.child2, a.child2});
+        }
       }
       continue;
     }
-    if (b_leaf || (!a_leaf && a.box.surface_area() >= b.box.surface_area())) {
-      stack.push({a.child1, it.b});
-      stack.push({a.child2, it.b});
+    if (!a_leaf && !b_leaf) {
+      // Both internal: descend both at once (four child pairs, each tested before pushing).
+      const Node& a1 = na[a.child1];
+      const Node& a2 = na[a.child2];
+      const Node& b1 = nb[b.child1];
+      const Node& b2 = nb[b.child2];
+      if (overlap(a1.box, b.box)) {
+        if (overlap(a1.box, b1.box)) stack.push({a.child1, b.child1});
+        if (overlap(a1.box, b2.box)) stack.push({a.child1, b.child2});
+      }
+      if (overlap(a2.box, b.box)) {
+        if (overlap(a2.box, b1.box)) stack.push({a.child2, b.child1});
+        if (overlap(a2.box, b2.box)) stack.push({a.child2, b.child2});
+      }
+    } else if (b_leaf) {
+      if (overlap(na[a.child1].box, b.box)) stack.push({a.child1, it.b});
+      if (overlap(na[a.child2].box, b.box)) stack.push({a.child2, it.b});
     } else {
-      stack.push({it.a, b.child1});
-      stack.push({it.a, b.child2});
+      if (overlap(nb[b.child1].box, a.box)) stack.push({it.a, b.child1});
+      if (overlap(nb[b.child2].box, a.box)) stack.push({it.a, b.child2});
     }
   }
 }
@@ -599,12 +703,13 @@ void DynamicAabbTree::query_aabb(const Aabb& box, const OverlapQueryCallback& on
       stack.push(tree->root);
       bool stop = false;
       while (!stack.empty() && !stop) {
-        const Node& n = tree->nodes[stack.pop()];
+        const std::uint32_t index = stack.pop();
+        const Node& n = tree->nodes[index];
         ++st.nodes_visited;
         if (!n.box.overlaps(box)) continue;
         if (n.is_leaf()) {
           ++st.pairs_tested;
-          if (proxies_[n.child2].box.overlaps(box)) {
+          if (tree->real[index].overlaps(box)) {
             ++st.pairs_found;
             if (!on_overlap(n.child2)) stop = true;
           }
@@ -638,13 +743,14 @@ void DynamicAabbTree::query_ray(const Ray& ray, Real max_t, const RayQueryCallba
       detail::TraversalStack<std::uint32_t, 256> stack;
       stack.push(tree->root);
       while (!stack.empty() && !stop) {
-        const Node& n = tree->nodes[stack.pop()];
+        const std::uint32_t index = stack.pop();
+        const Node& n = tree->nodes[index];
         ++st.nodes_visited;
         Real t;
         if (!slab.enter(n.box, limit, t)) continue;
         if (n.is_leaf()) {
           ++st.pairs_tested;
-          const auto hit = geometry::ray_aabb(ray, limit, proxies_[n.child2].box);
+          const auto hit = geometry::ray_aabb(ray, limit, tree->real[index]);
           if (!hit) continue;
           ++st.pairs_found;
           if (!detail::apply_ray_result(on_ray(n.child2, hit->t), limit)) stop = true;
@@ -676,6 +782,7 @@ bool DynamicAabbTree::validate_tree(const Tree& tree, ProxyKind kind) const {
         if (n.height != 0 || n.child2 >= proxies_.size()) return false;
         const Proxy& p = proxies_[n.child2];
         if (p.leaf != i || p.kind != kind || !n.box.contains(p.box)) return false;
+        if (tree.real[i].min != p.box.min || tree.real[i].max != p.box.max) return false;
         continue;
       }
       if (n.child1 >= tree.nodes.size() || n.child2 >= tree.nodes.size() || n.child1 == n.child2) return false;
@@ -692,7 +799,8 @@ bool DynamicAabbTree::validate_tree(const Tree& tree, ProxyKind kind) const {
   for (std::uint32_t f = tree.free_list; f != kNull; f = tree.nodes[f].parent) {
     if (f >= tree.nodes.size() || ++free_count > tree.nodes.size()) return false;
   }
-  return reachable == tree.in_use && leaves == tree.leaves && reachable + free_count == tree.nodes.size();
+  return reachable == tree.in_use && leaves == tree.leaves && reachable + free_count == tree.nodes.size() &&
+         tree.real.size() == tree.nodes.size();
 }
 
 bool DynamicAabbTree::validate() const {
@@ -702,26 +810,7 @@ bool DynamicAabbTree::validate() const {
   return count == count_ && count == static_.leaves + moving_.leaves;
 }
 
-Real DynamicAabbTree::sah_cost() const {
-  Real total = Real(0);
-  for (const Tree* tree : {&static_, &moving_}) {
-    if (tree->root == kNull) continue;
-    const Real root_area = tree->nodes[tree->root].box.surface_area();
-    if (!(root_area > Real(0))) continue;
-    Real sum = Real(0);
-    std::vector<std::uint32_t> stack{tree->root};
-    while (!stack.empty()) {
-      const Node& n = tree->nodes[stack.back()];
-      stack.pop_back();
-      if (n.is_leaf()) continue;
-      sum += n.box.surface_area();
-      stack.push_back(n.child1);
-      stack.push_back(n.child2);
-    }
-    total += sum / root_area;
-  }
-  return total;
-}
+Real DynamicAabbTree::sah_cost() const { return tree_cost(static_) + tree_cost(moving_); }
 
 int DynamicAabbTree::height() const {
   const int hs = static_.root == kNull ? -1 : static_.nodes[static_.root].height;

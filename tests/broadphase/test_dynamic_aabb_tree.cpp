@@ -20,7 +20,8 @@ PROXIMA_BROADPHASE_DIFFERENTIAL_SUITE(
 DynamicAabbTree threaded_batch_rebuild_tree() {
   DynamicAabbTreeConfig c;
   c.threads = 3;
-  c.rebuild_fraction = Real(0.01);
+  c.refit_fraction = Real(0.01);
+  c.rebuild_degradation = Real(0);
   return DynamicAabbTree(c);
 }
 PROXIMA_BROADPHASE_DIFFERENTIAL_SUITE(DynamicAabbTreeThreadedScenes, threaded_batch_rebuild_tree, 8);
@@ -38,8 +39,16 @@ TEST(DynamicAabbTree, StandardScenesWithoutRotations) {
 TEST(DynamicAabbTree, StandardScenesThreadedAndBatchRebuild) {
   DynamicAabbTreeConfig c;
   c.threads = 4;
-  c.rebuild_fraction = Real(0.01);  // nearly every batch rebuilds the moving tree
-  c.margin_fraction = Real(0);      // every motion leaves the fat box
+  c.refit_fraction = Real(0.01);       // nearly every batch refits the moving tree
+  c.rebuild_degradation = Real(0.05);  // and often rebuilds it
+  c.margin_fraction = Real(0);         // every motion leaves the fat box
+  test::run_standard_scenes([c] { return DynamicAabbTree(c); });
+}
+
+TEST(DynamicAabbTree, StandardScenesRefitOnly) {
+  DynamicAabbTreeConfig c;
+  c.refit_fraction = Real(0);          // every batch refits
+  c.rebuild_degradation = Real(1e30);  // never rebuilds for quality
   test::run_standard_scenes([c] { return DynamicAabbTree(c); });
 }
 

@@ -16,8 +16,11 @@
 ///   on the way up (Kopta et al., "Fast, effective BVH updates for animated scenes", 2012).
 /// - rebuild() rebuilds both trees top-down with binned SAH (Wald, "On fast construction of
 ///   SAH-based bounding volume hierarchies", 2007), nodes laid out in depth-first order.
-///   A batch update that must reinsert more than `rebuild_fraction` of the moving leaves
-///   rebuilds the moving tree instead (cheaper and better than many reinsertions).
+///   A batch update that must reinsert more than `refit_fraction` of the moving leaves
+///   refits the moving tree instead (new fat boxes in place, every internal box recomputed
+///   bottom-up in O(n)) and rebuilds it when refitting has raised its SAH cost by more than
+///   `rebuild_degradation` since the last build (Jolt's and many engines' policy for scenes
+///   where everything moves).
 /// - find_pairs descends tree against tree (a simultaneous traversal of node pairs with a fixed
 ///   stack), tests the real boxes at leaf pairs, and sorts the result. With `threads > 1` the top
 ///   node pairs are split between std::threads, each writing its own list; the sorted union is
@@ -46,9 +49,15 @@ struct DynamicAabbTreeConfig {
   unsigned threads = 1;
   /// Apply SAH tree rotations after each insertion.
   bool rotations = true;
-  /// A batch update that reinserts more than this fraction of the moving leaves rebuilds the
-  /// moving tree with binned SAH instead (> 1 disables).
-  Real rebuild_fraction = Real(0.25);
+  /// A batch update that would reinsert more than this fraction of the moving leaves refits
+  /// the moving tree instead (> 1 disables).
+  Real refit_fraction = Real(0.1);
+  /// Fat-box margin (fraction of the largest edge) given to the moving leaves of a refitting
+  /// batch update (>= 0; 0 = tight, fastest pair finding when everything moves every frame).
+  Real refit_margin_fraction = Real(0);
+  /// After a refit, the moving tree is rebuilt when its SAH cost exceeds (1 + this) times its
+  /// cost after the last build.
+  Real rebuild_degradation = Real(0.25);
 };
 
 /// Incremental AABB tree broad phase (see the file comment). Satisfies BroadPhaseStructure.
@@ -115,6 +124,10 @@ class DynamicAabbTree {
   /// One binary tree over a pool of nodes.
   struct Tree {
     std::vector<Node> nodes;
+    std::vector<Aabb> real;                  ///< leaves: the proxy's real box (same index as nodes)
+    std::vector<std::uint32_t> refit_order;  ///< internal nodes, children before parents
+    bool order_valid = false;                ///< refit_order matches the structure
+    Real built_cost = Real(0);               ///< SAH cost after the last rebuild
     std::uint32_t root = kNull;
     std::uint32_t free_list = kNull;  ///< chained through Node::parent
     std::size_t in_use = 0;
@@ -142,6 +155,8 @@ class DynamicAabbTree {
   Tree& tree_of(ProxyKind kind) { return kind == ProxyKind::Moving ? moving_ : static_; }
   const Tree& tree_of(ProxyKind kind) const { return kind == ProxyKind::Moving ? moving_ : static_; }
   bool validate_tree(const Tree& tree, ProxyKind kind) const;
+  static Real refit_all(Tree& tree);
+  static Real tree_cost(const Tree& tree);
 
   struct PairTask {
     std::uint32_t a;
