@@ -1,0 +1,392 @@
+#pragma once
+/// @file epa.hpp
+/// Expanding Polytope Algorithm: penetration depth and direction of two overlapping convex
+/// sets from GJK's final simplex (van den Bergen, "Proximity Queries and Penetration Depth
+/// Computation on 3D Game Objects", GDC 2001; Collision Detection in Interactive 3D
+/// Environments, 2004, 4.3.3).
+///
+/// Steps:
+///   1. grow GJK's simplex to a polytope around the origin: a point gets a second vertex
+///      from the six axis supports, a segment a third from supports perpendicular to it, a
+///      triangle the supports along both of its normals (a bipyramid), a tetrahedron is
+///      used as is; if the Minkowski difference D = A - B is flat, stop (Degenerate);
+///   2. repeat: take the face nearest the origin, query D's support along its normal; when
+///      the support is within tolerance of the face, that face gives depth and normal;
+///      else remove the faces that see the new vertex and fan the horizon to it;
+///   3. when rounding stops the growth (a sliver face, a pinched horizon, storage or the
+///      face budget exhausted) or at the cap: the nearest face, Converged when its gap is
+///      within a loose tolerance (4096 eps x scale), else MaxIterations (its distance is a
+///      lower bound of the depth, the support along its normal an upper bound).
+/// Witnesses: barycentric coordinates of the origin's projection on the final face applied
+/// to the support points of A and B. No allocation (fixed storage), never NaN.
+
+#include <proxima/core/math.hpp>
+#include <proxima/core/tolerance.hpp>
+#include <proxima/geometry/gjk.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+
+namespace proxima::epa {
+
+/// How EPA stopped.
+enum class Status : std::uint8_t {
+  Converged,      ///< the nearest face is exact within tolerance
+  MaxIterations,  ///< the cap stopped it: depth is an upper bound (nearest face so far)
+  Degenerate,     ///< D is flat or the polytope could not grow: no answer (fall back)
+};
+
+/// Options of one EPA run.
+struct Settings {
+  int max_iterations = 128;                  ///< iteration cap
+  int max_faces = 256;                       ///< largest number of faces alive at once (capped at kMaxFaces)
+  Real abs_tolerance = Real(0);              ///< stop when support distance - face distance <= this
+  Real rel_tolerance = Real(16) * kEpsilon;  ///< ... or <= this times the depth
+};
+
+/// Storage limits (fixed arrays on the stack).
+inline constexpr int kMaxFaces = 512;
+/// See kMaxFaces.
+inline constexpr int kMaxVertices = 192;
+
+/// Outcome of epa::penetration.
+struct Result {
+  Status status = Status::Degenerate;
+  Real depth = Real(0);                    ///< penetration depth of the sets (>= 0)
+  Vec3 normal{Real(0), Real(0), Real(1)};  ///< unit, from A to B: moving B by depth*normal separates
+  Vec3 point_a{Real(0)};                   ///< deepest point of A (common frame)
+  Vec3 point_b{Real(0)};                   ///< deepest point of B: point_a - depth * normal
+  int iterations = 0;
+};
+
+namespace detail {
+
+struct Face {
+  std::array<std::uint16_t, 3> v{};
+  std::array<std::uint16_t, 3> adj{};      // face across edge e (v[e] -> v[e+1])
+  std::array<std::uint8_t, 3> adj_edge{};  // that edge's index in the neighbour
+  Vec3 n{Real(0)};
+  Real d = Real(0);
+  bool alive = false;
+};
+
+struct Polytope {
+  std::array<gjk::Vertex, kMaxVertices> verts;
+  std::array<Face, kMaxFaces> faces;
+  int nv = 0;
+  int nf = 0;      // slots used (alive or dead)
+  int alive = 0;   // faces alive
+  int budget = 0;  // most faces alive at once
+  std::array<std::uint16_t, kMaxFaces> free_slots{};
+  int nfree = 0;
+  Vec3 inner{Real(0)};  // a point inside (orients new faces)
+
+  // Adds face (i, j, k), turned away from `inner` when `orient` (the initial faces) or else
+  // kept in the given order (horizon edge, new vertex: outward by construction); false when
+  // it is degenerate or over budget.
+  bool add_face(int i, int j, int k, Real area_floor, bool orient = true) {
+    if (alive >= budget) return false;
+    if (nfree == 0 && nf >= kMaxFaces) return false;
+    const Vec3& a = verts[static_cast<std::size_t>(i)].w;
+    const Vec3& b = verts[static_cast<std::size_t>(j)].w;
+    const Vec3& c = verts[static_cast<std::size_t>(k)].w;
+    Vec3 n = glm::cross(b - a, c - a);
+    const Real len = std::sqrt(glm::dot(n, n));
+    if (!(len > area_floor)) return false;
+    n /= len;
+    const int slot = nfree > 0 ? free_slots[static_cast<std::size_t>(--nfree)] : nf++;
+    Face& f = faces[static_cast<std::size_t>(slot)];
+    f.v = {static_cast<std::uint16_t>(i), static_cast<std::uint16_t>(j), static_cast<std::uint16_t>(k)};
+    if (orient && glm::dot(n, a - inner) < Real(0)) {
+      n = -n;
+      std::swap(f.v[1], f.v[2]);
+    }
+    f.n = n;
+    f.d = glm::dot(n, a);
+    f.alive = true;
+    ++alive;
+    last = slot;
+    return true;
+  }
+  int last = -1;  // slot of the face added last
+
+  // Links faces slots[0..count) to each other and to themselves by matching reversed edges.
+  bool link(const int* slots, int count) {
+    for (int x = 0; x < count; ++x) {
+      Face& f = faces[static_cast<std::size_t>(slots[x])];
+      for (std::size_t e = 0; e < 3; ++e) {
+        const std::uint16_t i = f.v[e];
+        const std::uint16_t j = f.v[(e + 1) % 3];
+        bool found = false;
+        for (int y = 0; y < count && !found; ++y) {
+          const Face& g = faces[static_cast<std::size_t>(slots[y])];
+          for (std::size_t k = 0; k < 3; ++k) {
+            if (g.v[k] == j && g.v[(k + 1) % 3] == i) {
+              f.adj[e] = static_cast<std::uint16_t>(slots[y]);
+              f.adj_edge[e] = static_cast<std::uint8_t>(k);
+              found = true;
+              break;
+            }
+          }
+        }
+        if (!found) return false;
+      }
+    }
+    return true;
+  }
+
+  void kill(int slot) {
+    faces[static_cast<std::size_t>(slot)].alive = false;
+    free_slots[static_cast<std::size_t>(nfree++)] = static_cast<std::uint16_t>(slot);
+    --alive;
+  }
+};
+
+}  // namespace detail
+
+/// Penetration depth of A and B (overlapping) from GJK's final simplex, with support
+/// functors in a common frame as for gjk::distance. `length_scale` (> 0) is the size of
+/// the problem, for the degeneracy thresholds. O(iterations x (faces + support cost)).
+template <class SupportA, class SupportB>
+Result penetration(SupportA& support_a, SupportB& support_b, const gjk::Simplex& start, Real length_scale,
+                   const Settings& settings) {
+  Result r;
+  const auto make_vertex = [&](const Vec3& d) {
+    gjk::Vertex x;
+    x.a = support_a(d);
+    x.b = support_b(-d);
+    x.w = x.a - x.b;
+    return x;
+  };
+  detail::Polytope p;
+  p.budget = std::clamp(settings.max_faces, 4, kMaxFaces);
+  const Real scale = std::max(length_scale, std::numeric_limits<Real>::min());
+  const Real eps_len = Real(64) * kEpsilon * scale;  // distinct-point / off-line threshold
+  const Real area_floor = kEpsilon * kEpsilon * scale * scale;
+
+  std::array<gjk::Vertex, 4> s{};
+  int n = std::clamp(start.size, 0, 4);
+  for (int i = 0; i < n; ++i) s[static_cast<std::size_t>(i)] = start.v[static_cast<std::size_t>(i)];
+  if (n == 0) {
+    s[0] = make_vertex(Vec3(Real(1), Real(0), Real(0)));
+    n = 1;
+  }
+  // Step 1: grow to a segment, a triangle, then a tetrahedron or bipyramid.
+  if (n == 1) {
+    const Vec3 axes[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+    for (const Vec3& d : axes) {
+      const gjk::Vertex x = make_vertex(d);
+      if (glm::length(x.w - s[0].w) > eps_len) {
+        s[1] = x;
+        n = 2;
+        break;
+      }
+    }
+    if (n == 1) return r;  // D is a point
+  }
+  if (n == 2) {
+    const Vec3 e = s[1].w - s[0].w;
+    const Vec3 eu = e / glm::length(e);
+    Vec3 axis(Real(1), Real(0), Real(0));
+    if (std::abs(eu.y) < std::abs(eu[0]) && std::abs(eu.y) <= std::abs(eu.z))
+      axis = Vec3(0, 1, 0);
+    else if (std::abs(eu.z) < std::abs(eu[0]))
+      axis = Vec3(0, 0, 1);
+    const Vec3 d1 = glm::normalize(glm::cross(eu, axis));
+    const Vec3 d2 = glm::cross(eu, d1);
+    Real best = eps_len;
+    for (int i = 0; i < 6; ++i) {
+      const Real ang = Real(i) * Real(1.0471975511965976);
+      const Vec3 d = std::cos(ang) * d1 + std::sin(ang) * d2;
+      const gjk::Vertex x = make_vertex(d);
+      const Vec3 rel = x.w - s[0].w;
+      const Real off = glm::length(rel - eu * glm::dot(rel, eu));
+      if (off > best) {
+        best = off;
+        s[2] = x;
+        n = 3;
+      }
+    }
+    if (n == 2) return r;  // D is a segment
+  }
+  int apex_count = 0;
+  gjk::Vertex apex[2];
+  if (n == 3) {
+    Vec3 nn = glm::cross(s[1].w - s[0].w, s[2].w - s[0].w);
+    const Real len = glm::length(nn);
+    if (!(len > area_floor)) return r;
+    nn /= len;
+    const gjk::Vertex up = make_vertex(nn);
+    const gjk::Vertex down = make_vertex(-nn);
+    if (glm::dot(nn, up.w - s[0].w) > eps_len) apex[apex_count++] = up;
+    if (glm::dot(nn, s[0].w - down.w) > eps_len) apex[apex_count++] = down;
+    if (apex_count == 0) return r;  // D is flat
+  }
+  if (n == 4) {
+    for (int i = 0; i < 4; ++i) p.verts[static_cast<std::size_t>(i)] = s[static_cast<std::size_t>(i)];
+    p.nv = 4;
+    p.inner = (s[0].w + s[1].w + s[2].w + s[3].w) * Real(0.25);
+    if (!p.add_face(0, 1, 2, area_floor) || !p.add_face(0, 1, 3, area_floor) || !p.add_face(0, 2, 3, area_floor) ||
+        !p.add_face(1, 2, 3, area_floor))
+      return r;
+  } else {
+    for (int i = 0; i < 3; ++i) p.verts[static_cast<std::size_t>(i)] = s[static_cast<std::size_t>(i)];
+    Vec3 inner = s[0].w + s[1].w + s[2].w;
+    for (int i = 0; i < apex_count; ++i) {
+      p.verts[static_cast<std::size_t>(3 + i)] = apex[i];
+      inner += apex[i].w;
+    }
+    p.nv = 3 + apex_count;
+    p.inner = inner / Real(p.nv);
+    for (int i = 0; i < apex_count; ++i) {
+      const int t = 3 + i;
+      if (!p.add_face(0, 1, t, area_floor) || !p.add_face(1, 2, t, area_floor) || !p.add_face(2, 0, t, area_floor))
+        return r;
+    }
+    if (apex_count == 1 && !p.add_face(0, 1, 2, area_floor)) return r;
+  }
+  {
+    std::array<int, 8> slots{};
+    for (int f = 0; f < p.nf; ++f) slots[static_cast<std::size_t>(f)] = f;
+    if (!p.link(slots.data(), p.nf)) return r;
+  }
+  // The origin must be inside (or on) the initial polytope; else the sets barely touch.
+  for (int f = 0; f < p.nf; ++f)
+    if (p.faces[static_cast<std::size_t>(f)].d < -eps_len) return r;
+
+  // Step 2: expand.
+  const auto finish = [&](const detail::Face& f, Status status, int iterations) {
+    const Vec3 proj = f.n * std::max(f.d, Real(0));
+    const gjk::Vertex& a = p.verts[f.v[0]];
+    const gjk::Vertex& b = p.verts[f.v[1]];
+    const gjk::Vertex& c = p.verts[f.v[2]];
+    const Real den = glm::dot(f.n, glm::cross(b.w - a.w, c.w - a.w));
+    Real la = glm::dot(f.n, glm::cross(b.w - proj, c.w - proj));
+    Real lb = glm::dot(f.n, glm::cross(c.w - proj, a.w - proj));
+    Real lc = den - la - lb;
+    la = std::clamp(la / den, Real(0), Real(1));
+    lb = std::clamp(lb / den, Real(0), Real(1));
+    lc = std::clamp(lc / den, Real(0), Real(1));
+    const Real sum = la + lb + lc;
+    if (sum > Real(0)) {
+      la /= sum;
+      lb /= sum;
+      lc /= sum;
+    } else {
+      la = Real(1);
+    }
+    r.status = status;
+    r.depth = std::max(f.d, Real(0));
+    r.normal = f.n;
+    r.point_a = la * a.a + lb * b.a + lc * c.a;
+    r.point_b = la * a.b + lb * b.b + lc * c.b;
+    r.iterations = iterations;
+    return r;
+  };
+
+  std::array<std::array<std::uint16_t, 2>, kMaxFaces> horizon{};
+  for (int it = 0;; ++it) {
+    int best = -1;
+    Real best_d = std::numeric_limits<Real>::infinity();
+    for (int f = 0; f < p.nf; ++f) {
+      const detail::Face& face = p.faces[static_cast<std::size_t>(f)];
+      if (face.alive && face.d < best_d) {
+        best_d = face.d;
+        best = f;
+      }
+    }
+    if (best < 0) return r;
+    const detail::Face closest = p.faces[static_cast<std::size_t>(best)];
+    if (it >= settings.max_iterations) return finish(closest, Status::MaxIterations, it);
+    const gjk::Vertex w = make_vertex(closest.n);
+    const Real dw = glm::dot(closest.n, w.w);
+    const Real tol = std::max(
+        {settings.abs_tolerance, settings.rel_tolerance * std::max(closest.d, Real(0)), Real(8) * kEpsilon * scale});
+    if (dw - closest.d <= tol) return finish(closest, Status::Converged, it + 1);
+    const Real loose_tol = std::max(Real(32) * tol, Real(4096) * kEpsilon * scale);
+    if (p.nv >= kMaxVertices)
+      return finish(closest, dw - closest.d <= loose_tol ? Status::Converged : Status::MaxIterations, it + 1);
+    const int wi = p.nv;
+    p.verts[static_cast<std::size_t>(wi)] = w;
+    ++p.nv;
+    // Faces that see w: a depth-first walk from the nearest face across its edges; the
+    // horizon is the ordered list of (unseen face, edge) where the walk stopped.
+    int nh = 0;
+    bool overflow = false;
+    const auto sees = [&](const detail::Face& face) { return glm::dot(face.n, w.w - p.verts[face.v[0]].w) > Real(0); };
+    // Explicit stack of (face, edge entered by).
+    std::array<std::array<std::uint16_t, 2>, kMaxFaces> stack{};
+    int top = 0;
+    p.kill(best);
+    for (int e = 2; e >= 0; --e) {
+      stack[static_cast<std::size_t>(top++)] = {closest.adj[static_cast<std::size_t>(e)],
+                                                closest.adj_edge[static_cast<std::size_t>(e)]};
+    }
+    while (top > 0 && !overflow) {
+      const auto item = stack[static_cast<std::size_t>(--top)];
+      detail::Face& face = p.faces[item[0]];
+      if (!face.alive) continue;
+      if (!sees(face)) {
+        if (nh >= kMaxFaces) {
+          overflow = true;
+          break;
+        }
+        horizon[static_cast<std::size_t>(nh++)] = item;
+        continue;
+      }
+      p.kill(item[0]);
+      for (int k = 2; k >= 1; --k) {
+        const std::size_t e = (item[1] + static_cast<std::size_t>(k)) % 3;
+        if (top >= kMaxFaces) {
+          overflow = true;
+          break;
+        }
+        stack[static_cast<std::size_t>(top++)] = {face.adj[e], face.adj_edge[e]};
+      }
+    }
+    // Rounding can leave the polytope unable to grow (a sliver face, a pinched horizon):
+    // answer with the nearest face when its gap is within the loose tolerance.
+    const auto stuck = [&]() {
+      return finish(closest, dw - closest.d <= loose_tol ? Status::Converged : Status::MaxIterations, it + 1);
+    };
+    if (overflow || nh < 3) return stuck();
+    std::array<int, kMaxFaces> fan{};
+    for (int h = 0; h < nh; ++h) {
+      const auto& item = horizon[static_cast<std::size_t>(h)];
+      const detail::Face& g = p.faces[item[0]];
+      const std::uint16_t a = g.v[(item[1] + 1u) % 3u];
+      const std::uint16_t b = g.v[item[1]];
+      if (!p.add_face(a, b, wi, area_floor, false)) return stuck();
+      fan[static_cast<std::size_t>(h)] = p.last;
+    }
+    // Link each fan face to its horizon neighbour (edge 0) and to the fan faces beside it.
+    for (int h = 0; h < nh; ++h) {
+      const auto& item = horizon[static_cast<std::size_t>(h)];
+      detail::Face& f = p.faces[static_cast<std::size_t>(fan[static_cast<std::size_t>(h)])];
+      detail::Face& g = p.faces[item[0]];
+      f.adj[0] = item[0];
+      f.adj_edge[0] = static_cast<std::uint8_t>(item[1]);
+      g.adj[item[1]] = static_cast<std::uint16_t>(fan[static_cast<std::size_t>(h)]);
+      g.adj_edge[item[1]] = 0;
+      int next = -1;
+      int count = 0;
+      for (int x = 0; x < nh; ++x) {
+        if (p.faces[static_cast<std::size_t>(fan[static_cast<std::size_t>(x)])].v[0] == f.v[1]) {
+          next = x;
+          ++count;
+        }
+      }
+      if (count != 1) return stuck();  // pinched horizon
+      const int nslot = fan[static_cast<std::size_t>(next)];
+      f.adj[1] = static_cast<std::uint16_t>(nslot);
+      f.adj_edge[1] = 2;
+      p.faces[static_cast<std::size_t>(nslot)].adj[2] = static_cast<std::uint16_t>(fan[static_cast<std::size_t>(h)]);
+      p.faces[static_cast<std::size_t>(nslot)].adj_edge[2] = 1;
+    }
+  }
+}
+
+}  // namespace proxima::epa

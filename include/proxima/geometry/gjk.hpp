@@ -1,0 +1,385 @@
+#pragma once
+/// @file gjk.hpp
+/// GJK distance between two convex sets given by support functions expressed in one common
+/// frame (in the narrow phase: A's local frame, with B's support mapped into it once per pair).
+///
+/// Steps (Gilbert, Johnson, Keerthi, IEEE J. Robotics and Automation 1988):
+///   1. w0 = s_A(d) - s_B(-d) for an initial direction d (warm-start axis or a guess);
+///   2. repeat: w = s_A(-v) - s_B(v) for the current closest point v of the Minkowski
+///      difference D = A - B; stop when the duality gap |v|^2 - v.w is small (relative or
+///      absolute), when w adds nothing, when |v| stops decreasing, or at the cap;
+///   3. add w to the simplex and reduce it to the smallest sub-simplex holding the point of
+///      its hull nearest the origin, by signed volumes (Montanari, Petrinic, Barbieri,
+///      "Improving the GJK algorithm for faster and more reliable distance queries between
+///      convex objects", ACM TOG 2017): barycentric coordinates are ratios of signed
+///      volumes / areas / lengths over the largest projection, so no tiny determinant is
+///      ever divided by; a degenerate simplex falls back to its faces;
+///   4. a full tetrahedron holding the origin means the sets overlap (EPA takes over).
+/// The Nesterov variant (Montaut, Le Lidec, Petrik, Sivic, Carpentier, "Collision detection
+/// accelerated: an optimization perspective", RSS 2022) queries the support at a momentum
+/// direction y = delta v + (1 - delta) w_last, delta = (k+1)/(k+3); when the gap test passes
+/// or the support repeats under momentum, it drops momentum and continues as plain GJK
+/// (their restart rule), so its answer is the plain one's.
+///
+/// Witnesses: the barycentric coordinates of v over the simplex applied to the support points
+/// of A and of B that made each vertex. Everything is header-only and templated on the two
+/// support functors: no virtual call, no allocation, no exception, never NaN.
+
+#include <proxima/core/math.hpp>
+#include <proxima/core/tolerance.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+
+namespace proxima::gjk {
+
+/// A vertex of the Minkowski difference D = A - B with the support points that made it.
+struct Vertex {
+  Vec3 w{Real(0)};  ///< a - b
+  Vec3 a{Real(0)};  ///< support point of A
+  Vec3 b{Real(0)};  ///< support point of B
+};
+
+/// Up to four vertices of D with the barycentric coordinates of the current closest point.
+struct Simplex {
+  std::array<Vertex, 4> v{};                                       ///< vertices, newest first
+  std::array<Real, 4> lambda{Real(1), Real(0), Real(0), Real(0)};  ///< weights (sum 1)
+  int size = 0;                                                    ///< number of vertices (0..4)
+};
+
+/// How GJK stopped.
+enum class Status : std::uint8_t {
+  Separated,      ///< converged: the sets are apart by `distance` (within the tolerances)
+  Overlapping,    ///< the origin is in D (within the overlap tolerance): distance 0
+  MaxIterations,  ///< iteration cap: `distance` is an upper bound, witnesses exact for it
+  EarlyExit,      ///< boolean mode: a separating axis proves distance > margin
+};
+
+/// Which iteration to run.
+enum class Variant : std::uint8_t { Plain, Nesterov };
+
+/// Options of one GJK run.
+struct Settings {
+  int max_iterations = 128;                 ///< iteration cap
+  Real abs_tolerance = Real(0);             ///< stop when upper - lower distance bound <= this (length)
+  Real rel_tolerance = Real(4) * kEpsilon;  ///< ... or <= this times the distance
+  /// Boolean mode: when >= 0, stop as soon as distance > margin is proven (EarlyExit) or
+  /// distance <= margin is proven (Overlapping-or-Separated with distance <= margin).
+  Real margin = Real(-1);
+  Variant variant = Variant::Plain;
+};
+
+/// Outcome of gjk::distance.
+struct Result {
+  Status status = Status::Separated;
+  Real distance = Real(0);     ///< |v|: distance between the sets (0 when overlapping)
+  Vec3 v{Real(0)};             ///< closest point of D to the origin: point_a - point_b
+  Vec3 point_a{Real(0)};       ///< witness on A (common frame)
+  Vec3 point_b{Real(0)};       ///< witness on B (common frame)
+  Simplex simplex;             ///< final simplex (EPA starts from it)
+  Real lower_bound = Real(0);  ///< proven lower bound on the distance
+  int iterations = 0;
+};
+
+namespace detail {
+
+inline bool same_sign(Real a, Real b) { return (a > Real(0) && b > Real(0)) || (a < Real(0) && b < Real(0)); }
+
+/// Closest point of segment (s[0], s[1]) to the origin, by the signed-length rule. Writes
+/// the kept vertices (in order) into out and their weights; returns |v|^2.
+inline Real solve_1d(const Vertex& s0, const Vertex& s1, Simplex& out) {
+  const Vec3 t = s1.w - s0.w;
+  const Real tt = glm::dot(t, t);
+  if (!(tt > Real(0))) {
+    out.v[0] = s0;
+    out.lambda[0] = Real(1);
+    out.size = 1;
+    return glm::dot(s0.w, s0.w);
+  }
+  // Projection of the origin on the line, then 1-D barycentrics along the largest axis.
+  const Vec3 p0 = s0.w - t * (glm::dot(s0.w, t) / tt);
+  int axis = 0;
+  if (std::abs(t.y) > std::abs(t[axis])) axis = 1;
+  if (std::abs(t.z) > std::abs(t[axis])) axis = 2;
+  const Real mu = s0.w[axis] - s1.w[axis];
+  const Real c0 = p0[axis] - s1.w[axis];  // weight of s0 times mu
+  const Real c1 = s0.w[axis] - p0[axis];  // weight of s1 times mu
+  if (same_sign(mu, c0) && same_sign(mu, c1)) {
+    out.v[0] = s0;
+    out.v[1] = s1;
+    out.lambda[0] = c0 / mu;
+    out.lambda[1] = c1 / mu;
+    out.size = 2;
+    const Vec3 v = out.lambda[0] * s0.w + out.lambda[1] * s1.w;
+    return glm::dot(v, v);
+  }
+  // The origin's projection lies beyond one end: the nearer end is the answer.
+  const Real d0 = glm::dot(s0.w, s0.w);
+  const Real d1 = glm::dot(s1.w, s1.w);
+  const Vertex& best = d0 <= d1 ? s0 : s1;
+  out.v[0] = best;
+  out.lambda[0] = Real(1);
+  out.size = 1;
+  return std::min(d0, d1);
+}
+
+/// Closest point of triangle (s0, s1, s2) to the origin by signed areas.
+inline Real solve_2d(const Vertex& s0, const Vertex& s1, const Vertex& s2, Simplex& out) {
+  const Vec3 n = glm::cross(s1.w - s0.w, s2.w - s0.w);
+  const Real nn = glm::dot(n, n);
+  const Real e2 = std::max(
+      {glm::dot(s1.w - s0.w, s1.w - s0.w), glm::dot(s2.w - s0.w, s2.w - s0.w), glm::dot(s2.w - s1.w, s2.w - s1.w)});
+  bool inside_possible = nn > kEpsilon * kEpsilon * e2 * e2 && nn > Real(0);
+  if (inside_possible) {
+    const Vec3 p0 = n * (glm::dot(s0.w, n) / nn);
+    int i = 0;
+    if (std::abs(n.y) > std::abs(n[i])) i = 1;
+    if (std::abs(n.z) > std::abs(n[i])) i = 2;
+    const int j = (i + 1) % 3;
+    const int k = (i + 2) % 3;
+    const Real mu = n[i];
+    const auto area = [&](const Vec3& a, const Vec3& b, const Vec3& c) {
+      return (b[j] - a[j]) * (c[k] - a[k]) - (b[k] - a[k]) * (c[j] - a[j]);
+    };
+    const Real c0 = area(p0, s1.w, s2.w);
+    const Real c1 = area(s0.w, p0, s2.w);
+    const Real c2 = area(s0.w, s1.w, p0);
+    const bool in0 = same_sign(mu, c0);
+    const bool in1 = same_sign(mu, c1);
+    const bool in2 = same_sign(mu, c2);
+    if (in0 && in1 && in2) {
+      out.v[0] = s0;
+      out.v[1] = s1;
+      out.v[2] = s2;
+      out.lambda[0] = c0 / mu;
+      out.lambda[1] = c1 / mu;
+      out.lambda[2] = c2 / mu;
+      out.size = 3;
+      const Vec3 v = out.lambda[0] * s0.w + out.lambda[1] * s1.w + out.lambda[2] * s2.w;
+      return glm::dot(v, v);
+    }
+    Real best = std::numeric_limits<Real>::infinity();
+    Simplex tmp;
+    if (!in0) {
+      const Real d = solve_1d(s1, s2, tmp);
+      if (d < best) best = d, out = tmp;
+    }
+    if (!in1) {
+      const Real d = solve_1d(s0, s2, tmp);
+      if (d < best) best = d, out = tmp;
+    }
+    if (!in2) {
+      const Real d = solve_1d(s0, s1, tmp);
+      if (d < best) best = d, out = tmp;
+    }
+    return best;
+  }
+  // Degenerate (collinear) triangle: the nearest of its edges.
+  Real best = std::numeric_limits<Real>::infinity();
+  Simplex tmp;
+  Real d = solve_1d(s0, s1, tmp);
+  if (d < best) best = d, out = tmp;
+  d = solve_1d(s0, s2, tmp);
+  if (d < best) best = d, out = tmp;
+  d = solve_1d(s1, s2, tmp);
+  if (d < best) best = d, out = tmp;
+  return best;
+}
+
+/// Closest point of tetrahedron (s0..s3) to the origin by signed volumes. Returns |v|^2; a
+/// result of size 4 means the origin is inside.
+inline Real solve_3d(const Vertex& s0, const Vertex& s1, const Vertex& s2, const Vertex& s3, Simplex& out) {
+  const auto vol = [](const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+    return glm::dot(b - a, glm::cross(c - a, d - a));
+  };
+  const Vec3 o(Real(0));
+  const Real c0 = vol(o, s1.w, s2.w, s3.w);
+  const Real c1 = vol(s0.w, o, s2.w, s3.w);
+  const Real c2 = vol(s0.w, s1.w, o, s3.w);
+  const Real c3 = vol(s0.w, s1.w, s2.w, o);
+  const Real det = c0 + c1 + c2 + c3;
+  const Real e = std::max({glm::length(s1.w - s0.w), glm::length(s2.w - s0.w), glm::length(s3.w - s0.w)});
+  const bool proper = std::abs(det) > Real(8) * kEpsilon * e * e * e && det != Real(0);
+  const bool in0 = proper && same_sign(det, c0);
+  const bool in1 = proper && same_sign(det, c1);
+  const bool in2 = proper && same_sign(det, c2);
+  const bool in3 = proper && same_sign(det, c3);
+  if (in0 && in1 && in2 && in3) {
+    out.v = {s0, s1, s2, s3};
+    out.lambda = {c0 / det, c1 / det, c2 / det, c3 / det};
+    out.size = 4;
+    return Real(0);
+  }
+  Real best = std::numeric_limits<Real>::infinity();
+  Simplex tmp;
+  if (!in0) {
+    const Real d = solve_2d(s1, s2, s3, tmp);
+    if (d < best) best = d, out = tmp;
+  }
+  if (!in1) {
+    const Real d = solve_2d(s0, s2, s3, tmp);
+    if (d < best) best = d, out = tmp;
+  }
+  if (!in2) {
+    const Real d = solve_2d(s0, s1, s3, tmp);
+    if (d < best) best = d, out = tmp;
+  }
+  if (!in3) {
+    const Real d = solve_2d(s0, s1, s2, tmp);
+    if (d < best) best = d, out = tmp;
+  }
+  return best;
+}
+
+/// Reduces `s` (newest vertex first) to the sub-simplex nearest the origin; returns |v|^2.
+inline Real reduce(Simplex& s) {
+  Simplex out;
+  Real d = Real(0);
+  switch (s.size) {
+    case 1: s.lambda[0] = Real(1); return glm::dot(s.v[0].w, s.v[0].w);
+    case 2: d = solve_1d(s.v[0], s.v[1], out); break;
+    case 3: d = solve_2d(s.v[0], s.v[1], s.v[2], out); break;
+    default: d = solve_3d(s.v[0], s.v[1], s.v[2], s.v[3], out); break;
+  }
+  s = out;
+  return d;
+}
+
+}  // namespace detail
+
+/// The point of the simplex weighted by its barycentric coordinates (component `which`:
+/// 0 = w, 1 = a, 2 = b).
+inline Vec3 combine(const Simplex& s, int which) {
+  Vec3 r(Real(0));
+  for (int i = 0; i < s.size; ++i) {
+    const Vec3& p = which == 0 ? s.v[i].w : which == 1 ? s.v[i].a : s.v[i].b;
+    r += s.lambda[i] * p;
+  }
+  return r;
+}
+
+/// Distance between convex sets A and B given their support functors in a common frame:
+/// `support_a(d)` and `support_b(d)` return a farthest point in direction d (any non-zero
+/// vector, not necessarily unit). `initial_direction` is a guess of the direction from A to
+/// B (any non-zero vector; the warm-start axis). O(iterations x support cost).
+template <class SupportA, class SupportB>
+Result distance(SupportA& support_a, SupportB& support_b, const Vec3& initial_direction, const Settings& settings) {
+  Result r;
+  const auto make_vertex = [&](const Vec3& d) {  // support of D = A - B in direction d
+    Vertex x;
+    x.a = support_a(d);
+    x.b = support_b(-d);
+    x.w = x.a - x.b;
+    return x;
+  };
+  Vec3 d0 = initial_direction;
+  if (!(glm::dot(d0, d0) > Real(0))) d0 = Vec3(Real(1), Real(0), Real(0));
+  Simplex& s = r.simplex;
+  s.v[0] = make_vertex(d0);
+  s.lambda[0] = Real(1);
+  s.size = 1;
+  Vec3 v = s.v[0].w;
+  Real vv = glm::dot(v, v);
+  Real scale2 = vv;  // largest |w|^2 seen: the noise level of the dot products
+  Real lower = Real(0);
+  Status status = Status::MaxIterations;
+  Vertex last = s.v[0];
+  bool momentum = settings.variant == Variant::Nesterov;
+  int k = 0;
+  for (; k < settings.max_iterations; ++k) {
+    // Overlap: v is at the origin within the rounding of the vertices.
+    if (vv <= Real(64) * kEpsilon * kEpsilon * scale2 || !(vv > Real(0))) {
+      status = Status::Overlapping;
+      break;
+    }
+    if (settings.margin >= Real(0) && vv <= settings.margin * settings.margin) {
+      status = Status::Separated;  // distance <= margin proven by the upper bound |v|
+      break;
+    }
+    Vec3 dir = v;
+    if (momentum) {
+      const Real delta = Real(k + 1) / Real(k + 3);
+      const Vec3 y = delta * v + (Real(1) - delta) * last.w;
+      dir = y;
+    }
+    if (!(glm::dot(dir, dir) > Real(0))) dir = v;
+    const Vertex w = make_vertex(-dir);
+    const Real vw = glm::dot(v, w.w);
+    scale2 = std::max(scale2, glm::dot(w.w, w.w));
+    const Real vn = std::sqrt(vv);
+    // Lower bound from the supporting plane of D along v (valid only for dir = v; with
+    // momentum, any direction gives a valid bound dir.w/|dir|).
+    const Real dn = std::sqrt(glm::dot(dir, dir));
+    const Real lb = glm::dot(dir, w.w) / dn;
+    if (lb > lower) lower = lb;
+    if (settings.margin >= Real(0) && lower > settings.margin) {
+      status = Status::EarlyExit;
+      break;
+    }
+    // Duality gap of v: |v| - v.w/|v| (only meaningful with the support at -v).
+    const Real gap_tol = std::max(settings.abs_tolerance, settings.rel_tolerance * vn);
+    const Real noise = Real(8) * kEpsilon * std::sqrt(scale2);
+    bool repeated = false;
+    for (int i = 0; i < s.size; ++i)
+      if (s.v[i].w == w.w) repeated = true;
+    if (momentum) {
+      const Real gap_m = vn - lower;
+      if (repeated || gap_m <= std::max(gap_tol, noise)) {
+        momentum = false;  // restart: finish with plain steps and the true duality gap
+        continue;
+      }
+    } else {
+      if (vn - vw / vn <= std::max(gap_tol, noise) || repeated) {
+        status = Status::Separated;
+        break;
+      }
+    }
+    last = w;
+    const Simplex previous = s;
+    // Newest first.
+    for (int i = s.size; i > 0; --i) s.v[i] = s.v[i - 1];
+    s.v[0] = w;
+    ++s.size;
+    const Real nvv = detail::reduce(s);
+    if (s.size == 4) {
+      vv = Real(0);
+      v = Vec3(Real(0));
+      status = Status::Overlapping;
+      ++k;
+      break;
+    }
+    if (!(nvv < vv)) {
+      // No progress (rounding): keep the previous simplex, whose v is as good.
+      if (!momentum) {
+        s = previous;
+        status = Status::Separated;
+        ++k;
+        break;
+      }
+      momentum = false;
+    }
+    vv = nvv;
+    v = combine(s, 0);
+  }
+  r.iterations = k;
+  r.status = status;
+  if (status == Status::Overlapping) {
+    r.distance = Real(0);
+    r.v = Vec3(Real(0));
+    r.point_a = combine(s, 1);
+    r.point_b = combine(s, 2);
+    r.lower_bound = Real(0);
+    return r;
+  }
+  r.v = combine(s, 0);
+  r.distance = std::sqrt(glm::dot(r.v, r.v));
+  r.point_a = combine(s, 1);
+  r.point_b = combine(s, 2);
+  r.lower_bound = std::min(std::max(lower, Real(0)), r.distance);
+  return r;
+}
+
+}  // namespace proxima::gjk

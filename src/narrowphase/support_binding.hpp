@@ -1,0 +1,63 @@
+#pragma once
+/// @file support_binding.hpp
+/// Binds a shape to the support functor GJK and EPA call: the core's support in the shape's
+/// local frame (ConvexHull hill-climbs from a hint kept across calls), and the same mapped
+/// into another frame by a fixed rotation matrix and translation, so that B's support is
+/// expressed in A's local frame with one matrix product each way and no virtual call.
+
+#include <proxima/core/math.hpp>
+#include <proxima/shapes/convex_hull.hpp>
+
+#include <cstdint>
+
+namespace proxima::narrow {
+
+/// Support of a shape's core (core_support) in its local frame.
+template <class S>
+struct CoreSupport {
+  const S& shape;
+  /// Farthest core point in direction d (local frame).
+  Vec3 operator()(const Vec3& d) const { return shape.core_support(d); }
+  /// The last support vertex (0 for shapes without vertices).
+  std::uint32_t hint() const { return 0; }
+};
+
+/// ConvexHull: support_index hill-climbing from the previous answer (warm start).
+template <>
+struct CoreSupport<ConvexHull> {
+  const ConvexHull& shape;
+  std::uint32_t last = 0;  ///< previous support vertex, the next climb's start
+  /// Farthest hull vertex in direction d (local frame); updates the hint.
+  Vec3 operator()(const Vec3& d) {
+    last = shape.support_index(d, last);
+    return shape.vertices()[last];
+  }
+  /// The last support vertex.
+  std::uint32_t hint() const { return last; }
+};
+
+/// Builds the core support functor of `shape`, starting hull climbs at `hint`.
+template <class S>
+CoreSupport<S> bind_core_support(const S& shape, std::uint32_t /*hint*/) {
+  return CoreSupport<S>{shape};
+}
+/// See the primary template; the hint is clamped by support_index.
+inline CoreSupport<ConvexHull> bind_core_support(const ConvexHull& shape, std::uint32_t hint) {
+  return CoreSupport<ConvexHull>{shape, hint};
+}
+
+/// A support functor mapped from its own frame into another: points x -> rotation x +
+/// translation, directions d -> rotation^T d on the way in.
+template <class Inner>
+struct MappedSupport {
+  Inner inner;       ///< support in the shape's own frame
+  Mat3 rotation;     ///< own frame -> common frame
+  Mat3 rotation_t;   ///< common frame -> own frame (the transpose)
+  Vec3 translation;  ///< own origin in the common frame
+  /// Farthest point in direction d (common frame).
+  Vec3 operator()(const Vec3& d) { return rotation * inner(rotation_t * d) + translation; }
+  /// The inner functor's hint.
+  std::uint32_t hint() const { return inner.hint(); }
+};
+
+}  // namespace proxima::narrow
