@@ -1,0 +1,292 @@
+// Degenerate and extreme inputs for every pair of shape types: exactly touching supports,
+// coincident centres, identical shapes at identical poses, zero-length capsules, flat and
+// needle hulls, tiny (1e-4) and huge (1e4) shapes, shapes 1e4 from the origin, touching box
+// faces and parallel edges, and non-finite transforms (status InvalidInput, no NaN out).
+// Every case goes through the convention checks of pair_checker.hpp; the touching cases
+// also compare with the gap they were built with (the supports of A and B in direction n
+// are placed gap apart, so the exact signed distance is the gap for gap >= 0).
+#include <gtest/gtest.h>
+
+#include <limits>
+#include <string>
+
+#include "narrowphase/pair_checker.hpp"
+
+namespace proxima {
+namespace {
+
+using test::PairChecker;
+
+#ifdef NDEBUG
+constexpr int kReps = 12;
+#else
+constexpr int kReps = 3;
+#endif
+
+void expect_clean(const PairChecker& checker, const std::string& what) {
+  std::string detail;
+  for (const std::string& m : checker.messages()) detail += "\n  " + m;
+  EXPECT_EQ(checker.failed_cases(), 0) << what << ": " << checker.failed_cases() << " of " << checker.cases()
+                                       << " cases failed: " << checker.summary() << detail;
+}
+
+std::string pair_label(ShapeType a, ShapeType b) { return std::string(to_string(a)) + "-" + to_string(b); }
+
+// Runs `make(rng, a, b, checker)` for every ordered pair of types.
+template <class Make>
+void for_every_pair(std::uint64_t seed, Make make, const std::string& what, bool skip_halfspace_pair = true) {
+  for (ShapeType ta : test::all_shape_types()) {
+    for (ShapeType tb : test::all_shape_types()) {
+      if (skip_halfspace_pair && ta == ShapeType::HalfSpace && tb == ShapeType::HalfSpace) continue;
+      test::Random rng(seed + std::uint64_t(ta) * 17u + std::uint64_t(tb));
+      PairChecker checker;
+      for (int i = 0; i < kReps; ++i) make(rng, ta, tb, checker, pair_label(ta, tb) + " rep=" + std::to_string(i));
+      expect_clean(checker, what + " " + pair_label(ta, tb));
+    }
+  }
+}
+
+// World point of `shape` at `pose` farthest in `n`, and for half-spaces the plane point
+// nearest the pose origin (their support is a far corner of a huge clipping cube).
+Vec3 world_extreme(const Shape& shape, const Transform& pose, const Vec3& n) {
+  if (const HalfSpace* h = std::get_if<HalfSpace>(&shape)) return pose.apply(h->offset() * h->normal());
+  return std::visit([&](const auto& s) { return support(s, pose, n); }, shape);
+}
+
+// Places B so that A's farthest point in n and B's farthest point in -n are `gap` apart
+// along n (n is forced to a half-space's normal when one is involved).
+Transform place_touching(const Shape& a, const Transform& pose_a, const Shape& b, const Quat& rot_b, Vec3 n, Real gap) {
+  if (const HalfSpace* h = std::get_if<HalfSpace>(&a)) n = pose_a.apply_vector(h->normal());
+  if (const HalfSpace* h = std::get_if<HalfSpace>(&b)) n = -(rot_b * h->normal());
+  const Vec3 pa = world_extreme(a, pose_a, n);
+  const Transform at_origin{Vec3(Real(0)), rot_b};
+  const Vec3 sb = world_extreme(b, at_origin, -n);
+  return Transform{pa - sb + gap * n, rot_b};
+}
+
+TEST(Degenerate, TouchingSupportsEveryPair) {
+  for_every_pair(
+      11,
+      [](test::Random& rng, ShapeType ta, ShapeType tb, PairChecker& checker, const std::string& label) {
+        const Shape a = test::random_shape(rng, ta);
+        const Shape b = test::random_shape(rng, tb);
+        const Transform pose_a = rng.pose(Real(0.5));
+        const Vec3 n = rng.unit_vector();
+        const Quat rot_b = rng.rotation();
+        for (Real gap : {Real(0), Real(0.01), Real(-0.01)}) {
+          const Transform pose_b = place_touching(a, pose_a, b, rot_b, n, gap);
+          checker.check(a, pose_a, b, pose_b, label + " gap=" + std::to_string(gap));
+          const DistanceResult d = distance(a, pose_a, b, pose_b);
+          const Real tol = Real(4) * test::narrow_tolerance(Real(2));
+          if (gap >= Real(0)) {
+            EXPECT_NEAR(d.signed_distance, gap, tol) << label << " gap " << gap;
+          } else {
+            // Overlap: the depth is at most the overlap along n.
+            EXPECT_GE(d.signed_distance, gap - tol) << label;
+            EXPECT_LE(d.signed_distance, tol) << label;
+          }
+        }
+      },
+      "touching supports");
+}
+
+TEST(Degenerate, CoincidentCentresEveryPair) {
+  for_every_pair(
+      23,
+      [](test::Random& rng, ShapeType ta, ShapeType tb, PairChecker& checker, const std::string& label) {
+        const Shape a = test::random_shape(rng, ta);
+        const Shape b = test::random_shape(rng, tb);
+        const Vec3 c = rng.vec3(Real(-1), Real(1));
+        checker.check(a, Transform{c, rng.rotation()}, b, Transform{c, rng.rotation()}, label);
+        const Quat q = rng.rotation();
+        checker.check(a, Transform{c, q}, b, Transform{c, q}, label + " same rotation");
+      },
+      "coincident centres");
+}
+
+TEST(Degenerate, IdenticalShapesAtIdenticalPoses) {
+  test::Random rng(31);
+  for (ShapeType t : test::all_shape_types()) {
+    if (t == ShapeType::HalfSpace) continue;
+    PairChecker checker;
+    for (int i = 0; i < kReps; ++i) {
+      const Shape s = test::random_shape(rng, t);
+      const Transform pose = rng.pose(Real(2));
+      checker.check(s, pose, s, pose, std::string(to_string(t)) + " rep=" + std::to_string(i));
+      const DistanceResult d = distance(s, pose, s, pose);
+      if (!test::is_thin(t) && t != ShapeType::Point) {
+        EXPECT_LT(d.signed_distance, Real(0)) << to_string(t);
+      }
+      EXPECT_TRUE(intersect(s, pose, s, pose)) << to_string(t);
+    }
+    expect_clean(checker, std::string("identical ") + to_string(t));
+  }
+}
+
+TEST(Degenerate, ZeroLengthCapsuleAgainstEveryType) {
+  test::Random rng(41);
+  const Shape cap = Capsule::create(Real(0.5), Real(0)).value();
+  for (ShapeType t : test::all_shape_types()) {
+    PairChecker checker;
+    for (int i = 0; i < 4 * kReps; ++i) {
+      const Shape other = test::random_shape(rng, t);
+      const Transform pc = rng.pose(Real(0.5));
+      const Transform po = rng.pose(Real(1.5));
+      checker.check(cap, pc, other, po, std::string("capsule(h=0)-") + to_string(t));
+      checker.check(other, po, cap, pc, std::string(to_string(t)) + "-capsule(h=0)");
+      // Reference: a zero-length capsule is a sphere of the same radius.
+      const Shape sphere = Sphere::create(Real(0.5)).value();
+      const DistanceResult dc = distance(cap, pc, other, po);
+      const DistanceResult ds = distance(sphere, pc, other, po);
+      EXPECT_NEAR(dc.signed_distance, ds.signed_distance, test::narrow_tolerance(Real(2)))
+          << to_string(t) << " " << test::describe(other, po);
+    }
+    expect_clean(checker, std::string("zero-length capsule vs ") + to_string(t));
+  }
+}
+
+Shape flat_or_needle_hull(test::Random& rng, bool needle) {
+  for (;;) {
+    Vec3 e(Real(1), needle ? Real(2e-3) : Real(1), Real(2e-3));
+    std::vector<Vec3> pts = test::random_cloud(rng, rng.integer(8, 32), e);
+    // Make sure the cloud spans all three dimensions (qhull rejects a truly flat one).
+    pts.push_back(Vec3(Real(0), Real(0), Real(2e-3)));
+    pts.push_back(Vec3(Real(0), Real(2e-3), Real(-2e-3)));
+    auto r = ConvexHull::create(pts);
+    if (r.ok()) return r.value();
+  }
+}
+
+TEST(Degenerate, FlatAndNeedleHullsAgainstEveryType) {
+  test::Random rng(53);
+  for (bool needle : {false, true}) {
+    for (ShapeType t : test::all_shape_types()) {
+      PairChecker checker;
+      for (int i = 0; i < 3 * kReps; ++i) {
+        const Shape hull = flat_or_needle_hull(rng, needle);
+        const Shape other = test::random_shape(rng, t);
+        const Transform ph = rng.pose(Real(0.5));
+        const Transform po = rng.pose(Real(1.5));
+        checker.check(hull, ph, other, po, std::string(needle ? "needle" : "flat") + "-" + to_string(t));
+        checker.check(other, po, hull, ph, std::string(to_string(t)) + "-" + (needle ? "needle" : "flat"));
+      }
+      expect_clean(checker, std::string(needle ? "needle hull vs " : "flat hull vs ") + to_string(t));
+    }
+  }
+}
+
+TEST(Degenerate, TinyAndHugeScalesEveryPair) {
+  for (Real s : {Real(1e-4), Real(1e4)}) {
+    for_every_pair(
+        61,
+        [s](test::Random& rng, ShapeType ta, ShapeType tb, PairChecker& checker, const std::string& label) {
+          const Shape a = test::random_shape(rng, ta, s);
+          const Shape b = test::random_shape(rng, tb, s);
+          Transform pa = rng.pose(Real(0.5));
+          Transform pb = rng.pose(Real(1.8));
+          pa.position *= s;
+          pb.position *= s;
+          checker.check(a, pa, b, pb, label + " scale=" + std::to_string(s));
+        },
+        "scale " + std::to_string(s));
+  }
+}
+
+TEST(Degenerate, FarFromOriginEveryPair) {
+  for_every_pair(
+      71,
+      [](test::Random& rng, ShapeType ta, ShapeType tb, PairChecker& checker, const std::string& label) {
+        const Shape a = test::random_shape(rng, ta);
+        const Shape b = test::random_shape(rng, tb);
+        const Vec3 offset(Real(1e4), Real(-1e4), Real(1e4));
+        Transform pa = rng.pose(Real(0.5));
+        Transform pb = rng.pose(Real(1.8));
+        pa.position += offset;
+        pb.position += offset;
+        checker.check(a, pa, b, pb, label + " far");
+      },
+      "far from origin");
+}
+
+TEST(Degenerate, BoxFacesTouchingAndParallelEdges) {
+  const Box box = Box::create(Vec3(Real(1), Real(0.5), Real(0.25))).value();
+  PairChecker checker;
+  test::Random rng(83);
+  for (int i = 0; i < 20 * kReps; ++i) {
+    // Face on face, shifted sideways, exactly touching (gap 0) or slightly apart/overlapping.
+    const Real gap = Real(rng.integer(-1, 1)) * Real(1e-3);
+    const Vec3 shift(rng.uniform(Real(-1.5), Real(1.5)), rng.uniform(Real(-0.8), Real(0.8)), Real(0.5) + gap);
+    const Transform pa = Transform::identity();
+    const Transform pb{shift, Quat(Real(1), Real(0), Real(0), Real(0))};
+    checker.check(box, pa, box, pb, "faces gap=" + std::to_string(gap));
+    const DistanceResult d = distance(box, pa, box, pb);
+    EXPECT_NEAR(d.signed_distance, gap, test::narrow_tolerance(Real(2))) << "faces " << shift.x << "," << shift.y;
+    EXPECT_NEAR(d.normal.z, Real(1), Real(1e-3)) << "faces";
+    const ContactManifold m = collide(box, pa, box, pb);
+    if (gap < Real(0)) {
+      EXPECT_EQ(m.count, 4) << "face-face overlap should give a four-point manifold";
+    }
+    // Parallel edges: B turned 45 degrees about x, resting edge-down on A's top face.
+    const Quat q = glm::angleAxis(Real(0.7853981633974483), Vec3(Real(1), Real(0), Real(0)));
+    const Real reach = (Real(0.5) + Real(0.25)) * std::sqrt(Real(0.5));
+    const Transform pe{Vec3(rng.uniform(Real(-1), Real(1)), Real(0), Real(0.25) + reach + gap), q};
+    checker.check(box, pa, box, pe, "parallel edge on face gap=" + std::to_string(gap));
+    EXPECT_NEAR(distance(box, pa, box, pe).signed_distance, gap, test::narrow_tolerance(Real(2))) << "edge";
+    // Edge on edge: A turned 45 degrees about x too, B above it.
+    const Transform pa2{Vec3(Real(0)), q};
+    // The top edge of the turned A sits at y = (0.5 - 0.25) sqrt(1/2), B's bottom edge at
+    // minus that from B's centre.
+    const Real side = (Real(0.5) - Real(0.25)) * std::sqrt(Real(0.5));
+    const Transform pe2{Vec3(rng.uniform(Real(-1), Real(1)), Real(2) * side, Real(2) * reach + gap), q};
+    checker.check(box, pa2, box, pe2, "parallel edges gap=" + std::to_string(gap));
+    EXPECT_NEAR(distance(box, pa2, box, pe2).signed_distance, gap, test::narrow_tolerance(Real(2))) << "edges";
+  }
+  expect_clean(checker, "box faces and edges");
+}
+
+TEST(Degenerate, NonFiniteTransformsGiveInvalidInput) {
+  const Real nan = std::numeric_limits<Real>::quiet_NaN();
+  const Real inf = std::numeric_limits<Real>::infinity();
+  test::Random rng(97);
+  for (ShapeType ta : test::all_shape_types()) {
+    for (ShapeType tb : test::all_shape_types()) {
+      const Shape a = test::random_shape(rng, ta);
+      const Shape b = test::random_shape(rng, tb);
+      const Transform good = rng.pose(Real(1));
+      const std::array<Transform, 4> bad = {
+          Transform{Vec3(nan, Real(0), Real(0)), Quat(Real(1), Real(0), Real(0), Real(0))},
+          Transform{Vec3(Real(0), inf, Real(0)), Quat(Real(1), Real(0), Real(0), Real(0))},
+          Transform{Vec3(Real(0), Real(0), -inf), Quat(Real(1), Real(0), Real(0), Real(0))},
+          Transform{Vec3(Real(0)), Quat(nan, Real(0), Real(0), Real(0))},
+      };
+      for (std::size_t k = 0; k < bad.size(); ++k) {
+        for (int side = 0; side < 2; ++side) {
+          const Transform& pa = side == 0 ? bad[k] : good;
+          const Transform& pb = side == 0 ? good : bad[k];
+          DistanceResult d;
+          ContactManifold m;
+          bool hit = true;
+          {
+            test::ScopedNoFpTraps no_traps;  // the inputs themselves hold NaN
+            d = distance(a, pa, b, pb);
+            m = collide(a, pa, b, pb);
+            hit = intersect(a, pa, b, pb);
+          }
+          const std::string where = pair_label(ta, tb) + " bad=" + std::to_string(k) + " side=" + std::to_string(side);
+          EXPECT_EQ(d.status, PairStatus::InvalidInput) << where;
+          EXPECT_EQ(m.status, PairStatus::InvalidInput) << where;
+          EXPECT_FALSE(hit) << where;
+          EXPECT_EQ(m.count, 0) << where;
+          EXPECT_FALSE(std::isnan(d.signed_distance)) << where;
+          EXPECT_TRUE(d.signed_distance > Real(0)) << where;
+          EXPECT_TRUE(test::finite3(d.normal)) << where;
+          EXPECT_FALSE(std::isnan(d.point_a.x) || std::isnan(d.point_a.y) || std::isnan(d.point_a.z)) << where;
+          EXPECT_FALSE(std::isnan(d.point_b.x) || std::isnan(d.point_b.y) || std::isnan(d.point_b.z)) << where;
+        }
+      }
+    }
+  }
+}
+
+}  // namespace
+}  // namespace proxima
