@@ -341,16 +341,14 @@ BroadPhaseStatus DynamicAabbTree::update(std::span<const ProxyUpdate> updates) {
     Proxy& p = proxies_[u.id];
     p.box = u.box;
     tree_of(p.kind).real[p.leaf] = u.box;
-    if (p.kind == ProxyKind::Moving && needs_reinsert(p, moving_.nodes[p.leaf].box)) ++moving_out;
+    if (p.kind == ProxyKind::Moving && !moving_.nodes[p.leaf].box.contains(u.box)) ++moving_out;
   }
   const bool refit_moving = moving_.leaves >= 64 &&
                             static_cast<Real>(moving_out) > config_.refit_fraction * static_cast<Real>(moving_.leaves);
   for (const ProxyUpdate& u : updates) {
     Proxy& p = proxies_[u.id];
-    Tree& tree = tree_of(p.kind);
-    if (!needs_reinsert(p, tree.nodes[p.leaf].box)) continue;
     if (refit_moving && p.kind == ProxyKind::Moving) continue;  // handled below
-    reinsert(p);
+    if (needs_reinsert(p, tree_of(p.kind).nodes[p.leaf].box)) reinsert(p);
   }
   if (refit_moving) {
     // Every updated moving leaf gets a fat box with the refit margin (tight by default: the
@@ -439,9 +437,10 @@ void DynamicAabbTree::rebuild_tree(Tree& tree) {
     std::size_t count = 0;
   };
   // Recursive lambda via explicit function object: returns the index of the subtree root.
-  auto build = [&](auto&& self, std::size_t begin, std::size_t end, std::uint32_t parent, int depth) -> std::uint32_t {
-    const auto index = static_cast<std::uint32_t>(fresh.nodes.size());
-    fresh.nodes.emplace_back();
+  // Fills the already allocated node `index`; the two children of a node are allocated next
+  // to each other (one cache line holds both in float), before either subtree.
+  auto build = [&](auto&& self, std::uint32_t index, std::size_t begin, std::size_t end, std::uint32_t parent,
+                   int depth) -> void {
     fresh.nodes[index].parent = parent;
     const std::size_t count = end - begin;
     if (count == 1) {
@@ -450,7 +449,7 @@ void DynamicAabbTree::rebuild_tree(Tree& tree) {
       leaf.child2 = items[begin].id;
       leaf.height = 0;
       proxies_[items[begin].id].leaf = index;
-      return index;
+      return;
     }
     Aabb centres = Aabb::empty();
     for (std::size_t i = begin; i < end; ++i) centres.grow(items[i].centre);
@@ -520,19 +519,24 @@ void DynamicAabbTree::rebuild_tree(Tree& tree) {
             return x.centre[axis] < y.centre[axis] || (x.centre[axis] == y.centre[axis] && x.id < y.id);
           });
     }
-    const std::uint32_t c1 = self(self, begin, mid, index, depth + 1);
-    const std::uint32_t c2 = self(self, mid, end, index, depth + 1);
+    const auto c1 = static_cast<std::uint32_t>(fresh.nodes.size());
+    const std::uint32_t c2 = c1 + 1;
+    fresh.nodes.emplace_back();
+    fresh.nodes.emplace_back();
+    self(self, c1, begin, mid, index, depth + 1);
+    self(self, c2, mid, end, index, depth + 1);
     Node& n = fresh.nodes[index];
     n.child1 = c1;
     n.child2 = c2;
     n.box = merge(fresh.nodes[c1].box, fresh.nodes[c2].box);
     n.height = 1 + std::max(fresh.nodes[c1].height, fresh.nodes[c2].height);
-    return index;
   };
-  fresh.root = build(build, 0, items.size(), kNull, 0);
+  fresh.nodes.emplace_back();
+  build(build, 0, 0, items.size(), kNull, 0);
+  fresh.root = 0;
   fresh.in_use = fresh.nodes.size();
   fresh.leaves = items.size();
-  // Pre-order layout: children have larger indices than parents, so the reversed list of
+  // Children are allocated after their parents (larger indices), so the reversed list of
   // internal nodes is a valid refit order.
   fresh.real.resize(fresh.nodes.size());
   for (std::size_t i = fresh.nodes.size(); i-- > 0;) {
@@ -559,28 +563,37 @@ void DynamicAabbTree::collide_task(const PairTask& task, std::vector<ProxyPair>&
     std::uint32_t a;
     std::uint32_t b;
   };
-  detail::TraversalStack<Item, 512> stack;
-  // Invariant: every pushed cross item has overlapping node boxes.
+  // Every pop removes one item and pushes at most four whose heights sum to one less, so the
+  // stack never holds more than 3 (height_a + height_b) + 4 items: sized once per task.
+  // Pushes are branch-free: the item is written, and the top advances only if the boxes
+  // overlap (the overlap outcomes are unpredictable).
+  const std::size_t capacity = 3 * static_cast<std::size_t>(na[task.a].height + nb[task.b].height) + 8;
+  std::vector<Item> storage(capacity);
+  Item* stack = storage.data();
+  std::size_t top = 0;
   if (task.cross || task.a != task.b) {
     if (!overlap(na[task.a].box, nb[task.b].box)) return;
   }
-  stack.push({task.a, task.b});
-  while (!stack.empty()) {
-    const Item it = stack.pop();
-    ++st.nodes_visited;
+  stack[top++] = {task.a, task.b};
+  std::uint64_t visited = 0;
+  std::uint64_t tested = 0;
+  while (top > 0) {
+    const Item it = stack[--top];
+    ++visited;
     const Node& a = na[it.a];
     if (!task.cross && it.a == it.b) {
       if (a.is_leaf()) continue;
-      stack.push({a.child1, a.child1});
-      stack.push({a.child2, a.child2});
-      if (overlap(na[a.child1].box, na[a.child2].box)) stack.push({a.child1, a.child2});
+      stack[top++] = {a.child1, a.child1};
+      stack[top++] = {a.child2, a.child2};
+      stack[top] = {a.child1, a.child2};
+      top += overlap(na[a.child1].box, na[a.child2].box) ? 1 : 0;
       continue;
     }
     const Node& b = nb[it.b];
     const bool a_leaf = a.is_leaf();
     const bool b_leaf = b.is_leaf();
     if (a_leaf && b_leaf) {
-      ++st.pairs_tested;
+      ++tested;
       if (overlap(ta.real[it.a], tb.real[it.b])) {
         const Proxy& pa = proxies_[a.child2];
         const Proxy& pb = proxies_[b.child2];
@@ -591,27 +604,33 @@ void DynamicAabbTree::collide_task(const PairTask& task, std::vector<ProxyPair>&
       continue;
     }
     if (!a_leaf && !b_leaf) {
-      // Both internal: descend both at once (four child pairs, each tested before pushing).
-      const Node& a1 = na[a.child1];
-      const Node& a2 = na[a.child2];
-      const Node& b1 = nb[b.child1];
-      const Node& b2 = nb[b.child2];
-      if (overlap(a1.box, b.box)) {
-        if (overlap(a1.box, b1.box)) stack.push({a.child1, b.child1});
-        if (overlap(a1.box, b2.box)) stack.push({a.child1, b.child2});
-      }
-      if (overlap(a2.box, b.box)) {
-        if (overlap(a2.box, b1.box)) stack.push({a.child2, b.child1});
-        if (overlap(a2.box, b2.box)) stack.push({a.child2, b.child2});
-      }
+      // Both internal: descend both at once (four child pairs).
+      const Aabb& a1 = na[a.child1].box;
+      const Aabb& a2 = na[a.child2].box;
+      const Aabb& b1 = nb[b.child1].box;
+      const Aabb& b2 = nb[b.child2].box;
+      stack[top] = {a.child1, b.child1};
+      top += overlap(a1, b1) ? 1 : 0;
+      stack[top] = {a.child1, b.child2};
+      top += overlap(a1, b2) ? 1 : 0;
+      stack[top] = {a.child2, b.child1};
+      top += overlap(a2, b1) ? 1 : 0;
+      stack[top] = {a.child2, b.child2};
+      top += overlap(a2, b2) ? 1 : 0;
     } else if (b_leaf) {
-      if (overlap(na[a.child1].box, b.box)) stack.push({a.child1, it.b});
-      if (overlap(na[a.child2].box, b.box)) stack.push({a.child2, it.b});
+      stack[top] = {a.child1, it.b};
+      top += overlap(na[a.child1].box, b.box) ? 1 : 0;
+      stack[top] = {a.child2, it.b};
+      top += overlap(na[a.child2].box, b.box) ? 1 : 0;
     } else {
-      if (overlap(nb[b.child1].box, a.box)) stack.push({it.a, b.child1});
-      if (overlap(nb[b.child2].box, a.box)) stack.push({it.a, b.child2});
+      stack[top] = {it.a, b.child1};
+      top += overlap(nb[b.child1].box, a.box) ? 1 : 0;
+      stack[top] = {it.a, b.child2};
+      top += overlap(nb[b.child2].box, a.box) ? 1 : 0;
     }
   }
+  st.nodes_visited += visited;
+  st.pairs_tested += tested;
 }
 
 void DynamicAabbTree::find_pairs(std::vector<ProxyPair>& out) {
