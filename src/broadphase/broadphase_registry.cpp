@@ -1,0 +1,57 @@
+/// @file broadphase_registry.cpp
+/// The table of broad-phase structures known by name (make_broadphase, the CLI, benchmarks).
+/// To register a structure: include its header and add one line to kRegistry below.
+
+#include <proxima/broadphase/any_broadphase.hpp>
+#include <proxima/broadphase/brute_force.hpp>
+#include <proxima/broadphase/sweep_and_prune.hpp>
+
+#include <array>
+#include <string>
+
+namespace proxima {
+
+namespace {
+
+template <class S>
+std::unique_ptr<AnyBroadPhase> make_adapter(std::string_view name) {
+  return std::make_unique<BroadPhaseAdapter<S>>(name);
+}
+
+// One line per structure: name, description, factory. Keep names short and lower-case.
+const std::array kRegistry = {
+    BroadPhaseEntry{"brute", "brute force over SoA bounds (the reference)",
+                    [] { return make_adapter<BruteForceBroadPhase>("brute"); }},
+    BroadPhaseEntry{"sap", "incremental sweep-and-prune (insertion sort, temporal coherence)",
+                    [] { return make_adapter<SweepAndPrune>("sap"); }},
+    BroadPhaseEntry{"sap_oneshot", "one-shot sorted sweep with radix sort",
+                    [] { return make_adapter<SortedSweep>("sap_oneshot"); }},
+    BroadPhaseEntry{"mbp", "box pruning over a grid of sweeps (flat or clustered worlds)",
+                    [] { return make_adapter<MultiBoxPruning>("mbp"); }},
+    // Further structures: add their line here.
+};
+
+}  // namespace
+
+std::span<const BroadPhaseEntry> broadphase_registry() { return kRegistry; }
+
+std::vector<std::string_view> broadphase_names() {
+  std::vector<std::string_view> names;
+  for (const BroadPhaseEntry& e : kRegistry) names.push_back(e.name);
+  return names;
+}
+
+Result<std::unique_ptr<AnyBroadPhase>> make_broadphase(std::string_view name) {
+  for (const BroadPhaseEntry& e : kRegistry) {
+    if (e.name == name) return e.make();
+  }
+  std::string list;
+  for (const BroadPhaseEntry& e : kRegistry) {
+    if (!list.empty()) list += ", ";
+    list += e.name;
+  }
+  return make_error(ErrorCode::InvalidArgument, "structure",
+                    "unknown broad-phase structure '" + std::string(name) + "' (known: " + list + ")");
+}
+
+}  // namespace proxima

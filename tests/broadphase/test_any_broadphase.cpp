@@ -1,0 +1,70 @@
+// AnyBroadPhase and the registry: every registered structure, through the virtual
+// interface, against the brute-force reference on every standard scene; update_pairs deltas;
+// unknown names rejected.
+#include <gtest/gtest.h>
+
+#include <proxima/broadphase/any_broadphase.hpp>
+#include <proxima/broadphase/brute_force.hpp>
+
+#include <set>
+#include <string>
+
+#include "broadphase/broadphase_scenes.hpp"
+
+namespace proxima {
+namespace {
+
+TEST(AnyBroadPhase, RegistryNamesAreUniqueAndMake) {
+  const auto names = broadphase_names();
+  ASSERT_GE(names.size(), 4u);
+  EXPECT_EQ(names.front(), "brute");
+  std::set<std::string_view> unique(names.begin(), names.end());
+  EXPECT_EQ(unique.size(), names.size());
+  for (std::string_view name : names) {
+    auto made = make_broadphase(name);
+    ASSERT_TRUE(made.ok()) << name;
+    EXPECT_EQ((*made)->name(), name);
+    EXPECT_EQ((*made)->size(), 0u);
+    EXPECT_TRUE((*made)->validate());
+  }
+}
+
+TEST(AnyBroadPhase, UnknownNameNamesTheField) {
+  auto made = make_broadphase("no_such_structure");
+  ASSERT_FALSE(made.ok());
+  EXPECT_EQ(made.error().field, "structure");
+  EXPECT_NE(made.error().message.find("sap_oneshot"), std::string::npos);
+}
+
+TEST(AnyBroadPhase, EveryRegisteredStructureOnEveryScene) {
+  for (std::string_view name : broadphase_names()) {
+    for (const test::Scene& scene : test::standard_scenes()) {
+      auto made = make_broadphase(name);
+      ASSERT_TRUE(made.ok());
+      std::unique_ptr<AnyBroadPhase> bp = std::move(made).value();
+      EXPECT_TRUE(test::run_differential(*bp, scene, 5)) << name << " on " << scene.name;
+    }
+  }
+}
+
+TEST(AnyBroadPhase, UpdatePairsReportsDeltasAndThreadsAgree) {
+  for (std::string_view name : broadphase_names()) {
+    auto bp = std::move(make_broadphase(name)).value();
+    ASSERT_EQ(bp->insert(0, {Vec3(0), Vec3(1)}, ProxyKind::Moving), BroadPhaseStatus::Ok);
+    ASSERT_EQ(bp->insert(1, {Vec3(1), Vec3(2)}, ProxyKind::Moving), BroadPhaseStatus::Ok);  // touching corner
+    ASSERT_EQ(bp->insert(2, {Vec3(5), Vec3(6)}, ProxyKind::Static), BroadPhaseStatus::Ok);
+    const PairDelta& d1 = bp->update_pairs();
+    EXPECT_EQ(d1.begun, (std::vector<ProxyPair>{{0, 1}})) << name;
+    EXPECT_TRUE(d1.ended.empty());
+    ASSERT_EQ(bp->update(1, {Vec3(4.5f), Vec3(5.5f)}), BroadPhaseStatus::Ok);
+    const PairDelta& d2 = bp->update_pairs(4);
+    EXPECT_EQ(d2.begun, (std::vector<ProxyPair>{{1, 2}})) << name;
+    EXPECT_EQ(d2.ended, (std::vector<ProxyPair>{{0, 1}})) << name;
+    EXPECT_EQ(bp->pairs(), (std::vector<ProxyPair>{{1, 2}}));
+    ASSERT_EQ(bp->remove(2), BroadPhaseStatus::Ok);
+    EXPECT_EQ(bp->update_pairs().ended, (std::vector<ProxyPair>{{1, 2}})) << name;
+  }
+}
+
+}  // namespace
+}  // namespace proxima
