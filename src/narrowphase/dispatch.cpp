@@ -18,8 +18,9 @@
 #include "pairs_polyhedral.hpp"
 #include "pairs_rounded.hpp"
 // Generic routines.
-#include "generic_collide.hpp"
 #include "generic_distance.hpp"
+// The generic manifold calls pair_distance: it must come after every declaration of it.
+#include "generic_collide.hpp"
 
 namespace proxima {
 
