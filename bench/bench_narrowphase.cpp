@@ -264,6 +264,7 @@ struct HullWorkload {
   std::vector<double> ref_distance;                        // per pair (<= 0: intersecting)
   std::vector<char> ref_hit_all, ref_hit_separated, ref_hit_overlapping;
   std::vector<double> ref_distance_separated, ref_depth_overlapping;
+  bool references_ready = false;
   int overruled = 0;              // pairs whose FCL boolean the exact test overruled
   std::vector<Transform> warm_b;  // kWarmFrames * pairs: pose B along a small periodic path
 };
@@ -493,8 +494,15 @@ ExactAnswer exact_polytope_pair(const HullWorkload& w, const pb::ConvexPair& p) 
     for (const pb::Vec3d& v : b.v) lb = std::min(lb, dot(n, v));
     depth = std::min(depth, ha - lb);
   };
-  for (const pb::Vec3d& n : a.n) test(n);
-  for (const pb::Vec3d& m : b.n) test({-m.x, -m.y, -m.z});
+  // Any direction with a negative value separates the pair: stop there.
+  for (const pb::Vec3d& n : a.n) {
+    test(n);
+    if (depth < 0) return {false, 0};
+  }
+  for (const pb::Vec3d& m : b.n) {
+    test({-m.x, -m.y, -m.z});
+    if (depth < 0) return {false, 0};
+  }
   const auto& ea = w.edges[p.a];
   const auto& eb = w.edges[p.b];
   for (const proxima::HullEdge& e : ea) {
@@ -517,6 +525,7 @@ ExactAnswer exact_polytope_pair(const HullWorkload& w, const pb::ConvexPair& p) 
       n = {n.x / len, n.y / len, n.z / len};
       test(n);
       test({-n.x, -n.y, -n.z});
+      if (depth < 0) return {false, 0};
     }
   }
   return {depth >= 0, std::max(depth, 0.0)};
@@ -539,6 +548,13 @@ bool load_hulls(const std::string& dir, int points, HullWorkload& w) {
   for (int f = 0; f < kWarmFrames; ++f) {
     for (std::size_t k = 0; k < n; ++k) w.warm_b[static_cast<std::size_t>(f) * n + k] = warm_pose(w.pose_b[k], f);
   }
+  return true;
+}
+
+/// Computes the references of a W2 size (a few seconds for 128 points; done on first use so
+/// that a filtered run pays only for the sizes it times).
+void compute_references(HullWorkload& w) {
+  const std::size_t n = w.pairs.size();
   // Distance: the smaller of FCL's two GJK answers (double; each is the length of a point of
   // A - B, so an upper bound); boolean and depth: the exact separating-axis answer.
   w.ref_distance.assign(n, 0.0);
@@ -574,10 +590,19 @@ bool load_hulls(const std::string& dir, int points, HullWorkload& w) {
       w.ref_distance_separated.push_back(w.ref_distance[k]);
     }
   }
-  return true;
+  // Pairs whose FCL answer the exact test overruled; separated pairs left out of the
+  // distance set because FCL reports no distance for them.
+  std::fprintf(stderr, "W2 %d points: reference overruled FCL on %d pairs, %zu pairs left out\n", w.points, w.overruled,
+               n - w.overlapping.size() - w.separated.size());
+  w.references_ready = true;
 }
 
-HullWorkload& hulls_of(int points) { return g_hulls[points == 8 ? 0 : (points == 32 ? 1 : 2)]; }
+/// The W2 workload of a size, its references computed.
+const HullWorkload& hulls_of(int points) {
+  HullWorkload& w = g_hulls[points == 8 ? 0 : (points == 32 ? 1 : 2)];
+  if (!w.references_ready) compute_references(w);
+  return w;
+}
 
 /// The subsets a W2 benchmark runs on.
 enum class Subset { All, Separated, Overlapping };
@@ -1224,16 +1249,6 @@ bool register_narrowphase(const std::string& dir) {
   peers += " ode";
 #endif
   benchmark::AddCustomContext("peers", peers.empty() ? "none" : peers.substr(1));
-  std::string overruled;
-  for (const HullWorkload& w : g_hulls) {
-    char item[64];
-    std::snprintf(item, sizeof item, "%s%d:%d/%zu", overruled.empty() ? "" : " ", w.points, w.overruled,
-                  w.pairs.size() - w.overlapping.size() - w.separated.size());
-    overruled += item;
-  }
-  // Per hull size: pairs whose FCL answer the exact test overruled / separated pairs left
-  // out of the distance set because FCL reports no distance for them.
-  benchmark::AddCustomContext("w2_reference_overruled_leftout", overruled);
 
   const std::array<std::pair<HullQuery, const char*>, 3> queries{
       {{HullQuery::Boolean, "Boolean"}, {HullQuery::Distance, "Distance"}, {HullQuery::Penetration, "Penetration"}}};
