@@ -39,7 +39,7 @@
 // The library's narrow phase is benchmarked when it is linked (set to 0 to time the peers
 // alone while it is missing).
 #ifndef PROXIMA_BENCH_NARROWPHASE
-#define PROXIMA_BENCH_NARROWPHASE 0
+#define PROXIMA_BENCH_NARROWPHASE 1
 #endif
 #if PROXIMA_BENCH_NARROWPHASE
 #include <proxima/narrowphase/narrowphase.hpp>
