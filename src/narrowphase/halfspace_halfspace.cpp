@@ -27,8 +27,8 @@ DistanceResult pair_distance(const HalfSpace& a, const Transform& pose_a, const 
   d.point_a = point_a;
   d.method = PairMethod::Analytic;
   if (glm::dot(pa.n, pb.n) <= -(Real(1) - kRelativeTolerance)) {
-    // B's offset at point_a: gap of point_a above B's plane, measured along n_a = -n_b.
-    d.signed_distance = -pb.gap(point_a);
+    // point_a lies outside B by its height above B's plane, measured along n_a = -n_b.
+    d.signed_distance = pb.gap(point_a);
     d.status = status_from_distance(d.signed_distance, tol);
   } else {
     d.signed_distance = -kHalfSpacePairDepth;
