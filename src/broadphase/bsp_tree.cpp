@@ -24,10 +24,12 @@
 /// and 7.3.
 
 #include <proxima/broadphase/bsp_tree.hpp>
+#include <proxima/broadphase/parallel_pairs.hpp>
 #include <proxima/core/tolerance.hpp>
 #include <proxima/geometry/raycast.hpp>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 
@@ -392,7 +394,7 @@ void BspTree::query_ray(const Ray& ray, Real max_t, const RayQueryCallback& on_r
 
 // ---- pairs ------------------------------------------------------------------------------------
 
-void BspTree::find_pairs(std::vector<ProxyPair>& out) {
+void BspTree::find_pairs(std::vector<ProxyPair>& out, unsigned threads) {
   out.clear();
   bool rebuilt = false;
   if (overfull_ || degraded_ ||
@@ -400,21 +402,29 @@ void BspTree::find_pairs(std::vector<ProxyPair>& out) {
     rebuild();
     rebuilt = true;
   }
-  BroadPhaseStats st;
-  for (std::size_t i = 0; i < proxies_.size(); ++i) {
-    const Proxy& p = proxies_[i];
-    if (p.node == kNull || p.kind != ProxyKind::Moving) continue;
-    const auto self = static_cast<ProxyId>(i);
-    visit_box(p.box, st, [&](ProxyId other) {
-      if (other == self) return true;
-      const Proxy& q = proxies_[other];
-      if (q.kind == ProxyKind::Moving && other < self) return true;
-      if (can_pair(p.filter, q.filter)) out.push_back(self < other ? ProxyPair{self, other} : ProxyPair{other, self});
-      return true;
-    });
-  }
+  std::atomic<std::uint64_t> visited{0};
+  std::atomic<std::uint64_t> tested{0};
+  parallel_pair_chunks(proxies_.size(), threads, out,
+                       [&](std::size_t begin, std::size_t end, std::vector<ProxyPair>& list) {
+                         BroadPhaseStats local;
+                         for (std::size_t i = begin; i < end; ++i) {
+                           const Proxy& p = proxies_[i];
+                           if (p.node == kNull || p.kind != ProxyKind::Moving) continue;
+                           const auto self = static_cast<ProxyId>(i);
+                           visit_box(p.box, local, [&](ProxyId other) {
+                             if (other == self) return true;
+                             const Proxy& q = proxies_[other];
+                             if (q.kind == ProxyKind::Moving && other < self) return true;
+                             if (can_pair(p.filter, q.filter))
+                               list.push_back(self < other ? ProxyPair{self, other} : ProxyPair{other, self});
+                             return true;
+                           });
+                         }
+                         visited.fetch_add(local.nodes_visited, std::memory_order_relaxed);
+                         tested.fetch_add(local.pairs_tested, std::memory_order_relaxed);
+                       });
   sort_pairs(out, sort_scratch_);
-  st.pairs_found = out.size();
+  const BroadPhaseStats st{visited.load(), tested.load(), out.size()};
   stats_ = st;
   // Quality watch: the work of the first pair search after a build is the baseline; when the
   // work grows past rebuild_work times it (plus slack for the pairs themselves), the next

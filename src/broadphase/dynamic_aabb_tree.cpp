@@ -633,7 +633,7 @@ void DynamicAabbTree::collide_task(const PairTask& task, std::vector<ProxyPair>&
   st.pairs_tested += tested;
 }
 
-void DynamicAabbTree::find_pairs(std::vector<ProxyPair>& out) {
+void DynamicAabbTree::find_pairs(std::vector<ProxyPair>& out, unsigned thread_count) {
   out.clear();
   BroadPhaseStats st;
   std::vector<PairTask> tasks;
@@ -641,7 +641,7 @@ void DynamicAabbTree::find_pairs(std::vector<ProxyPair>& out) {
     tasks.push_back({moving_.root, moving_.root, false});
     if (static_.root != kNull) tasks.push_back({moving_.root, static_.root, true});
   }
-  unsigned threads = config_.threads == 0 ? std::max(1u, std::thread::hardware_concurrency()) : config_.threads;
+  unsigned threads = thread_count == 0 ? std::max(1u, std::thread::hardware_concurrency()) : thread_count;
   if (moving_.leaves < 256) threads = 1;
 
   if (threads <= 1) {

@@ -17,10 +17,12 @@
 /// EGSR 2006; C. Ericson, Real-Time Collision Detection, 7.3 (k-d trees).
 
 #include <proxima/broadphase/kd_tree.hpp>
+#include <proxima/broadphase/parallel_pairs.hpp>
 #include <proxima/core/tolerance.hpp>
 #include <proxima/geometry/raycast.hpp>
 
 #include <algorithm>
+#include <atomic>
 
 #include "broadphase/tree_support.hpp"
 
@@ -313,7 +315,7 @@ void KdTree::query_ray(const Ray& ray, Real max_t, const RayQueryCallback& on_ra
 
 // ---- pairs ------------------------------------------------------------------------------------
 
-void KdTree::find_pairs(std::vector<ProxyPair>& out) {
+void KdTree::find_pairs(std::vector<ProxyPair>& out, unsigned threads) {
   out.clear();
   if (!pending_.empty() || dead_ * 4 > records_.size() || (nodes_.empty() && count_ > 0)) {
     rebuild();
@@ -325,23 +327,31 @@ void KdTree::find_pairs(std::vector<ProxyPair>& out) {
     const double mean = internal ? sum / static_cast<double>(internal) : 0.0;
     if (mean > build_overlap_ + static_cast<double>(config_.rebuild_overlap)) rebuild();
   }
-  BroadPhaseStats st;
-  for (const Record& r : records_) {
-    if (r.id == kDead) continue;
-    const Proxy& p = proxies_[r.id];
-    if (p.kind != ProxyKind::Moving) continue;
-    const ProxyId self = r.id;
-    visit_box(r.box, st, [&](ProxyId other) {
-      if (other == self) return true;
-      const Proxy& q = proxies_[other];
-      if (q.kind == ProxyKind::Moving && other < self) return true;
-      if (can_pair(p.filter, q.filter)) out.push_back(self < other ? ProxyPair{self, other} : ProxyPair{other, self});
-      return true;
-    });
-  }
+  std::atomic<std::uint64_t> visited{0};
+  std::atomic<std::uint64_t> tested{0};
+  parallel_pair_chunks(records_.size(), threads, out,
+                       [&](std::size_t begin, std::size_t end, std::vector<ProxyPair>& list) {
+                         BroadPhaseStats st;
+                         for (std::size_t i = begin; i < end; ++i) {
+                           const Record& r = records_[i];
+                           if (r.id == kDead) continue;
+                           const Proxy& p = proxies_[r.id];
+                           if (p.kind != ProxyKind::Moving) continue;
+                           const ProxyId self = r.id;
+                           visit_box(r.box, st, [&](ProxyId other) {
+                             if (other == self) return true;
+                             const Proxy& q = proxies_[other];
+                             if (q.kind == ProxyKind::Moving && other < self) return true;
+                             if (can_pair(p.filter, q.filter))
+                               list.push_back(self < other ? ProxyPair{self, other} : ProxyPair{other, self});
+                             return true;
+                           });
+                         }
+                         visited.fetch_add(st.nodes_visited, std::memory_order_relaxed);
+                         tested.fetch_add(st.pairs_tested, std::memory_order_relaxed);
+                       });
   sort_pairs(out, sort_scratch_);
-  st.pairs_found = out.size();
-  stats_ = st;
+  stats_ = {visited.load(), tested.load(), out.size()};
 }
 
 // ---- inspection -------------------------------------------------------------------------------

@@ -75,5 +75,10 @@ TEST(BspTree, DiagonalWallsUseObliquePlanes) {
   test::check_queries(bsp, scene, qrng, Real(60), 40);
 }
 
+TEST(BspTree, ParallelEqualsSerial) {
+  BspTree s;
+  test::check_parallel_equals_serial(s, 61);
+}
+
 }  // namespace
 }  // namespace proxima

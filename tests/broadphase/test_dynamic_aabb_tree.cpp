@@ -147,6 +147,11 @@ TEST(DynamicAabbTree, ParallelEqualsSerial) {
   EXPECT_EQ(a, b);
 }
 
+TEST(DynamicAabbTree, ParallelEqualsSerialExplicitThreads) {
+  DynamicAabbTree s;
+  test::check_parallel_equals_serial(s, 62);
+}
+
 TEST(DynamicAabbTree, FatBoxAbsorbsSmallMotion) {
   DynamicAabbTree tree;  // margin 10 % of the largest edge
   const Aabb box{Vec3(0), Vec3(1, 2, 1)};

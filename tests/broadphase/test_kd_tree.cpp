@@ -72,5 +72,10 @@ TEST(KdTree, SmallMotionRefitsLargeMotionRebuilds) {
   ASSERT_TRUE(tree.validate());
 }
 
+TEST(KdTree, ParallelEqualsSerial) {
+  KdTree s;
+  test::check_parallel_equals_serial(s, 61);
+}
+
 }  // namespace
 }  // namespace proxima

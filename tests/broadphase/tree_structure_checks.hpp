@@ -378,3 +378,40 @@ void run_standard_scenes(Make make) {
 }
 
 }  // namespace proxima::test
+
+namespace proxima::test {
+
+/// find_pairs(out, threads) gives the serial result for several thread counts, over a few
+/// frames of motion (5000 proxies: above the parallel helpers' inline threshold).
+template <class S>
+void check_parallel_equals_serial(S& s, std::uint64_t seed) {
+  Random rng(seed);
+  std::vector<Aabb> boxes;
+  for (ProxyId i = 0; i < 5000; ++i) {
+    const Vec3 p = rng.vec3(-40, 40);
+    const Vec3 h = rng.vec3(Real(0.1), Real(1.2));
+    boxes.push_back({p - h, p + h});
+    ASSERT_EQ(s.insert(i, boxes.back(), i % 5 == 0 ? ProxyKind::Static : ProxyKind::Moving, {}), BroadPhaseStatus::Ok);
+  }
+  std::vector<ProxyPair> serial;
+  std::vector<ProxyPair> parallel;
+  for (int frame = 0; frame < 4; ++frame) {
+    s.find_pairs(serial, 1);
+    ASSERT_FALSE(serial.empty());
+    for (const unsigned threads : {2u, 4u, 0u}) {
+      s.find_pairs(parallel, threads);
+      ASSERT_EQ(parallel, serial) << "threads " << threads << " frame " << frame;
+    }
+    std::vector<ProxyUpdate> updates;
+    for (ProxyId i = 0; i < boxes.size(); ++i) {
+      if (i % 5 == 0) continue;
+      const Vec3 d = rng.vec3(Real(-0.3), Real(0.3));
+      boxes[i].min += d;
+      boxes[i].max += d;
+      updates.push_back({i, boxes[i]});
+    }
+    ASSERT_EQ(s.update(updates), BroadPhaseStatus::Ok);
+  }
+}
+
+}  // namespace proxima::test

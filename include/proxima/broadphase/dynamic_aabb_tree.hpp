@@ -76,8 +76,10 @@ class DynamicAabbTree {
   BroadPhaseStatus update(std::span<const ProxyUpdate> updates);
   /// Rebuilds both trees with binned SAH (fat boxes kept). O(n log n).
   void rebuild();
-  /// Every pair (see broadphase.hpp), sorted; `out` is cleared first.
-  void find_pairs(std::vector<ProxyPair>& out);
+  /// Every pair (see broadphase.hpp), sorted; `out` is cleared first. Uses config threads.
+  void find_pairs(std::vector<ProxyPair>& out) { find_pairs(out, config_.threads); }
+  /// As above on `threads` threads (1 = serial, 0 = hardware concurrency); identical output.
+  void find_pairs(std::vector<ProxyPair>& out, unsigned threads);
 
   /// Calls `on_overlap` for every proxy whose box overlaps `box` (closed); stops when it
   /// returns false. A non-finite or inverted box reports nothing.

@@ -57,7 +57,10 @@ class KdTree {
   /// Rebuilds the tree from scratch over every proxy (median splits). O(n log n).
   void rebuild();
   /// Every pair (see broadphase.hpp), sorted. May refit or rebuild first.
-  void find_pairs(std::vector<ProxyPair>& out);
+  void find_pairs(std::vector<ProxyPair>& out) { find_pairs(out, 1); }
+  /// As above with the per-proxy searches split over `threads` std::threads (0 = hardware
+  /// concurrency); identical output.
+  void find_pairs(std::vector<ProxyPair>& out, unsigned threads);
 
   /// Every proxy whose box overlaps `box` (closed); stops when the callback returns false.
   void query_aabb(const Aabb& box, const OverlapQueryCallback& on_overlap) const;
