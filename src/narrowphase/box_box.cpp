@@ -1,32 +1,37 @@
-// Box-box: separating axes, exact distance and clipped contact manifold.
+// Box-box: separating axes, exact distance and clipped contact manifold, all in the frame of
+// one box with fixed-size stack buffers (no general-purpose face structures).
 //
 // Steps (Gottschalk, Lin, Manocha, "OBBTree", SIGGRAPH 1996, for the 15 axes; Ericson,
 // Real-Time Collision Detection 4.4.1; Box2D / Dirk Gregorius for the clipping):
-//  1. Work in A's frame: R = A^T B, t = A^T (cB - cA). The 15 candidate axes are A's 3 face
-//     normals, B's 3 and the 9 cross products A_i x B_j; a cross product of nearly parallel
-//     edges is skipped (its direction is noise, and a parallel edge pair adds no face to the
-//     Minkowski difference). Each axis is normalised so its separation is a length.
+//  1. Work in A's frame: R = A^T B (from the relative rotation, once), t = A^T (cB - cA).
+//     The 15 candidate axes are A's 3 face normals, B's 3 and the 9 cross products
+//     A_i x B_j; a cross product of nearly parallel edges is skipped (its direction is
+//     noise, and a parallel edge pair adds no face to the Minkowski difference). Each axis
+//     is normalised so its separation is a length.
 //  2. The largest separation over the axes decides: > 0 separated, <= 0 overlapping with
 //     depth = -(largest separation), which is exact for polytopes (every face of the
 //     Minkowski difference has one of these normals).
-//  3. Separated: the exact distance is the smallest over the vertices of each box against
-//     the other box (a clamp) and the 18 edge pairs whose common normal direction (+- A_i x
-//     B_j) makes them supporting edges of both boxes; every closest pair of two boxes is of
-//     one of these kinds.
+//  3. Separated: the exact distance is the smallest over the 16 corners clamped against the
+//     other box and the edge pairs A_i, B_j whose axis separates the boxes by less than the
+//     best distance so far (the separation along an axis bounds every distance from below;
+//     the supporting edges along the separating side are the only candidates of a pair).
 //  4. Manifold: the chosen axis (a face axis unless an edge axis is clearly shallower, for
-//     stable manifolds); face axis: incident face of the other box clipped against the
-//     reference face (face_clipping.hpp), reduced to 4 points by area; edge axis: the
-//     closest points of the two supporting edges. Separated pairs within the contact
-//     distance clip the faces supporting the exact distance normal.
+//     stable manifolds); face axis: the reference face is a rectangle in its box's frame,
+//     the incident face's 4 corners are projected along the normal onto its plane and
+//     clipped against it in 2D (at most 8 points, gaps interpolated linearly), reduced to 4
+//     by area (manifold_reduction.hpp) before anything is mapped to the world; edge axis:
+//     the closest points of the two supporting edges. Separated pairs within the contact
+//     distance clip the faces supporting the exact distance normal the same way.
 //  5. The last separating axis is kept in PairCache::sat_feature and tried first.
 #include <proxima/geometry/closest_points.hpp>
 
+#include <array>
 #include <cmath>
 #include <limits>
 
 #include "face_clipping.hpp"
+#include "manifold_reduction.hpp"
 #include "pairs_polyhedral.hpp"
-#include "supporting_face.hpp"
 
 namespace proxima::narrow {
 namespace {
@@ -39,16 +44,17 @@ constexpr Real kEdgeRelative = Real(0.98);
 // B's face axis replaces A's only when its separation exceeds kFaceRelative * A's.
 constexpr Real kFaceRelative = Real(0.98);
 constexpr int kAxes = 15;
+constexpr Real kInfinity = std::numeric_limits<Real>::infinity();
 
 // The pair in A's frame.
 struct BoxPair {
-  Vec3 a{Real(0)};  // A's half extents
-  Vec3 b{Real(0)};  // B's half extents
-  Real r[3][3]{};   // r[i][j] = A_i . B_j
-  Real ar[3][3]{};  // |r|
-  Vec3 t{Real(0)};  // B's centre in A's frame
-  Real tol = Real(0);
-  Real rounding = Real(0);  // a few rounding errors at the pair's own size (not clamped to 1)
+  Vec3 a;         // A's half extents
+  Vec3 b;         // B's half extents
+  Real r[3][3];   // r[i][j] = A_i . B_j
+  Real ar[3][3];  // |r|
+  Vec3 t;         // B's centre in A's frame
+  Real tol;       // distance tolerance of the pair
+  Real rounding;  // a few rounding errors at the pair's own size (not clamped to 1)
 };
 
 BoxPair make_pair(const Box& a, const Transform& pose_a, const Box& b, const Transform& pose_b,
@@ -56,21 +62,22 @@ BoxPair make_pair(const Box& a, const Transform& pose_a, const Box& b, const Tra
   BoxPair p;
   p.a = a.half_extents();
   p.b = b.half_extents();
-  const Mat3 ma = pose_a.rotation_matrix();
-  const Mat3 mb = pose_b.rotation_matrix();
+  const Quat qa_inv = glm::conjugate(pose_a.rotation);
+  const Mat3 rel = glm::mat3_cast(qa_inv * pose_b.rotation);  // column j = B_j in A's frame
   for (int i = 0; i < 3; ++i) {
     for (int j = 0; j < 3; ++j) {
-      p.r[i][j] = glm::dot(ma[i], mb[j]);
+      p.r[i][j] = rel[j][i];
       p.ar[i][j] = std::abs(p.r[i][j]);
     }
   }
-  const Vec3 d = pose_b.position - pose_a.position;
-  p.t = Vec3(glm::dot(d, ma[0]), glm::dot(d, ma[1]), glm::dot(d, ma[2]));
+  p.t = qa_inv * (pose_b.position - pose_a.position);
   const Real scale = std::max({max_abs_component(p.a), max_abs_component(p.b), max_abs_component(p.t)});
   p.tol = resolve_tolerance(request, scale);
   p.rounding = kRelativeTolerance * scale;
   return p;
 }
+
+Vec3 b_axis(const BoxPair& p, int j) { return Vec3(p.r[0][j], p.r[1][j], p.r[2][j]); }
 
 // Separation of the boxes along axis k (0-2 A's faces, 3-5 B's, 6-14 A_i x B_j with
 // i = (k-6)/3, j = (k-6)%3), and the unit axis in A's frame pointing from A to B. Returns
@@ -90,7 +97,7 @@ bool axis_separation(const BoxPair& p, int k, Real& sep, Vec3& axis) {
     const Real tj = p.t[0] * p.r[0][j] + p.t[1] * p.r[1][j] + p.t[2] * p.r[2][j];
     sep = std::abs(tj) - (ra + p.b[j]);
     const Real s = tj >= Real(0) ? Real(1) : Real(-1);
-    axis = s * Vec3(p.r[0][j], p.r[1][j], p.r[2][j]);
+    axis = s * b_axis(p, j);
     return true;
   }
   const int i = (k - 6) / 3;
@@ -105,24 +112,26 @@ bool axis_separation(const BoxPair& p, int k, Real& sep, Vec3& axis) {
   const Real rb = p.b[j1] * p.ar[i][j2] + p.b[j2] * p.ar[i][j1];
   const Real tl = p.t[i2] * p.r[i1][j] - p.t[i1] * p.r[i2][j];
   sep = (std::abs(tl) - (ra + rb)) / len;
-  Vec3 l(Real(0));
-  l[i1] = -p.r[i2][j] / len;
-  l[i2] = p.r[i1][j] / len;
-  axis = tl >= Real(0) ? l : -l;
+  axis = Vec3(Real(0));
+  axis[i1] = -p.r[i2][j] / len;
+  axis[i2] = p.r[i1][j] / len;
+  if (tl < Real(0)) axis = -axis;
   return true;
 }
 
 struct SatResult {
-  Real max_sep = -std::numeric_limits<Real>::infinity();  // over all axes (exact)
+  Real max_sep = -kInfinity;  // over all axes (exact)
   int max_axis = 0;
   Vec3 max_normal{Real(0), Real(0), Real(1)};
-  Real face_a_sep = -std::numeric_limits<Real>::infinity();
+  Real face_a_sep = -kInfinity;
   int face_a_axis = 0;
-  Real face_b_sep = -std::numeric_limits<Real>::infinity();
+  Real face_b_sep = -kInfinity;
   int face_b_axis = 3;
-  Real edge_sep = -std::numeric_limits<Real>::infinity();
+  Real edge_sep = -kInfinity;
   int edge_axis = -1;
   bool early_out = false;  // stopped at an axis separating by more than the limit
+  // Separation of each edge axis (-infinity when skipped); complete only without early out.
+  std::array<Real, 9> edge_seps;
 };
 
 // Runs the 15 axes, stopping early at one separating by more than `limit`.
@@ -143,7 +152,10 @@ SatResult run_sat(const BoxPair& p, Real limit, const PairCache* cache) {
   for (int k = 0; k < kAxes; ++k) {
     Real sep = Real(0);
     Vec3 axis;
-    if (!axis_separation(p, k, sep, axis)) continue;
+    if (!axis_separation(p, k, sep, axis)) {
+      s.edge_seps[static_cast<std::size_t>(k - 6)] = -kInfinity;
+      continue;
+    }
     // An edge axis must beat the face axes by more than the tolerance: nearly parallel
     // edges give an axis next to a face normal with the same separation up to rounding,
     // and its supporting edges would not witness it.
@@ -162,9 +174,12 @@ SatResult run_sat(const BoxPair& p, Real limit, const PairCache* cache) {
         s.face_b_sep = sep;
         s.face_b_axis = k;
       }
-    } else if (sep > s.edge_sep) {
-      s.edge_sep = sep;
-      s.edge_axis = k;
+    } else {
+      s.edge_seps[static_cast<std::size_t>(k - 6)] = sep;
+      if (sep > s.edge_sep) {
+        s.edge_sep = sep;
+        s.edge_axis = k;
+      }
     }
     if (sep > limit) {
       s.early_out = true;
@@ -181,20 +196,44 @@ void store_cache(PairCache* cache, const SatResult& s) {
   cache->valid = true;
 }
 
+// Supporting edge of A (index i) and B (index j) along the A-frame normal n, as segments.
+void supporting_edges(const BoxPair& p, int i, int j, const Vec3& n, Vec3& a0, Vec3& a1, Vec3& b0, Vec3& b1) {
+  Vec3 ca(Real(0));
+  for (int m = 0; m < 3; ++m) {
+    if (m != i) ca[m] = n[m] >= Real(0) ? p.a[m] : -p.a[m];
+  }
+  Vec3 ea(Real(0));
+  ea[i] = p.a[i];
+  a0 = ca - ea;
+  a1 = ca + ea;
+  Vec3 cb = p.t;
+  Vec3 eb(Real(0));
+  for (int m = 0; m < 3; ++m) {
+    const Vec3 bm = b_axis(p, m);
+    if (m == j) {
+      eb = p.b[m] * bm;
+    } else {
+      cb += (glm::dot(n, bm) <= Real(0) ? p.b[m] : -p.b[m]) * bm;
+    }
+  }
+  b0 = cb - eb;
+  b1 = cb + eb;
+}
+
 // Closest points of two boxes in A's frame and their squared distance.
 struct ClosestFeatures {
-  Real d2 = std::numeric_limits<Real>::infinity();
+  Real d2 = kInfinity;
   Vec3 on_a{Real(0)};
   Vec3 on_b{Real(0)};
 };
 
-// Exact closest points of two separated boxes, in A's frame (step 3).
-ClosestFeatures closest_features(const BoxPair& p) {
+// Exact closest points of two separated boxes, in A's frame (step 3). `s` must come from a
+// full SAT run (no early out).
+ClosestFeatures closest_features(const BoxPair& p, const SatResult& s) {
   ClosestFeatures best;
-  const Vec3 bx(p.r[0][0], p.r[1][0], p.r[2][0]);
-  const Vec3 by(p.r[0][1], p.r[1][1], p.r[2][1]);
-  const Vec3 bz(p.r[0][2], p.r[1][2], p.r[2][2]);
-  const Vec3 baxes[3] = {bx, by, bz};
+  const Vec3 bx = b_axis(p, 0);
+  const Vec3 by = b_axis(p, 1);
+  const Vec3 bz = b_axis(p, 2);
   // B's corners against A.
   for (int c = 0; c < 8; ++c) {
     const Vec3 v =
@@ -212,112 +251,286 @@ ClosestFeatures closest_features(const BoxPair& p) {
     const Real d2 = length_squared(local - q);
     if (d2 < best.d2) best = {d2, v, p.t + q.x * bx + q.y * by + q.z * bz};
   }
-  // Supporting edge pairs along +-(A_i x B_j).
-  for (int i = 0; i < 3; ++i) {
-    for (int j = 0; j < 3; ++j) {
-      const int i1 = (i + 1) % 3;
-      const int i2 = (i + 2) % 3;
-      const Real len = std::sqrt(p.r[i1][j] * p.r[i1][j] + p.r[i2][j] * p.r[i2][j]);
-      if (!(len > kParallelSine)) continue;
-      Vec3 l(Real(0));
-      l[i1] = -p.r[i2][j];
-      l[i2] = p.r[i1][j];
-      for (int sign = 0; sign < 2; ++sign) {
-        const Vec3 n = sign == 0 ? l : -l;
-        Vec3 ca(Real(0));
-        ca[i1] = n[i1] >= Real(0) ? p.a[i1] : -p.a[i1];
-        ca[i2] = n[i2] >= Real(0) ? p.a[i2] : -p.a[i2];
-        Vec3 ea(Real(0));
-        ea[i] = p.a[i];
-        Vec3 cb = p.t;
-        for (int m = 0; m < 3; ++m) {
-          if (m == j) continue;
-          cb += (glm::dot(n, baxes[m]) <= Real(0) ? p.b[m] : -p.b[m]) * baxes[m];
-        }
-        const Vec3 eb = p.b[j] * baxes[j];
-        const geometry::SegmentPair sp = geometry::closest_points_segment_segment(ca - ea, ca + ea, cb - eb, cb + eb);
-        if (sp.distance_squared < best.d2) best = {sp.distance_squared, sp.on_a, sp.on_b};
-      }
-    }
-  }
-  return best;
-}
-
-// Supporting edge of A (index i) and B (index j) along the A-frame normal n, as segments.
-void supporting_edges(const BoxPair& p, int i, int j, const Vec3& n, Vec3& a0, Vec3& a1, Vec3& b0, Vec3& b1) {
-  Vec3 ca(Real(0));
-  for (int m = 0; m < 3; ++m) {
-    if (m != i) ca[m] = n[m] >= Real(0) ? p.a[m] : -p.a[m];
-  }
-  Vec3 ea(Real(0));
-  ea[i] = p.a[i];
-  a0 = ca - ea;
-  a1 = ca + ea;
-  Vec3 cb = p.t;
-  Vec3 eb(Real(0));
-  for (int m = 0; m < 3; ++m) {
-    const Vec3 bm(p.r[0][m], p.r[1][m], p.r[2][m]);
-    if (m == j) {
-      eb = p.b[m] * bm;
-    } else {
-      cb += (glm::dot(n, bm) <= Real(0) ? p.b[m] : -p.b[m]) * bm;
-    }
-  }
-  b0 = cb - eb;
-  b1 = cb + eb;
-}
-
-// Penetration (sep <= 0) along axis k with A-frame normal n: manifold points in `m`
-// (world frame). For face axes the clipped faces; for edge axes the edges' closest points.
-bool overlap_manifold(const BoxPair& p, const Box& a, const Transform& pose_a, const Box& b, const Transform& pose_b,
-                      int k, Real sep, const Vec3& n_local, const PairRequest& request, ContactManifold& m) {
-  const Vec3 n = pose_a.apply_vector(n_local);
-  m.normal = n;
-  if (k < 6) {
-    const SupportingFace fa = supporting_face(a, pose_a, n);
-    const SupportingFace fb = supporting_face(b, pose_b, -n);
-    if (clipped_manifold(fa, fb, n, request, m)) return true;
-  } else {
+  // Edge pairs: the closest points of edges A_i, B_j (inner points of both) differ along
+  // +-(A_i x B_j), on the side where that axis separates the boxes, by at least its
+  // separation; a pair whose axis does not separate, or separates by more than the best
+  // distance so far, cannot improve it.
+  for (int k = 0; k < 9; ++k) {
+    const Real sep = s.edge_seps[static_cast<std::size_t>(k)];
+    if (!(sep > Real(0)) || sep * sep >= best.d2) continue;
+    Real check = Real(0);
+    Vec3 n;
+    if (!axis_separation(p, 6 + k, check, n)) continue;
     Vec3 a0;
     Vec3 a1;
     Vec3 b0;
     Vec3 b1;
-    const int i = (k - 6) / 3;
-    const int j = (k - 6) % 3;
-    supporting_edges(p, i, j, n_local, a0, a1, b0, b1);
+    supporting_edges(p, k / 3, k % 3, n, a0, a1, b0, b1);
     const geometry::SegmentPair sp = geometry::closest_points_segment_segment(a0, a1, b0, b1);
-    m.count = 1;
-    ContactPoint& c = m.points[0];
-    c.point_a = pose_a.apply(sp.on_a);
-    c.point_b = pose_a.apply(sp.on_b);
-    c.normal = n;
-    c.depth = -sep;
-    // Edge ids: the axis and which of the four parallel edges (sign bits of the normal).
-    std::uint32_t ea = 0;
-    std::uint32_t eb = 0;
-    for (int q = 0, bit = 0; q < 3; ++q) {
-      if (q == i) continue;
-      if (n_local[q] >= Real(0)) ea |= 1u << bit;
-      ++bit;
-    }
-    for (int q = 0, bit = 0; q < 3; ++q) {
-      if (q == j) continue;
-      const Vec3 bq(p.r[0][q], p.r[1][q], p.r[2][q]);
-      if (glm::dot(n_local, bq) <= Real(0)) eb |= 1u << bit;
-      ++bit;
-    }
-    c.feature_id = make_feature_id(FeatureKind::Edge, static_cast<std::uint32_t>(i) * 4u + ea, FeatureKind::Edge,
-                                   static_cast<std::uint32_t>(j) * 4u + eb);
-    return true;
+    if (sp.distance_squared < best.d2) best = {sp.distance_squared, sp.on_a, sp.on_b};
   }
-  return false;
+  return best;
 }
 
-// One-point fallback along axis k: B's support point in -n and its image on A.
-void support_point(const Box& b, const Transform& pose_b, const Vec3& n, Real sep, ContactManifold& m) {
-  const Vec3 pb = pose_b.apply(b.support(pose_b.inverse_apply_vector(-n)));
+// ---- Face clipping in the reference box's frame -------------------------------------------
+
+// The incident box seen from the reference box: half extents, axes and centre in the
+// reference frame.
+struct RefFrame {
+  Vec3 h;         // reference half extents
+  Vec3 g;         // incident half extents
+  Vec3 axes[3];   // incident axes in the reference frame
+  Vec3 c;         // incident centre in the reference frame
+  bool ref_is_a;  // the reference box is A
+};
+
+RefFrame frame_of_a(const BoxPair& p) {
+  RefFrame f;
+  f.h = p.a;
+  f.g = p.b;
+  for (int j = 0; j < 3; ++j) f.axes[j] = b_axis(p, j);
+  f.c = p.t;
+  f.ref_is_a = true;
+  return f;
+}
+
+RefFrame frame_of_b(const BoxPair& p) {
+  RefFrame f;
+  f.h = p.b;
+  f.g = p.a;
+  for (int i = 0; i < 3; ++i) f.axes[i] = Vec3(p.r[i][0], p.r[i][1], p.r[i][2]);
+  const Vec3 bx = b_axis(p, 0);
+  const Vec3 by = b_axis(p, 1);
+  const Vec3 bz = b_axis(p, 2);
+  f.c = -Vec3(glm::dot(p.t, bx), glm::dot(p.t, by), glm::dot(p.t, bz));
+  f.ref_is_a = false;
+  return f;
+}
+
+// A clipped point: 2D position on the reference plane, gap along the projection direction,
+// feature ids. Deliberately without default member initialisers (stack buffers stay raw).
+struct ClipPoint {
+  Real u;
+  Real v;
+  Real gap;
+  std::uint32_t id;    // incident corner (sign bits) or crossing hash
+  std::uint32_t side;  // side plane that made a crossing
+  bool crossing;
+};
+
+constexpr std::uint32_t edge_hash(std::uint32_t a, std::uint32_t b, std::uint32_t side) {
+  const std::uint32_t lo = std::min(a, b);
+  const std::uint32_t hi = std::max(a, b);
+  return (lo * 131u + hi * 7u + side * 977u) & 0x3FFFu;
+}
+
+// Keeps the part of polygon `in` (n points) where sign * coordinate <= limit (coordinate u
+// when `along_u`, else v); writes to `out`, returns the new count (<= n + 1).
+int clip_side(const ClipPoint* in, int n, ClipPoint* out, bool along_u, Real sign, Real limit, std::uint32_t side) {
+  int m = 0;
+  for (int i = 0; i < n; ++i) {
+    const ClipPoint& c = in[i];
+    const ClipPoint& x = in[i + 1 == n ? 0 : i + 1];
+    const Real dc = sign * (along_u ? c.u : c.v) - limit;
+    const Real dx = sign * (along_u ? x.u : x.v) - limit;
+    if (dc <= Real(0)) out[m++] = c;
+    if ((dc <= Real(0)) != (dx <= Real(0))) {
+      const Real w = dc / (dc - dx);
+      ClipPoint q;
+      q.u = c.u + (x.u - c.u) * w;
+      q.v = c.v + (x.v - c.v) * w;
+      q.gap = c.gap + (x.gap - c.gap) * w;
+      q.id = edge_hash(c.id, x.id, side);
+      q.side = side;
+      q.crossing = true;
+      out[m++] = q;
+    }
+  }
+  return m;
+}
+
+// Candidate contacts in the reference frame, before reduction.
+struct FaceContacts {
+  Vec3 on_ref[9];
+  Vec3 on_inc[9];
+  Real depth[9];
+  std::uint32_t id[9];
+  int count;
+};
+
+// Clips the incident box's face most opposed to `dir` (unit, reference frame, from the
+// reference box towards the incident one) against the reference face whose normal is
+// nearest `dir`, projecting along `dir`. Returns false when that face is tilted more than
+// acos(kReferenceFaceCosine) from `dir`; else writes the points whose gap is at most
+// `contact_distance` (possibly none).
+bool clip_box_faces(const RefFrame& f, const Vec3& dir, Real contact_distance, FaceContacts& out) {
+  out.count = 0;
+  const Vec3 ad = glm::abs(dir);
+  int i = 0;
+  if (ad.y > ad.x) i = 1;
+  if (ad.z > ad[i]) i = 2;
+  if (!(ad[i] >= kReferenceFaceCosine)) return false;
+  const int i1 = (i + 1) % 3;
+  const int i2 = (i + 2) % 3;
+  const Real s = dir[i] >= Real(0) ? Real(1) : Real(-1);
+  const Real inv_cos = Real(1) / ad[i];
+  const std::uint32_t ref_index = static_cast<std::uint32_t>(2 * i + (s > Real(0) ? 1 : 0));
+  // Incident face: the incident axis most parallel to dir, on the side facing the reference.
+  const Real d0 = glm::dot(dir, f.axes[0]);
+  const Real d1 = glm::dot(dir, f.axes[1]);
+  const Real d2 = glm::dot(dir, f.axes[2]);
+  int j = 0;
+  Real dj = d0;
+  if (std::abs(d1) > std::abs(dj)) {
+    j = 1;
+    dj = d1;
+  }
+  if (std::abs(d2) > std::abs(dj)) {
+    j = 2;
+    dj = d2;
+  }
+  const int j1 = (j + 1) % 3;
+  const int j2 = (j + 2) % 3;
+  const Real sj = dj <= Real(0) ? Real(1) : Real(-1);  // the face of the incident box facing back
+  const Vec3 centre = f.c + (sj * f.g[j]) * f.axes[j];
+  const Vec3 e1 = f.g[j1] * f.axes[j1];
+  const Vec3 e2 = f.g[j2] * f.axes[j2];
+  static constexpr Real kS1[4] = {1, -1, -1, 1};
+  static constexpr Real kS2[4] = {1, 1, -1, -1};
+  ClipPoint buf0[8];
+  ClipPoint buf1[8];
+  const Real plane = s * f.h[i];
+  for (int v = 0; v < 4; ++v) {
+    const Vec3 q = centre + kS1[v] * e1 + kS2[v] * e2;
+    const Real gap = (s * q[i] - f.h[i]) * inv_cos;
+    const Vec3 on_plane = q - gap * dir;
+    ClipPoint& cp = buf0[v];
+    cp.u = on_plane[i1];
+    cp.v = on_plane[i2];
+    cp.gap = gap;
+    std::uint32_t bits = 0;
+    const Real sg[3] = {j == 0 ? sj : (j1 == 0 ? kS1[v] : kS2[v]), j == 1 ? sj : (j1 == 1 ? kS1[v] : kS2[v]),
+                        j == 2 ? sj : (j1 == 2 ? kS1[v] : kS2[v])};
+    for (int m = 0; m < 3; ++m) {
+      if (sg[m] > Real(0)) bits |= 1u << m;
+    }
+    cp.id = bits;
+    cp.side = 0;
+    cp.crossing = false;
+  }
+  int n = 4;
+  n = clip_side(buf0, n, buf1, true, Real(1), f.h[i1], 0);
+  n = clip_side(buf1, n, buf0, false, Real(1), f.h[i2], 1);
+  n = clip_side(buf0, n, buf1, true, Real(-1), f.h[i1], 2);
+  n = clip_side(buf1, n, buf0, false, Real(-1), f.h[i2], 3);
+  for (int k = 0; k < n; ++k) {
+    const ClipPoint& q = buf0[k];
+    if (!(q.gap <= contact_distance)) continue;
+    Vec3 on_ref;
+    on_ref[i] = plane;
+    on_ref[i1] = q.u;
+    on_ref[i2] = q.v;
+    const int c = out.count++;
+    out.on_ref[c] = on_ref;
+    out.on_inc[c] = on_ref + q.gap * dir;
+    out.depth[c] = -q.gap;
+    const std::uint32_t rid = q.crossing ? ((ref_index * 32u + q.side) & 0x3FFFu) : ref_index;
+    const FeatureKind rk = q.crossing ? FeatureKind::Edge : FeatureKind::Face;
+    const FeatureKind ik = q.crossing ? FeatureKind::Edge : FeatureKind::Vertex;
+    out.id[c] = f.ref_is_a ? make_feature_id(rk, rid, ik, q.id) : make_feature_id(ik, q.id, rk, rid);
+  }
+  return true;
+}
+
+// Reduces the candidates to at most max_contacts and writes them to `m` in the world frame
+// (`pose_ref` maps the reference frame to the world). `normal` is the world normal A to B.
+int reduce_to_manifold(const FaceContacts& fc, const Vec3& dir, bool ref_is_a, const Transform& pose_ref,
+                       const Vec3& normal, int max_contacts, ContactManifold& m) {
+  std::array<int, 4> chosen;
+  const int k = std::clamp(max_contacts, 1, kMaxContactPoints);
+  const int n = select_contacts(
+      fc.count, [&](int q) { return (fc.on_ref[q] + fc.on_inc[q]) * Real(0.5); }, [&](int q) { return fc.depth[q]; },
+      [](int) { return true; }, dir, k, chosen);
+  for (int q = 0; q < n; ++q) {
+    const int c = chosen[static_cast<std::size_t>(q)];
+    ContactPoint& out = m.points[static_cast<std::size_t>(q)];
+    const Vec3 pr = pose_ref.apply(fc.on_ref[c]);
+    const Vec3 pi = pose_ref.apply(fc.on_inc[c]);
+    out.point_a = ref_is_a ? pr : pi;
+    out.point_b = ref_is_a ? pi : pr;
+    out.normal = normal;
+    out.depth = fc.depth[c];
+    out.feature_id = fc.id[c];
+  }
+  m.count = n;
+  return n;
+}
+
+// The closest points of the two supporting edges of edge axis k, as a one-point manifold.
+void edge_manifold(const BoxPair& p, const Transform& pose_a, int k, Real sep, const Vec3& n_local,
+                   ContactManifold& m) {
+  Vec3 a0;
+  Vec3 a1;
+  Vec3 b0;
+  Vec3 b1;
+  const int i = (k - 6) / 3;
+  const int j = (k - 6) % 3;
+  supporting_edges(p, i, j, n_local, a0, a1, b0, b1);
+  const geometry::SegmentPair sp = geometry::closest_points_segment_segment(a0, a1, b0, b1);
   m.count = 1;
-  m.points[0] = ContactPoint{pb - sep * n, pb, n, -sep, 0};
+  ContactPoint& c = m.points[0];
+  c.point_a = pose_a.apply(sp.on_a);
+  c.point_b = pose_a.apply(sp.on_b);
+  c.normal = m.normal;
+  c.depth = -sep;
+  // Edge ids: the axis and which of the four parallel edges (sign bits of the normal).
+  std::uint32_t ea = 0;
+  std::uint32_t eb = 0;
+  for (int q = 0, bit = 0; q < 3; ++q) {
+    if (q == i) continue;
+    if (n_local[q] >= Real(0)) ea |= 1u << bit;
+    ++bit;
+  }
+  for (int q = 0, bit = 0; q < 3; ++q) {
+    if (q == j) continue;
+    if (glm::dot(n_local, b_axis(p, q)) <= Real(0)) eb |= 1u << bit;
+    ++bit;
+  }
+  c.feature_id = make_feature_id(FeatureKind::Edge, static_cast<std::uint32_t>(i) * 4u + ea, FeatureKind::Edge,
+                                 static_cast<std::uint32_t>(j) * 4u + eb);
+}
+
+// Penetration (sep <= 0) along axis k with A-frame normal n_local: candidate contacts of the
+// face axis k (< 6) clipped with the given contact distance. Returns the reference frame
+// and the projection direction in it.
+bool face_axis_contacts(const BoxPair& p, int k, const Vec3& n_local, Real contact_distance, FaceContacts& fc,
+                        RefFrame& f, Vec3& dir) {
+  if (k < 3) {
+    f = frame_of_a(p);
+    dir = n_local;
+  } else {
+    f = frame_of_b(p);
+    // n_local = s B_j in A's frame, so -n in B's frame is -s e_j.
+    const Vec3 bj = b_axis(p, k - 3);
+    dir = Vec3(Real(0));
+    dir[k - 3] = glm::dot(n_local, bj) >= Real(0) ? Real(-1) : Real(1);
+  }
+  return clip_box_faces(f, dir, contact_distance, fc);
+}
+
+// One-point fallback along the A-frame normal: B's support point in -n and its image on A.
+void support_point(const BoxPair& p, const Transform& pose_a, const Vec3& n_local, Real sep, ContactManifold& m) {
+  Vec3 pb = p.t;
+  for (int j = 0; j < 3; ++j) {
+    const Vec3 bj = b_axis(p, j);
+    pb += (glm::dot(n_local, bj) <= Real(0) ? p.b[j] : -p.b[j]) * bj;
+  }
+  m.count = 1;
+  m.points[0] = ContactPoint{pose_a.apply(pb - sep * n_local), pose_a.apply(pb), m.normal, -sep, 0};
+}
+
+Transform frame_pose(const RefFrame& f, const Transform& pose_a, const Transform& pose_b) {
+  return f.ref_is_a ? pose_a : pose_b;
 }
 
 }  // namespace
@@ -331,19 +544,19 @@ bool pair_intersect(const Box& a, const Transform& pose_a, const Box& b, const T
   store_cache(cache, s);
   if (s.early_out || s.max_sep > limit) return false;
   if (s.max_sep <= Real(0)) return true;
-  return closest_features(p).d2 <= limit * limit;
+  return closest_features(p, s).d2 <= limit * limit;
 }
 
 DistanceResult pair_distance(const Box& a, const Transform& pose_a, const Box& b, const Transform& pose_b,
                              const PairRequest& request, PairCache* cache) {
   if (!finite_poses(pose_a, pose_b)) return invalid_distance();
   const BoxPair p = make_pair(a, pose_a, b, pose_b, request);
-  const SatResult s = run_sat(p, std::numeric_limits<Real>::infinity(), nullptr);
+  const SatResult s = run_sat(p, kInfinity, nullptr);
   store_cache(cache, s);
   DistanceResult r;
   r.method = PairMethod::Sat;
   if (s.max_sep > Real(0)) {
-    const ClosestFeatures f = closest_features(p);
+    const ClosestFeatures f = closest_features(p, s);
     const Real dist = std::sqrt(f.d2);
     Vec3 n = s.max_normal;
     Vec3 unit;
@@ -356,24 +569,39 @@ DistanceResult pair_distance(const Box& a, const Transform& pose_a, const Box& b
     r.status = status_from_distance(r.signed_distance, p.tol);
     return r;
   }
-  // Overlapping: exact depth on the deepest-separating axis; witnesses from its manifold.
-  ContactManifold m;
-  PairRequest all = request;
-  all.max_contacts = kMaxContactPoints;
-  all.contact_distance = std::numeric_limits<Real>::max();
-  if (!overlap_manifold(p, a, pose_a, b, pose_b, s.max_axis, s.max_sep, s.max_normal, all, m)) {
-    support_point(b, pose_b, pose_a.apply_vector(s.max_normal), s.max_sep, m);
-  }
+  // Overlapping: exact depth on the deepest-separating axis. Face axis: the deepest clipped
+  // point (the Minkowski face through the origin is the sum of the two supporting features,
+  // so the clipped incident face reaches the exact depth); edge axis: the closest points of
+  // the two supporting edges.
   r.normal = pose_a.apply_vector(s.max_normal);
   r.signed_distance = s.max_sep;
-  // The deepest clipped point is the witness; move it onto the exact depth.
-  int deepest = 0;
-  for (int i = 1; i < m.count; ++i) {
-    if (m.points[i].depth > m.points[deepest].depth) deepest = i;
-  }
-  r.point_b = m.points[deepest].point_b;
-  r.point_a = r.point_b - r.signed_distance * r.normal;
   r.status = status_from_distance(r.signed_distance, p.tol);
+  ContactManifold m;
+  m.normal = r.normal;
+  bool done = false;
+  if (s.max_axis < 6) {
+    FaceContacts fc;
+    RefFrame f;
+    Vec3 dir;
+    if (face_axis_contacts(p, s.max_axis, s.max_normal, kInfinity, fc, f, dir) && fc.count > 0) {
+      int deepest = 0;
+      for (int q = 1; q < fc.count; ++q) {
+        if (fc.depth[q] > fc.depth[deepest]) deepest = q;
+      }
+      const Vec3 on_b = f.ref_is_a ? fc.on_inc[deepest] : fc.on_ref[deepest];
+      r.point_b = frame_pose(f, pose_a, pose_b).apply(on_b);
+      done = true;
+    }
+  } else {
+    edge_manifold(p, pose_a, s.max_axis, s.max_sep, s.max_normal, m);
+    r.point_b = m.points[0].point_b;
+    done = true;
+  }
+  if (!done) {
+    support_point(p, pose_a, s.max_normal, s.max_sep, m);
+    r.point_b = m.points[0].point_b;
+  }
+  r.point_a = r.point_b - r.signed_distance * r.normal;
   return r;
 }
 
@@ -392,18 +620,48 @@ ContactManifold pair_collide(const Box& a, const Transform& pose_a, const Box& b
     return m;
   }
   if (s.max_sep > Real(0)) {
-    // Separated within the contact distance: faces supporting the exact distance normal.
-    const DistanceResult d = pair_distance(a, pose_a, b, pose_b, request, nullptr);
-    m.normal = d.normal;
-    m.status = d.status;
-    if (!(d.signed_distance <= request.contact_distance)) return m;
-    const SupportingFace fa = supporting_face(a, pose_a, d.normal);
-    const SupportingFace fb = supporting_face(b, pose_b, -d.normal);
-    const ContactPoint witness{d.point_a, d.point_b, d.normal, -d.signed_distance, 0};
-    if (!clipped_manifold(fa, fb, d.normal, request, m, &witness)) {
-      m = manifold_from_distance(d, request);
+    // Separated within the contact distance: faces supporting the exact distance normal,
+    // the reference being the box whose face is better aligned with it.
+    const ClosestFeatures cf = closest_features(p, s);
+    const Real dist = std::sqrt(cf.d2);
+    Vec3 n_local = s.max_normal;
+    Vec3 unit;
+    Real len = Real(0);
+    if (dist > p.tol * Real(1e-3) && unit_and_length(cf.on_b - cf.on_a, unit, len)) n_local = unit;
+    const Real sd = std::max(dist, s.max_sep);
+    m.normal = pose_a.apply_vector(n_local);
+    m.status = status_from_distance(sd, p.tol);
+    if (!(sd <= request.contact_distance)) return m;
+    const RefFrame fa = frame_of_a(p);
+    const RefFrame fb = frame_of_b(p);
+    const Vec3 n_b = -Vec3(glm::dot(n_local, b_axis(p, 0)), glm::dot(n_local, b_axis(p, 1)),
+                           glm::dot(n_local, b_axis(p, 2)));  // -n in B's frame
+    const bool use_a = max_abs_component(n_local) >= max_abs_component(n_b);
+    const RefFrame& f = use_a ? fa : fb;
+    const Vec3 dir = use_a ? n_local : n_b;
+    FaceContacts fc;
+    if (clip_box_faces(f, dir, request.contact_distance, fc)) {
+      // The pair's own closest points, kept when every clipped point is shallower (tilted
+      // reference face).
+      Real deepest = -kInfinity;
+      for (int q = 0; q < fc.count; ++q) deepest = std::max(deepest, fc.depth[q]);
+      if (deepest < -sd) {
+        const Transform to_ref = use_a ? Transform{} : pose_b.inverse() * pose_a;
+        const int c = fc.count++;
+        const Vec3 ra = to_ref.apply(cf.on_a);
+        const Vec3 rb = to_ref.apply(cf.on_b);
+        fc.on_ref[c] = use_a ? ra : rb;
+        fc.on_inc[c] = use_a ? rb : ra;
+        fc.depth[c] = -sd;
+        fc.id[c] = 0;
+      }
+      if (fc.count > 0) {
+        reduce_to_manifold(fc, dir, use_a, use_a ? pose_a : pose_b, m.normal, request.max_contacts, m);
+        return m;
+      }
     }
-    m.method = PairMethod::Sat;
+    m.count = 1;
+    m.points[0] = ContactPoint{pose_a.apply(cf.on_a), pose_a.apply(cf.on_b), m.normal, -sd, 0};
     return m;
   }
   // Overlapping: prefer a face axis (A's, then B's) unless an edge axis is clearly shallower.
@@ -421,10 +679,19 @@ ContactManifold pair_collide(const Box& a, const Transform& pose_a, const Box& b
   Vec3 n_local;
   static_cast<void>(axis_separation(p, k, check, n_local));
   m.status = status_from_distance(sep, p.tol);
-  if (!overlap_manifold(p, a, pose_a, b, pose_b, k, sep, n_local, request, m)) {
-    support_point(b, pose_b, pose_a.apply_vector(n_local), sep, m);
-  }
   m.normal = pose_a.apply_vector(n_local);
+  if (k < 6) {
+    FaceContacts fc;
+    RefFrame f;
+    Vec3 dir;
+    if (face_axis_contacts(p, k, n_local, request.contact_distance, fc, f, dir) && fc.count > 0) {
+      reduce_to_manifold(fc, dir, f.ref_is_a, frame_pose(f, pose_a, pose_b), m.normal, request.max_contacts, m);
+      return m;
+    }
+    support_point(p, pose_a, n_local, sep, m);
+    return m;
+  }
+  edge_manifold(p, pose_a, k, sep, n_local, m);
   return m;
 }
 

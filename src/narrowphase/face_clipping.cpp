@@ -23,11 +23,26 @@
 namespace proxima::narrow {
 namespace {
 
+// Clip buffers live on the stack uninitialised: no default member initialisers here.
 struct ClipVertex {
-  Vec3 p{Real(0)};
-  std::uint32_t id = 0;  // incident vertex id, or a hash of (incident edge, side) for crossings
-  std::uint32_t side = 0;
-  bool crossing = false;  // made by a side plane
+  Vec3 p;
+  std::uint32_t id;  // incident vertex id, or a hash of (incident edge, side) for crossings
+  std::uint32_t side;
+  bool crossing;  // made by a side plane
+};
+
+// A clipped contact before reduction (raw, see ClipVertex).
+struct Candidate {
+  Vec3 point_a;
+  Vec3 point_b;
+  Real depth;
+  std::uint32_t feature_id;
+};
+
+// Candidates of one clipping, with room for one extra (the distance witness).
+struct CandidateSet {
+  Candidate points[kMaxClipPoints + 1];
+  int count;
 };
 
 constexpr std::uint32_t edge_hash(std::uint32_t a, std::uint32_t b, std::uint32_t side) {
@@ -50,10 +65,9 @@ Real alignment(const SupportingFace& f, const Vec3& dir) {
   return Real(-1);
 }
 
-}  // namespace
-
-bool clip_features(const SupportingFace& fa, const SupportingFace& fb, const Vec3& normal, Real contact_distance,
-                   ClippedContacts& out) {
+// clip_features into raw candidates.
+bool clip_candidates(const SupportingFace& fa, const SupportingFace& fb, const Vec3& normal, Real contact_distance,
+                     CandidateSet& out) {
   out.count = 0;
   const Real sa = alignment(fa, normal);
   const Real sb = alignment(fb, -normal);
@@ -76,8 +90,8 @@ bool clip_features(const SupportingFace& fa, const SupportingFace& fb, const Vec
   // Reference plane and side planes.
   const Vec3 ref_p = ref.points[0];
   Vec3 ref_n = ref.normal;
-  std::array<Vec3, kMaxFacePoints> side_p{};
-  std::array<Vec3, kMaxFacePoints> side_n{};
+  Vec3 side_p[kMaxFacePoints];
+  Vec3 side_n[kMaxFacePoints];
   int sides = 0;
   if (ref.count >= 3) {
     for (int i = 0; i < ref.count; ++i) {
@@ -104,8 +118,8 @@ bool clip_features(const SupportingFace& fa, const SupportingFace& fb, const Vec
   }
 
   // Clip the incident feature.
-  std::array<ClipVertex, kMaxClipPoints> buf_a{};
-  std::array<ClipVertex, kMaxClipPoints> buf_b{};
+  ClipVertex buf_a[kMaxClipPoints];
+  ClipVertex buf_b[kMaxClipPoints];
   int n_in = inc.count;
   for (int i = 0; i < n_in; ++i) buf_a[i] = ClipVertex{inc.points[i], inc.ids[i], 0, false};
   if (inc.count == 2) {
@@ -126,8 +140,8 @@ bool clip_features(const SupportingFace& fa, const SupportingFace& fb, const Vec
       }
     }
   } else {
-    ClipVertex* in = buf_a.data();
-    ClipVertex* outp = buf_b.data();
+    ClipVertex* in = buf_a;
+    ClipVertex* outp = buf_b;
     for (int s = 0; s < sides && n_in > 0; ++s) {
       int n_out = 0;
       for (int i = 0; i < n_in; ++i) {
@@ -145,7 +159,7 @@ bool clip_features(const SupportingFace& fa, const SupportingFace& fb, const Vec
       std::swap(in, outp);
       n_in = n_out;
     }
-    if (in != buf_a.data()) std::copy(in, in + n_in, buf_a.data());
+    if (in != buf_a) std::copy(in, in + n_in, buf_a);
   }
 
   // Project onto the reference plane and keep the points within the contact distance.
@@ -160,8 +174,7 @@ bool clip_features(const SupportingFace& fa, const SupportingFace& fb, const Vec
     const Real gap = t - ra - rb;
     if (!(gap <= contact_distance)) continue;
     const Vec3 on_ref = q.p - t * dir;
-    ContactPoint c;
-    c.normal = normal;
+    Candidate& c = out.points[out.count++];
     c.depth = -gap;
     const std::uint32_t ref_index = q.crossing ? ((ref.index * 32u + q.side) & 0x3FFFu) : ref.index;
     const FeatureKind rk = q.crossing ? FeatureKind::Edge : ref_kind;
@@ -175,27 +188,49 @@ bool clip_features(const SupportingFace& fa, const SupportingFace& fb, const Vec
       c.point_a = q.p + ra * normal;
       c.feature_id = make_feature_id(ik, q.id, rk, ref_index);
     }
-    out.points[out.count++] = c;
   }
+  return true;
+}
+
+}  // namespace
+
+bool clip_features(const SupportingFace& fa, const SupportingFace& fb, const Vec3& normal, Real contact_distance,
+                   ClippedContacts& out) {
+  CandidateSet set;
+  out.count = 0;
+  if (!clip_candidates(fa, fb, normal, contact_distance, set)) return false;
+  for (int i = 0; i < set.count; ++i) {
+    const Candidate& c = set.points[i];
+    out.points[static_cast<std::size_t>(i)] = ContactPoint{c.point_a, c.point_b, normal, c.depth, c.feature_id};
+  }
+  out.count = set.count;
   return true;
 }
 
 bool clipped_manifold(const SupportingFace& fa, const SupportingFace& fb, const Vec3& normal,
                       const PairRequest& request, ContactManifold& m, const ContactPoint* witness) {
-  ClippedContacts clipped;
-  if (!clip_features(fa, fb, normal, request.contact_distance, clipped) || clipped.count == 0) return false;
+  CandidateSet set;
+  if (!clip_candidates(fa, fb, normal, request.contact_distance, set) || set.count == 0) return false;
   if (witness != nullptr) {
     // Keep the pair's own closest (deepest) point when clipping measured every point as
     // shallower (tilted reference face): it then becomes the first point of the reduction.
-    Real deepest = clipped.points[0].depth;
-    for (int i = 1; i < clipped.count; ++i) deepest = std::max(deepest, clipped.points[i].depth);
-    if (deepest < witness->depth && clipped.count < kMaxClipPoints) clipped.points[clipped.count++] = *witness;
+    Real deepest = set.points[0].depth;
+    for (int i = 1; i < set.count; ++i) deepest = std::max(deepest, set.points[i].depth);
+    if (deepest < witness->depth) {
+      set.points[set.count++] = Candidate{witness->point_a, witness->point_b, witness->depth, witness->feature_id};
+    }
   }
   const int k = std::clamp(request.max_contacts, 1, kMaxContactPoints);
-  m.count =
-      reduce_contacts(std::span<const ContactPoint>(clipped.points.data(), static_cast<std::size_t>(clipped.count)),
-                      normal, k, m.points);
-  return m.count > 0;
+  std::array<int, 4> chosen;
+  const int n = select_contacts(
+      set.count, [&](int i) { return (set.points[i].point_a + set.points[i].point_b) * Real(0.5); },
+      [&](int i) { return set.points[i].depth; }, [](int) { return true; }, normal, k, chosen);
+  for (int i = 0; i < n; ++i) {
+    const Candidate& c = set.points[chosen[static_cast<std::size_t>(i)]];
+    m.points[static_cast<std::size_t>(i)] = ContactPoint{c.point_a, c.point_b, normal, c.depth, c.feature_id};
+  }
+  m.count = n;
+  return n > 0;
 }
 
 }  // namespace proxima::narrow

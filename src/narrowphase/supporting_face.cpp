@@ -71,7 +71,7 @@ SupportingFace supporting_face(const Triangle& shape, const Transform& pose, con
   f.points[0] = pose.apply(shape.a());
   f.points[1] = pose.apply(front ? shape.b() : shape.c());
   f.points[2] = pose.apply(front ? shape.c() : shape.b());
-  f.ids = {};
+
   f.ids[0] = 0;
   f.ids[1] = front ? 1u : 2u;
   f.ids[2] = front ? 2u : 1u;
@@ -91,6 +91,7 @@ SupportingFace supporting_face(const Capsule& shape, const Transform& pose, cons
   if (!(shape.half_length() > Real(0))) {
     f.count = 1;
     f.points[0] = pose.position;
+    f.ids[0] = 0;
     return f;
   }
   f.count = 2;

@@ -45,10 +45,11 @@ inline constexpr Real kCurvedFaceCosine = Real(0.99);
 struct SupportingFace {
   /// The feature's points, world frame. Polygons are counter-clockwise seen from the side
   /// `normal` points to.
-  std::array<Vec3, kMaxFacePoints> points{};
+  /// Left uninitialised beyond `count` (the struct is built on every manifold query).
+  std::array<Vec3, kMaxFacePoints> points;
   /// A stable index for each point (vertex index on polyhedra; rim sample index on curved
   /// shapes), used in feature ids.
-  std::array<std::uint32_t, kMaxFacePoints> ids{};
+  std::array<std::uint32_t, kMaxFacePoints> ids;
   int count = 0;  ///< number of valid points (1..kMaxFacePoints)
   /// Unit normal of the feature, world frame: the polygon's outward plane normal; for a
   /// segment or a point, the query direction (normalised).
