@@ -258,18 +258,41 @@ Result penetration(SupportA& support_a, SupportB& support_b, const gjk::Simplex&
     if (p.faces[static_cast<std::size_t>(f)].d < -eps_len) return r;
 
   // Step 2: expand.
-  const auto finish = [&](const detail::Face& f, Status status, int iterations) {
+  // Barycentric coordinates of the origin's projection on face f (unclamped).
+  const auto barycentric = [&](const detail::Face& f) {
     const Vec3 proj = f.n * std::max(f.d, Real(0));
+    const Vec3& a = p.verts[f.v[0]].w;
+    const Vec3& b = p.verts[f.v[1]].w;
+    const Vec3& c = p.verts[f.v[2]].w;
+    const Real den = glm::dot(f.n, glm::cross(b - a, c - a));
+    const Real la = glm::dot(f.n, glm::cross(b - proj, c - proj)) / den;
+    const Real lb = glm::dot(f.n, glm::cross(c - proj, a - proj)) / den;
+    return Vec3(la, lb, Real(1) - la - lb);
+  };
+  const auto finish = [&](const detail::Face& nearest, Status status, int iterations) {
+    // The Minkowski difference of polytopes has flat faces that the polytope splits into
+    // coplanar triangles: the witness comes from the one that holds the projection.
+    detail::Face f = nearest;
+    Vec3 lam = barycentric(f);
+    const Real inside = -Real(1e-4);
+    if (std::min({lam.x, lam.y, lam.z}) < inside) {
+      const Real slack = std::max(Real(64) * kEpsilon * scale, settings.abs_tolerance);
+      for (int g = 0; g < p.nf; ++g) {
+        const detail::Face& other = p.faces[static_cast<std::size_t>(g)];
+        if (!other.alive || other.d > nearest.d + slack) continue;
+        const Vec3 l = barycentric(other);
+        if (std::min({l.x, l.y, l.z}) > std::min({lam.x, lam.y, lam.z})) {
+          lam = l;
+          f = other;
+        }
+      }
+    }
+    Real la = std::clamp(lam.x, Real(0), Real(1));
+    Real lb = std::clamp(lam.y, Real(0), Real(1));
+    Real lc = std::clamp(lam.z, Real(0), Real(1));
     const gjk::Vertex& a = p.verts[f.v[0]];
     const gjk::Vertex& b = p.verts[f.v[1]];
     const gjk::Vertex& c = p.verts[f.v[2]];
-    const Real den = glm::dot(f.n, glm::cross(b.w - a.w, c.w - a.w));
-    Real la = glm::dot(f.n, glm::cross(b.w - proj, c.w - proj));
-    Real lb = glm::dot(f.n, glm::cross(c.w - proj, a.w - proj));
-    Real lc = den - la - lb;
-    la = std::clamp(la / den, Real(0), Real(1));
-    lb = std::clamp(lb / den, Real(0), Real(1));
-    lc = std::clamp(lc / den, Real(0), Real(1));
     const Real sum = la + lb + lc;
     if (sum > Real(0)) {
       la /= sum;
