@@ -45,7 +45,7 @@ inline D3v reference_support(const Shape& shape, const Transform& pose, D3v u) {
 
 /// min_{x in B} u.x - max_{y in A} u.y for a unit u.
 inline double support_gap(const Shape& a, const Transform& pa, const Shape& b, const Transform& pb, D3v u) {
-  return -dot(reference_support(b, pb, -1.0 * u), u) - dot(reference_support(a, pa, u), u);
+  return dot(reference_support(b, pb, -1.0 * u), u) - dot(reference_support(a, pa, u), u);
 }
 
 /// The reference signed distance and its direction (A to B).
@@ -57,7 +57,7 @@ struct ReferenceDistance {
 /// Signed distance from the support functions (see the file comment). `samples` directions
 /// seed the search; the best `starts` of them are refined.
 inline ReferenceDistance reference_signed_distance(const Shape& a, const Transform& pa, const Shape& b,
-                                                   const Transform& pb, int samples = 4000, int starts = 12) {
+                                                   const Transform& pb, int samples = 1500, int starts = 8) {
   std::vector<std::pair<double, D3v>> seeds;
   const double golden = 3.883222077450933;  // pi (3 - sqrt 5)
   for (int i = 0; i < samples; ++i) {
