@@ -50,6 +50,11 @@ class LooseTree {
   void rebuild();
   /// Every pair, sorted (broadphase.hpp).
   void find_pairs(std::vector<ProxyPair>& out);
+  /// Every pair, sorted, found by `threads` threads (same output as serial).
+  void find_pairs(std::vector<ProxyPair>& out, unsigned threads) {
+    set_thread_count(int(threads));
+    find_pairs(out);
+  }
   /// Proxies whose box overlaps `box` (closed), each once.
   void query_aabb(const Aabb& box, const OverlapQueryCallback& on_overlap) const;
   /// Proxies whose box contains `point`, each once.

@@ -150,6 +150,11 @@ class UniformGrid {
   void rebuild() { engine_.rebuild(); }
   /// Every pair, sorted (broadphase.hpp).
   void find_pairs(std::vector<ProxyPair>& out) { engine_.find_pairs(out); }
+  /// Every pair, sorted, found by `threads` threads (same output as serial).
+  void find_pairs(std::vector<ProxyPair>& out, unsigned threads) {
+    engine_.set_thread_count(int(threads));
+    engine_.find_pairs(out);
+  }
   /// Proxies whose box overlaps `box` (closed), each once.
   void query_aabb(const Aabb& box, const OverlapQueryCallback& on_overlap) const {
     engine_.query_aabb(box, on_overlap);
@@ -202,6 +207,11 @@ class SpatialHash {
   void rebuild() { engine_.rebuild(); }
   /// Every pair, sorted.
   void find_pairs(std::vector<ProxyPair>& out) { engine_.find_pairs(out); }
+  /// Every pair, sorted, found by `threads` threads (same output as serial).
+  void find_pairs(std::vector<ProxyPair>& out, unsigned threads) {
+    engine_.set_thread_count(int(threads));
+    engine_.find_pairs(out);
+  }
   /// Proxies whose box overlaps `box`, each once.
   void query_aabb(const Aabb& box, const OverlapQueryCallback& on_overlap) const {
     engine_.query_aabb(box, on_overlap);
@@ -255,6 +265,11 @@ class HierarchicalGrid {
   void rebuild() { engine_.rebuild(); }
   /// Every pair, sorted.
   void find_pairs(std::vector<ProxyPair>& out) { engine_.find_pairs(out); }
+  /// Every pair, sorted, found by `threads` threads (same output as serial).
+  void find_pairs(std::vector<ProxyPair>& out, unsigned threads) {
+    engine_.set_thread_count(int(threads));
+    engine_.find_pairs(out);
+  }
   /// Proxies whose box overlaps `box`, each once.
   void query_aabb(const Aabb& box, const OverlapQueryCallback& on_overlap) const {
     engine_.query_aabb(box, on_overlap);
