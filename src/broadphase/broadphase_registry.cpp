@@ -4,6 +4,9 @@
 
 #include <proxima/broadphase/any_broadphase.hpp>
 #include <proxima/broadphase/brute_force.hpp>
+#include <proxima/broadphase/bsp_tree.hpp>
+#include <proxima/broadphase/dynamic_aabb_tree.hpp>
+#include <proxima/broadphase/kd_tree.hpp>
 #include <proxima/broadphase/sweep_and_prune.hpp>
 
 #include <array>
@@ -28,6 +31,12 @@ const std::array kRegistry = {
                     [] { return make_adapter<SortedSweep>("sap_oneshot"); }},
     BroadPhaseEntry{"mbp", "box pruning over a grid of sweeps (flat or clustered worlds)",
                     [] { return make_adapter<MultiBoxPruning>("mbp"); }},
+    BroadPhaseEntry{"tree", "dynamic AABB tree (SAH insertion, rotations, refit or rebuild)",
+                    [] { return make_adapter<DynamicAabbTree>("tree"); }},
+    BroadPhaseEntry{"kdtree", "kd-tree with two clip planes per node (refit or rebuild)",
+                    [] { return make_adapter<KdTree>("kdtree"); }},
+    BroadPhaseEntry{"bsp", "BSP tree with oblique planes (static geometry)",
+                    [] { return make_adapter<BspTree>("bsp"); }},
     // Further structures: add their line here.
 };
 
