@@ -7,7 +7,9 @@
 #include <proxima/broadphase/bsp_tree.hpp>
 #include <proxima/broadphase/dynamic_aabb_tree.hpp>
 #include <proxima/broadphase/kd_tree.hpp>
+#include <proxima/broadphase/loose_octree.hpp>
 #include <proxima/broadphase/sweep_and_prune.hpp>
+#include <proxima/broadphase/uniform_grid.hpp>
 
 #include <array>
 #include <string>
@@ -37,6 +39,15 @@ const std::array kRegistry = {
                     [] { return make_adapter<KdTree>("kdtree"); }},
     BroadPhaseEntry{"bsp", "BSP tree with oblique planes (static geometry)",
                     [] { return make_adapter<BspTree>("bsp"); }},
+    BroadPhaseEntry{"grid", "uniform grid over growing world bounds (similar sizes, bounded worlds)",
+                    [] { return make_adapter<UniformGrid>("grid"); }},
+    BroadPhaseEntry{"hash", "spatial hash of cells (unbounded worlds, similar sizes)",
+                    [] { return make_adapter<SpatialHash>("hash"); }},
+    BroadPhaseEntry{"hgrid", "hierarchical hash grid (sizes varying by orders of magnitude)",
+                    [] { return make_adapter<HierarchicalGrid>("hgrid"); }},
+    BroadPhaseEntry{"octree", "loose octree, looseness 2", [] { return make_adapter<LooseOctree>("octree"); }},
+    BroadPhaseEntry{"quadtree", "loose quadtree on x and y (flat worlds)",
+                    [] { return make_adapter<LooseQuadtree>("quadtree"); }},
     // Further structures: add their line here.
 };
 
