@@ -3,6 +3,7 @@
 #include <array>
 
 #include "query_bound_ops.hpp"
+#include "query_broadphase_ops.hpp"
 #include "query_shape_ops.hpp"
 
 namespace proxima::tool {
@@ -16,6 +17,7 @@ const std::array kOperations = {
     Operation{"bound", op_bound, "target, volume -> the bounding volume in the world frame"},
     Operation{"fit", op_fit, "points, volume -> the fitted volume and volume_m3"},
     Operation{"mass", op_mass, "target, density? -> volume, mass, centroid, inertia (world axes)"},
+    Operation{"pairs", op_pairs, pairs_synopsis()},
 };
 
 }  // namespace
