@@ -1,0 +1,101 @@
+#include "query_pair_ops.hpp"
+
+#include <proxima/narrowphase/narrowphase.hpp>
+
+#include <cmath>
+
+#include "json_shapes.hpp"
+
+namespace proxima::tool {
+
+namespace {
+
+PlacedShape member_shape(const Json& request, std::string_view key) {
+  return read_placed_shape(require_member(request, "", key), std::string(key));
+}
+
+const char* status_name(PairStatus status) {
+  switch (status) {
+    case PairStatus::Separated: return "separated";
+    case PairStatus::Touching: return "touching";
+    case PairStatus::Penetrating: return "penetrating";
+    case PairStatus::MaxIterations: return "max_iterations";
+    case PairStatus::Degenerate: return "degenerate";
+    case PairStatus::InvalidInput: return "invalid_input";
+  }
+  return "unknown";
+}
+
+const char* method_name(PairMethod method) {
+  switch (method) {
+    case PairMethod::Analytic: return "analytic";
+    case PairMethod::Gjk: return "gjk";
+    case PairMethod::Epa: return "epa";
+    case PairMethod::Sat: return "sat";
+    case PairMethod::Support: return "support";
+  }
+  return "unknown";
+}
+
+}  // namespace
+
+Json op_intersect(const Json& request) {
+  reject_unknown_fields(request, "", {"id", "op", "a", "b"});
+  const PlacedShape a = member_shape(request, "a");
+  const PlacedShape b = member_shape(request, "b");
+  Json answer = Json::object();
+  answer["hit"] = intersect(a.shape, a.pose, b.shape, b.pose);
+  return answer;
+}
+
+Json op_distance(const Json& request) {
+  reject_unknown_fields(request, "", {"id", "op", "a", "b"});
+  const PlacedShape a = member_shape(request, "a");
+  const PlacedShape b = member_shape(request, "b");
+  const DistanceResult d = distance(a.shape, a.pose, b.shape, b.pose);
+  Json answer = Json::object();
+  answer["distance"] = to_json(d.signed_distance);
+  answer["point_a"] = to_json(d.point_a);
+  answer["point_b"] = to_json(d.point_b);
+  answer["normal"] = to_json(d.normal);
+  answer["status"] = status_name(d.status);
+  answer["method"] = method_name(d.method);
+  return answer;
+}
+
+Json op_collide(const Json& request) {
+  reject_unknown_fields(request, "", {"id", "op", "a", "b", "max_contacts", "contact_distance"});
+  const PlacedShape a = member_shape(request, "a");
+  const PlacedShape b = member_shape(request, "b");
+  PairRequest options;
+  if (const Json* m = find_member(request, "max_contacts")) {
+    if (!m->is_number_integer()) throw FieldError("max_contacts", "wrong_type", "must be an integer");
+    const auto n = m->get<long long>();
+    if (n < 1 || n > kMaxContactPoints) throw FieldError("max_contacts", "out_of_range", "must be in 1..4");
+    options.max_contacts = static_cast<int>(n);
+  }
+  if (const Json* c = find_member(request, "contact_distance")) {
+    options.contact_distance = read_real(*c, "contact_distance");
+    if (options.contact_distance < Real(0)) throw FieldError("contact_distance", "negative", "must not be negative");
+  }
+  const ContactManifold m = collide(a.shape, a.pose, b.shape, b.pose, options);
+  Json answer = Json::object();
+  answer["hit"] = m.count > 0;
+  answer["normal"] = to_json(m.normal);
+  Json contacts = Json::array();
+  for (int i = 0; i < m.count; ++i) {
+    const ContactPoint& p = m.points[static_cast<std::size_t>(i)];
+    Json c = Json::object();
+    c["point_a"] = to_json(p.point_a);
+    c["point_b"] = to_json(p.point_b);
+    c["normal"] = to_json(p.normal);
+    c["depth"] = to_json(p.depth);
+    contacts.push_back(std::move(c));
+  }
+  answer["contacts"] = std::move(contacts);
+  answer["status"] = status_name(m.status);
+  answer["method"] = method_name(m.method);
+  return answer;
+}
+
+}  // namespace proxima::tool
