@@ -127,17 +127,36 @@ LocalAnswer solve(const A& a, const B& b, PairSetup<A, B>& setup, const PairRequ
                                                         : status_from_distance(ans.signed_distance, setup.tolerance);
     return ans;
   }
-  // Cores overlap or touch: EPA.
+  // Cores overlap or touch: EPA. When GJK did not enclose the origin (the cores only touch,
+  // within rounding), EPA runs on cores inflated by a small ball, whose Minkowski
+  // difference holds the origin robustly; the depth is then exactly 2 delta larger.
   epa::Settings es;
   es.max_iterations = std::max(request.max_iterations, 1);
   es.max_faces = request.max_epa_faces;
   es.abs_tolerance = Real(0.1) * setup.tolerance;
-  const epa::Result e = epa::penetration(setup.support_a, setup.support_b, g.simplex, setup.scale, es);
+  const bool touching = g.simplex.size < 4;
+  epa::Result e;
+  if (touching) {
+    const Real delta = std::max(Real(1024) * kEpsilon * setup.scale, setup.tolerance);
+    InflatedSupport<decltype(setup.support_a)> ia{setup.support_a, delta};
+    InflatedSupport<decltype(setup.support_b)> ib{setup.support_b, delta};
+    gjk::Settings gs = setup.gjk_settings(request);
+    const gjk::Result gi = gjk::distance(ia, ib, setup.axis, gs);
+    ans.iterations += gi.iterations;
+    e = epa::penetration(ia, ib, gi.simplex, setup.scale, es);
+    if (e.status != epa::Status::Degenerate) {
+      e.depth -= Real(2) * delta;
+      e.point_a -= delta * e.normal;
+      e.point_b += delta * e.normal;
+    }
+  } else {
+    e = epa::penetration(setup.support_a, setup.support_b, g.simplex, setup.scale, es);
+  }
   ans.iterations += e.iterations;
   const bool polytopes = kIsPolytope<A> && kIsPolytope<B>;
   if (e.status == epa::Status::Converged || (e.status == epa::Status::MaxIterations && !polytopes)) {
     ans.normal = e.normal;
-    ans.signed_distance = -(e.depth + radii);
+    ans.signed_distance = -(e.depth + radii);  // e.depth may be slightly negative when touching
     ans.point_a = e.point_a + setup.radius_a * e.normal;
     ans.point_b = e.point_b - setup.radius_b * e.normal;
     ans.method = PairMethod::Epa;
@@ -152,8 +171,10 @@ LocalAnswer solve(const A& a, const B& b, PairSetup<A, B>& setup, const PairRequ
     if (s.valid) {
       ans.normal = s.normal;
       ans.signed_distance = s.signed_distance - radii;
-      ans.point_a = s.point_a + setup.radius_a * s.normal;
-      ans.point_b = s.point_b - setup.radius_b * s.normal;
+      // Touching cores: GJK's witnesses are exact points of both; else the SAT's features.
+      const Vec3 core_a = touching ? g.point_a : s.point_a;
+      ans.point_a = core_a + setup.radius_a * s.normal;
+      ans.point_b = ans.point_a + ans.signed_distance * s.normal;
       ans.method = PairMethod::Sat;
       ans.status = e.status == epa::Status::Degenerate ? PairStatus::Degenerate
                                                        : status_from_distance(ans.signed_distance, setup.tolerance);

@@ -8,6 +8,7 @@
 #include <proxima/core/math.hpp>
 #include <proxima/shapes/convex_hull.hpp>
 
+#include <cmath>
 #include <cstdint>
 
 namespace proxima::narrow {
@@ -58,6 +59,21 @@ struct MappedSupport {
   Vec3 operator()(const Vec3& d) { return rotation * inner(rotation_t * d) + translation; }
   /// The inner functor's hint.
   std::uint32_t hint() const { return inner.hint(); }
+};
+
+/// A support functor grown by a ball of radius `delta`: s(d) + delta d/|d|. The narrow phase
+/// runs EPA on slightly inflated cores when they only touch, so that the expanded polytope
+/// holds the origin robustly; the depth then exceeds the true one by exactly 2 delta.
+template <class Inner>
+struct InflatedSupport {
+  Inner& inner;  ///< the support being inflated
+  Real delta;    ///< ball radius (length)
+  /// Farthest point in direction d.
+  Vec3 operator()(const Vec3& d) {
+    const Real l2 = glm::dot(d, d);
+    const Vec3 p = inner(d);
+    return l2 > Real(0) ? p + d * (delta / std::sqrt(l2)) : p;
+  }
 };
 
 }  // namespace proxima::narrow

@@ -8,8 +8,8 @@
 /// Steps:
 ///   1. grow GJK's simplex to a polytope around the origin: a point gets a second vertex
 ///      from the six axis supports, a segment a third from supports perpendicular to it, a
-///      triangle the supports along both of its normals (a bipyramid), a tetrahedron is
-///      used as is; if the Minkowski difference D = A - B is flat, stop (Degenerate);
+///      triangle the farther of the supports along its two normals (a tetrahedron), a
+///      tetrahedron is used as is; if the Minkowski difference D = A - B is flat, stop (Degenerate);
 ///   2. repeat: take the face nearest the origin, query D's support along its normal; when
 ///      the support is within tolerance of the face, that face gives depth and normal;
 ///      else remove the faces that see the new vertex and fan the horizon to it;
@@ -221,8 +221,14 @@ Result penetration(SupportA& support_a, SupportB& support_b, const gjk::Simplex&
     nn /= len;
     const gjk::Vertex up = make_vertex(nn);
     const gjk::Vertex down = make_vertex(-nn);
-    if (glm::dot(nn, up.w - s[0].w) > eps_len) apex[apex_count++] = up;
-    if (glm::dot(nn, s[0].w - down.w) > eps_len) apex[apex_count++] = down;
+    // One apex, the farther one: a tetrahedron (a bipyramid need not be convex). The origin
+    // lies on the triangle, so on the tetrahedron's boundary; the expansion goes on from it.
+    const Real hu = glm::dot(nn, up.w - s[0].w);
+    const Real hd = glm::dot(nn, s[0].w - down.w);
+    if (hu >= hd && hu > eps_len)
+      apex[apex_count++] = up;
+    else if (hd > eps_len)
+      apex[apex_count++] = down;
     if (apex_count == 0) return r;  // D is flat
   }
   if (n == 4) {
