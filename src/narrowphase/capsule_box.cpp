@@ -9,8 +9,9 @@
 //     is rounding noise): separating-axis test of segment against box over the 3 face
 //     axes and the 3 axes d x e_i (the face normals of their Minkowski difference, so the
 //     minimum overlap is the exact core penetration; face axes win ties within tolerance);
-//     normal turned from the segment's centre towards the box centre; segment witness its
-//     deepest end along the normal;
+//     normal turned from the segment's centre towards the box centre; witnesses: the closest
+//     points of the box and of the core moved out along the normal by the overlap (they touch
+//     there), the core's point moved back;
 //  4. manifold: when the normal is within kFaceCosine of a face normal, the core is clipped
 //     to that face's side planes; each clipped end whose gap (its height over the face minus
 //     r) is within contact_distance + tolerance is a contact with the exact face normal. Two
@@ -76,10 +77,13 @@ CapsuleBox capsule_box(const Capsule& a, const Transform& pose_a, const Box& b, 
     }
     n = glm::dot(axis, mid) > Real(0) ? -axis : axis;
     core = -best;
-    const Real along = glm::dot(d, n);
-    cb.t = along > Real(0) ? Real(1) : (along < Real(0) ? Real(0) : Real(0.5));
-    on_a = cb.p0 + cb.t * d;
-    on_b = on_a + core * n;
+    // Witnesses: move the core out of the box along -n by the overlap; it then touches the
+    // box, and the closest points of the moved core are the contact.
+    const Vec3 shift = core * n;
+    const detail::SegmentBoxClosest touch = detail::closest_segment_box(cb.p0 + shift, cb.p1 + shift, h);
+    cb.t = touch.t;
+    on_a = touch.on_segment - shift;
+    on_b = touch.on_box;
   }
   FeatureKind ka{};
   FeatureKind kb{};

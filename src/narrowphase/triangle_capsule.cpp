@@ -10,7 +10,9 @@
 //     on_triangle is rounding noise): separating-axis test over the face normals of the
 //     Minkowski difference of segment and triangle: the triangle normal N, d x e_k and the
 //     in-plane edge normals N x e_k (the normal wins ties within tolerance); the minimum
-//     overlap is the exact core penetration; capsule witness its deepest core point;
+//     overlap is the exact core penetration; witnesses: the closest points of the triangle and
+//     of the core moved out along the normal by the overlap (they touch there), the core's
+//     point moved back;
 //  4. manifold: when the normal is within kFaceCosine of +-N, the core is clipped to the
 //     triangle's prism (its three side planes); each clipped end whose gap (height over the
 //     plane minus r) is within contact_distance + tolerance is a contact with normal +-N. Two
@@ -82,9 +84,13 @@ TriangleCapsule triangle_capsule(const Triangle& a, const Transform& pose_a, con
     }
     n = axis;
     core = -best;
-    const Real along = glm::dot(d, n);
-    on_seg = along < Real(0) ? tc.p1 : (along > Real(0) ? tc.p0 : tc.p0 + Real(0.5) * d);
-    on_tri = on_seg - core * n;
+    // Witnesses: move the core out along n by the overlap; it then touches the triangle, and
+    // the closest points of the moved core are the contact.
+    const Vec3 shift = -core * n;
+    const geometry::ClosestPair touch =
+        geometry::closest_points_segment_triangle(tc.p0 + shift, tc.p1 + shift, a.a(), a.b(), a.c());
+    on_seg = touch.on_a - shift;
+    on_tri = touch.on_b;
   }
   tc.result = detail::rounded_result(pose_a.apply(on_tri), pose_a.apply(on_seg), pose_a.apply_vector(n), core, Real(0),
                                      b.radius(), tc.tolerance);
