@@ -130,6 +130,17 @@ inline double seg_seg2(V p1, V q1, V p2, V q2) {
   const V d1 = q1 - p1, d2 = q2 - p2, r = p1 - p2;
   const double a = dot(d1, d1), e = dot(d2, d2), f = dot(d2, r);
   double s = 0, t = 0;
+  if (a <= 1e-300 && e <= 1e-300) return dot(r, r);
+  if (a <= 1e-300) {
+    t = std::clamp(f / e, 0.0, 1.0);
+    const V d = p1 - (p2 + t * d2);
+    return dot(d, d);
+  }
+  if (e <= 1e-300) {
+    s = std::clamp(-dot(d1, r) / a, 0.0, 1.0);
+    const V d = (p1 + s * d1) - p2;
+    return dot(d, d);
+  }
   const double c = dot(d1, r), b = dot(d1, d2), den = a * e - b * b;
   s = den > 1e-300 ? std::clamp((b * f - c * e) / den, 0.0, 1.0) : 0.0;
   t = (b * s + f) / e;
