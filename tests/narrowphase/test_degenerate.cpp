@@ -11,6 +11,7 @@
 #include <string>
 
 #include "narrowphase/pair_checker.hpp"
+#include "narrowphase/reference_distance.hpp"
 
 namespace proxima {
 namespace {
@@ -285,6 +286,72 @@ TEST(Degenerate, NonFiniteTransformsGiveInvalidInput) {
         }
       }
     }
+  }
+}
+
+// Named regressions: cases the sweeps found where Proxima disagrees with an independent
+// reference (the shape layer's closest_point for a point or a sphere centre inside a solid:
+// the depth of a point is its distance to the nearest surface point; exact SAT for boxes).
+Quat quat_xyzw(Real x, Real y, Real z, Real w) { return glm::normalize(Quat(w, x, y, z)); }
+
+TEST(DegenerateRegression, PointInsideCylinderHasItsDepth) {
+  const Shape a = Point::create().value();
+  const Shape b = Cylinder::create(Real(0.474859864), Real(1.04806459)).value();
+  const Transform pa{Vec3(Real(0.323978513), Real(-0.395196468), Real(0.1121087)), Quat(1, 0, 0, 0)};
+  const Transform pb{Vec3(Real(0.790367126), Real(-1.16161013), Real(0.214803293)),
+                     quat_xyzw(Real(-0.67889148), Real(0.174177587), Real(-0.661284089), Real(-0.267342269))};
+  const Real expected = test::surface_distance(b, pb, pa.position);  // about -0.1235
+  ASSERT_LT(expected, Real(-0.1));
+  const DistanceResult d = distance(a, pa, b, pb);
+  EXPECT_NEAR(d.signed_distance, expected, test::narrow_tolerance(Real(2))) << test::status_name(d.status);
+  EXPECT_EQ(d.status, PairStatus::Penetrating);
+}
+
+TEST(DegenerateRegression, SphereCentreInsideCylinderHasFullDepth) {
+  const Shape a = Cylinder::create(Real(1.20059097), Real(1.21182144)).value();
+  const Shape b = Sphere::create(Real(0.659485638)).value();
+  const Transform pa{Vec3(Real(0.311585188), Real(0.127514184), Real(-0.139358237)),
+                     quat_xyzw(Real(-0.746628582), Real(-0.0728900582), Real(0.576641798), Real(-0.323600173))};
+  const Transform pb{Vec3(Real(1.27226567), Real(0.605910301), Real(-0.409590006)), Quat(1, 0, 0, 0)};
+  // Depth of a sphere whose centre is inside: centre depth plus radius (about 0.852).
+  const Real expected = test::surface_distance(a, pa, pb.position) - Real(0.659485638);
+  const DistanceResult d = distance(a, pa, b, pb);
+  EXPECT_NEAR(d.signed_distance, expected, test::narrow_tolerance(Real(2))) << test::status_name(d.status);
+  EXPECT_EQ(d.status, PairStatus::Penetrating);
+}
+
+TEST(DegenerateRegression, PointInsideBoxWitnessesAlongTheNormal) {
+  const Shape a = Point::create().value();
+  const Shape b = Box::create(Vec3(Real(0.92252934), Real(1.01535082), Real(0.736761034))).value();
+  const Transform pa{Vec3(Real(0.335912228), Real(0.0764173642), Real(0.140884981)), Quat(1, 0, 0, 0)};
+  const Transform pb{Vec3(Real(0.299190283), Real(0.00392830512), Real(0.445921928)),
+                     quat_xyzw(Real(0.108593345), Real(-0.329925925), Real(0.895570517), Real(0.278046459))};
+  const SurfacePoint sp = closest_point(std::get<Box>(b), pb, pa.position);
+  const DistanceResult d = distance(a, pa, b, pb);
+  const Real tol = test::narrow_tolerance(Real(2));
+  EXPECT_NEAR(d.signed_distance, sp.signed_distance, tol);
+  // The witness on the box is the nearest surface point, and the normal (A to B) is minus
+  // the box's outward normal there.
+  EXPECT_LE(glm::length(d.point_b - sp.point), tol);
+  EXPECT_LE(glm::length(d.normal + sp.normal), Real(1e-3));
+  EXPECT_LE(glm::length(d.point_a + d.signed_distance * d.normal - d.point_b), tol);
+}
+
+TEST(DegenerateRegression, BoxBoxManifoldNoDeeperThanThePair) {
+  const Shape a = Box::create(Vec3(Real(0.696924627), Real(0.301372379), Real(0.391439617))).value();
+  const Shape b = Box::create(Vec3(Real(1.41585064), Real(0.776285052), Real(0.531192005))).value();
+  const Transform pa{Vec3(Real(0.00447324943), Real(0.306857497), Real(-0.239830032)),
+                     quat_xyzw(Real(0.184314162), Real(0.271779269), Real(0.900201917), Real(-0.286008477))};
+  const Transform pb{Vec3(Real(-0.661844909), Real(-0.245100841), Real(-0.130647331)),
+                     quat_xyzw(Real(0.274618715), Real(-0.112324059), Real(-0.442257553), Real(-0.846390069))};
+  const double exact = test::polytope_depth_sat(*test::world_polytope(a, pa), *test::world_polytope(b, pb));
+  const Real tol = test::narrow_tolerance(Real(3));
+  const DistanceResult d = distance(a, pa, b, pb);
+  EXPECT_NEAR(double(d.signed_distance), -exact, double(tol));
+  const ContactManifold m = collide(a, pa, b, pb);
+  ASSERT_GT(m.count, 0);
+  for (int i = 0; i < m.count; ++i) {
+    EXPECT_LE(double(m.points[static_cast<std::size_t>(i)].depth), exact + double(tol)) << "point " << i;
   }
 }
 
