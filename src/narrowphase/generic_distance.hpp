@@ -116,6 +116,25 @@ LocalAnswer solve(const A& a, const B& b, PairSetup<A, B>& setup, const PairRequ
   ans.iterations = g.iterations;
   const Real radii = setup.radius_a + setup.radius_b;
   const Real core_contact = Real(16) * kEpsilon * setup.scale;
+  if constexpr (kIsPolytope<A> && kIsPolytope<B>) {
+    // GJK stopped by the cap on a polytope pair: the SAT decides overlap exactly.
+    if (g.status == gjk::Status::MaxIterations) {
+      const PolytopeView va(a);
+      const PolytopeView vb(b);
+      const SatResult s = polytope_sat(va, vb, setup.support_b.rotation, setup.support_b.translation);
+      if (s.valid && s.signed_distance < Real(0)) {
+        ans.normal = s.normal;
+        ans.signed_distance = s.signed_distance - radii;
+        ans.point_a = s.point_a;
+        ans.point_b = s.point_b;
+        ans.method = PairMethod::Sat;
+        ans.status = status_from_distance(ans.signed_distance, setup.tolerance);
+        ans.sat_feature = s.feature;
+        ans.sat_used = true;
+        return ans;
+      }
+    }
+  }
   if (g.status != gjk::Status::Overlapping && g.distance > core_contact) {
     const Vec3 n = -g.v / g.distance;
     ans.normal = n;
