@@ -355,5 +355,31 @@ TEST(DegenerateRegression, BoxBoxManifoldNoDeeperThanThePair) {
   }
 }
 
+// Found by the peer cross-validation (Bullet and the support-function reference agree, ours
+// stopped at max_iterations with too small a depth).
+TEST(DegenerateRegression, CylinderBoxDepthAtIterationCap) {
+  const Shape a = Cylinder::create(Real(0.846213162), Real(1.4571054)).value();
+  const Shape b = Box::create(Vec3(Real(0.377202779), Real(1.41666675), Real(0.288165748))).value();
+  const Transform pa{Vec3(Real(-0.0916636735), Real(0.144602478), Real(-0.173393071)),
+                     quat_xyzw(Real(0.571705759), Real(-0.282159895), Real(-0.150283307), Real(0.755614638))};
+  const Transform pb{Vec3(Real(1.20520043), Real(-0.00541394623), Real(1.1379478)),
+                     quat_xyzw(Real(-0.263324231), Real(-0.0893702954), Real(-0.00665297732), Real(0.960535824))};
+  const double ref = test::reference_signed_distance(a, pa, b, pb).signed_distance;  // about -0.2378
+  const DistanceResult d = distance(a, pa, b, pb);
+  EXPECT_NEAR(double(d.signed_distance), ref, double(test::narrow_tolerance(Real(3)))) << test::status_name(d.status);
+}
+
+TEST(DegenerateRegression, CapsuleCoreInsideConeHasFullDepth) {
+  const Shape a = Capsule::create(Real(0.158505112), Real(0.0150759397)).value();
+  const Shape b = Cone::create(Real(1.42092168), Real(1.45894063)).value();
+  const Transform pa{Vec3(Real(-0.199290499), Real(0.0795319825), Real(-0.451174408)),
+                     quat_xyzw(Real(0.439373434), Real(-0.232769847), Real(0.846018195), Real(0.192412049))};
+  const Transform pb{Vec3(Real(-0.378558755), Real(0.51059401), Real(-0.153617978)),
+                     quat_xyzw(Real(-0.049712263), Real(-0.575284243), Real(-0.810588002), Real(0.0975899398))};
+  const double ref = test::reference_signed_distance(a, pa, b, pb).signed_distance;  // about -0.8309
+  const DistanceResult d = distance(a, pa, b, pb);
+  EXPECT_NEAR(double(d.signed_distance), ref, double(test::narrow_tolerance(Real(3)))) << test::status_name(d.status);
+}
+
 }  // namespace
 }  // namespace proxima
