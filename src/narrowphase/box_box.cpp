@@ -53,6 +53,9 @@ struct BoxPair {
   Real r[3][3];   // r[i][j] = A_i . B_j
   Real ar[3][3];  // |r|
   Vec3 t;         // B's centre in A's frame
+  Real ha[3];     // a, b and t as plain arrays (glm's operator[] is a switch)
+  Real hb[3];
+  Real tt[3];
   Real tol;       // distance tolerance of the pair
   Real rounding;  // a few rounding errors at the pair's own size (not clamped to 1)
 };
@@ -71,6 +74,11 @@ BoxPair make_pair(const Box& a, const Transform& pose_a, const Box& b, const Tra
     }
   }
   p.t = qa_inv * (pose_b.position - pose_a.position);
+  for (int i = 0; i < 3; ++i) {
+    p.ha[i] = p.a[i];
+    p.hb[i] = p.b[i];
+    p.tt[i] = p.t[i];
+  }
   const Real scale = std::max({max_abs_component(p.a), max_abs_component(p.b), max_abs_component(p.t)});
   p.tol = resolve_tolerance(request, scale);
   p.rounding = kRelativeTolerance * scale;
@@ -83,19 +91,20 @@ Vec3 b_axis(const BoxPair& p, int j) { return Vec3(p.r[0][j], p.r[1][j], p.r[2][
 // i = (k-6)/3, j = (k-6)%3), and the unit axis in A's frame pointing from A to B. Returns
 // false for a skipped (parallel) edge axis.
 bool axis_separation(const BoxPair& p, int k, Real& sep, Vec3& axis) {
+  Real l[3] = {Real(0), Real(0), Real(0)};
   if (k < 3) {
     const int i = k;
-    const Real rb = p.b[0] * p.ar[i][0] + p.b[1] * p.ar[i][1] + p.b[2] * p.ar[i][2];
-    sep = std::abs(p.t[i]) - (p.a[i] + rb);
-    axis = Vec3(Real(0));
-    axis[i] = p.t[i] >= Real(0) ? Real(1) : Real(-1);
+    const Real rb = p.hb[0] * p.ar[i][0] + p.hb[1] * p.ar[i][1] + p.hb[2] * p.ar[i][2];
+    sep = std::abs(p.tt[i]) - (p.ha[i] + rb);
+    l[i] = p.tt[i] >= Real(0) ? Real(1) : Real(-1);
+    axis = Vec3(l[0], l[1], l[2]);
     return true;
   }
   if (k < 6) {
     const int j = k - 3;
-    const Real ra = p.a[0] * p.ar[0][j] + p.a[1] * p.ar[1][j] + p.a[2] * p.ar[2][j];
-    const Real tj = p.t[0] * p.r[0][j] + p.t[1] * p.r[1][j] + p.t[2] * p.r[2][j];
-    sep = std::abs(tj) - (ra + p.b[j]);
+    const Real ra = p.ha[0] * p.ar[0][j] + p.ha[1] * p.ar[1][j] + p.ha[2] * p.ar[2][j];
+    const Real tj = p.tt[0] * p.r[0][j] + p.tt[1] * p.r[1][j] + p.tt[2] * p.r[2][j];
+    sep = std::abs(tj) - (ra + p.hb[j]);
     const Real s = tj >= Real(0) ? Real(1) : Real(-1);
     axis = s * b_axis(p, j);
     return true;
@@ -108,14 +117,14 @@ bool axis_separation(const BoxPair& p, int k, Real& sep, Vec3& axis) {
   const int j2 = (j + 2) % 3;
   const Real len = std::sqrt(p.r[i1][j] * p.r[i1][j] + p.r[i2][j] * p.r[i2][j]);
   if (!(len > kParallelSine)) return false;
-  const Real ra = p.a[i1] * p.ar[i2][j] + p.a[i2] * p.ar[i1][j];
-  const Real rb = p.b[j1] * p.ar[i][j2] + p.b[j2] * p.ar[i][j1];
-  const Real tl = p.t[i2] * p.r[i1][j] - p.t[i1] * p.r[i2][j];
+  const Real ra = p.ha[i1] * p.ar[i2][j] + p.ha[i2] * p.ar[i1][j];
+  const Real rb = p.hb[j1] * p.ar[i][j2] + p.hb[j2] * p.ar[i][j1];
+  const Real tl = p.tt[i2] * p.r[i1][j] - p.tt[i1] * p.r[i2][j];
   sep = (std::abs(tl) - (ra + rb)) / len;
-  axis = Vec3(Real(0));
-  axis[i1] = -p.r[i2][j] / len;
-  axis[i2] = p.r[i1][j] / len;
-  if (tl < Real(0)) axis = -axis;
+  const Real sign = tl < Real(0) ? Real(-1) : Real(1);
+  l[i1] = -sign * p.r[i2][j] / len;
+  l[i2] = sign * p.r[i1][j] / len;
+  axis = Vec3(l[0], l[1], l[2]);
   return true;
 }
 
@@ -134,7 +143,38 @@ struct SatResult {
   std::array<Real, 9> edge_seps;
 };
 
-// Runs the 15 axes, stopping early at one separating by more than `limit`.
+// Separations along all 15 axes, straight-line (no axis vectors): sep[k] as in
+// axis_separation, -infinity for a skipped edge axis. Returns the largest face separation
+// (the 6 face axes are computed first so a caller may stop there).
+void face_separations(const BoxPair& p, Real* sep) {
+  for (int i = 0; i < 3; ++i) {
+    sep[i] = std::abs(p.tt[i]) - (p.ha[i] + p.hb[0] * p.ar[i][0] + p.hb[1] * p.ar[i][1] + p.hb[2] * p.ar[i][2]);
+  }
+  for (int j = 0; j < 3; ++j) {
+    const Real tj = p.tt[0] * p.r[0][j] + p.tt[1] * p.r[1][j] + p.tt[2] * p.r[2][j];
+    sep[3 + j] = std::abs(tj) - (p.ha[0] * p.ar[0][j] + p.ha[1] * p.ar[1][j] + p.ha[2] * p.ar[2][j] + p.hb[j]);
+  }
+}
+
+void edge_separations(const BoxPair& p, Real* sep) {
+  static constexpr int kNext[3] = {1, 2, 0};
+  static constexpr int kPrev[3] = {2, 0, 1};
+  for (int i = 0; i < 3; ++i) {
+    const int i1 = kNext[i];
+    const int i2 = kPrev[i];
+    for (int j = 0; j < 3; ++j) {
+      const int j1 = kNext[j];
+      const int j2 = kPrev[j];
+      const Real len = std::sqrt(p.r[i1][j] * p.r[i1][j] + p.r[i2][j] * p.r[i2][j]);
+      const Real ra = p.ha[i1] * p.ar[i2][j] + p.ha[i2] * p.ar[i1][j];
+      const Real rb = p.hb[j1] * p.ar[i][j2] + p.hb[j2] * p.ar[i][j1];
+      const Real tl = p.tt[i2] * p.r[i1][j] - p.tt[i1] * p.r[i2][j];
+      sep[6 + 3 * i + j] = len > kParallelSine ? (std::abs(tl) - (ra + rb)) / len : -kInfinity;
+    }
+  }
+}
+
+// Runs the 15 axes; stops after the face axes when one separates by more than `limit`.
 SatResult run_sat(const BoxPair& p, Real limit, const PairCache* cache) {
   SatResult s;
   if (cache != nullptr && cache->valid && cache->sat_feature < static_cast<std::uint32_t>(kAxes)) {
@@ -149,43 +189,40 @@ SatResult run_sat(const BoxPair& p, Real limit, const PairCache* cache) {
       return s;
     }
   }
-  for (int k = 0; k < kAxes; ++k) {
-    Real sep = Real(0);
-    Vec3 axis;
-    if (!axis_separation(p, k, sep, axis)) {
-      s.edge_seps[static_cast<std::size_t>(k - 6)] = -kInfinity;
-      continue;
-    }
-    // An edge axis must beat the face axes by more than the tolerance: nearly parallel
-    // edges give an axis next to a face normal with the same separation up to rounding,
-    // and its supporting edges would not witness it.
-    if (sep > s.max_sep + (k >= 6 && s.max_axis < 6 ? p.rounding : Real(0))) {
-      s.max_sep = sep;
-      s.max_axis = k;
-      s.max_normal = axis;
-    }
-    if (k < 3) {
-      if (sep > s.face_a_sep) {
-        s.face_a_sep = sep;
-        s.face_a_axis = k;
-      }
-    } else if (k < 6) {
-      if (sep > s.face_b_sep) {
-        s.face_b_sep = sep;
-        s.face_b_axis = k;
-      }
-    } else {
-      s.edge_seps[static_cast<std::size_t>(k - 6)] = sep;
-      if (sep > s.edge_sep) {
-        s.edge_sep = sep;
+  Real sep[kAxes];
+  face_separations(p, sep);
+  s.face_a_axis = sep[1] > sep[0] ? 1 : 0;
+  if (sep[2] > sep[s.face_a_axis]) s.face_a_axis = 2;
+  s.face_a_sep = sep[s.face_a_axis];
+  s.face_b_axis = sep[4] > sep[3] ? 4 : 3;
+  if (sep[5] > sep[s.face_b_axis]) s.face_b_axis = 5;
+  s.face_b_sep = sep[s.face_b_axis];
+  // Largest face axis, A's first on ties.
+  s.max_axis = s.face_b_sep > s.face_a_sep ? s.face_b_axis : s.face_a_axis;
+  s.max_sep = sep[s.max_axis];
+  if (s.max_sep > limit) {
+    s.early_out = true;
+  } else {
+    edge_separations(p, sep);
+    for (int k = 6; k < kAxes; ++k) {
+      const Real e = sep[k];
+      s.edge_seps[static_cast<std::size_t>(k - 6)] = e;
+      if (e > s.edge_sep) {
+        s.edge_sep = e;
         s.edge_axis = k;
       }
+      // An edge axis must beat the face axes by more than the rounding: nearly parallel
+      // edges give an axis next to a face normal with the same separation up to rounding,
+      // and its supporting edges would not witness it.
+      if (e > s.max_sep + (s.max_axis < 6 ? p.rounding : Real(0))) {
+        s.max_sep = e;
+        s.max_axis = k;
+      }
     }
-    if (sep > limit) {
-      s.early_out = true;
-      return s;
-    }
+    s.early_out = s.max_sep > limit;
   }
+  Real check = Real(0);
+  static_cast<void>(axis_separation(p, s.max_axis, check, s.max_normal));
   return s;
 }
 
@@ -198,22 +235,21 @@ void store_cache(PairCache* cache, const SatResult& s) {
 
 // Supporting edge of A (index i) and B (index j) along the A-frame normal n, as segments.
 void supporting_edges(const BoxPair& p, int i, int j, const Vec3& n, Vec3& a0, Vec3& a1, Vec3& b0, Vec3& b1) {
-  Vec3 ca(Real(0));
-  for (int m = 0; m < 3; ++m) {
-    if (m != i) ca[m] = n[m] >= Real(0) ? p.a[m] : -p.a[m];
-  }
-  Vec3 ea(Real(0));
-  ea[i] = p.a[i];
-  a0 = ca - ea;
-  a1 = ca + ea;
+  const Real nn[3] = {n.x, n.y, n.z};
+  Real ca[3];
+  Real ea[3] = {Real(0), Real(0), Real(0)};
+  for (int m = 0; m < 3; ++m) ca[m] = m == i ? Real(0) : (nn[m] >= Real(0) ? p.ha[m] : -p.ha[m]);
+  ea[i] = p.ha[i];
+  a0 = Vec3(ca[0] - ea[0], ca[1] - ea[1], ca[2] - ea[2]);
+  a1 = Vec3(ca[0] + ea[0], ca[1] + ea[1], ca[2] + ea[2]);
   Vec3 cb = p.t;
   Vec3 eb(Real(0));
   for (int m = 0; m < 3; ++m) {
     const Vec3 bm = b_axis(p, m);
     if (m == j) {
-      eb = p.b[m] * bm;
+      eb = p.hb[m] * bm;
     } else {
-      cb += (glm::dot(n, bm) <= Real(0) ? p.b[m] : -p.b[m]) * bm;
+      cb += (glm::dot(n, bm) <= Real(0) ? p.hb[m] : -p.hb[m]) * bm;
     }
   }
   b0 = cb - eb;
@@ -365,71 +401,62 @@ struct FaceContacts {
 // `contact_distance` (possibly none).
 bool clip_box_faces(const RefFrame& f, const Vec3& dir, Real contact_distance, FaceContacts& out) {
   out.count = 0;
-  const Vec3 ad = glm::abs(dir);
+  // Plain arrays: glm's operator[] with a run-time index is a switch.
+  const Real dv[3] = {dir.x, dir.y, dir.z};
+  const Real hh[3] = {f.h.x, f.h.y, f.h.z};
+  const Real gg[3] = {f.g.x, f.g.y, f.g.z};
+  const Real ad[3] = {std::abs(dv[0]), std::abs(dv[1]), std::abs(dv[2])};
   int i = 0;
-  if (ad.y > ad.x) i = 1;
-  if (ad.z > ad[i]) i = 2;
+  if (ad[1] > ad[0]) i = 1;
+  if (ad[2] > ad[i]) i = 2;
   if (!(ad[i] >= kReferenceFaceCosine)) return false;
   const int i1 = (i + 1) % 3;
   const int i2 = (i + 2) % 3;
-  const Real s = dir[i] >= Real(0) ? Real(1) : Real(-1);
+  const Real s = dv[i] >= Real(0) ? Real(1) : Real(-1);
   const Real inv_cos = Real(1) / ad[i];
   const std::uint32_t ref_index = static_cast<std::uint32_t>(2 * i + (s > Real(0) ? 1 : 0));
   // Incident face: the incident axis most parallel to dir, on the side facing the reference.
-  const Real d0 = glm::dot(dir, f.axes[0]);
-  const Real d1 = glm::dot(dir, f.axes[1]);
-  const Real d2 = glm::dot(dir, f.axes[2]);
+  const Real dd[3] = {glm::dot(dir, f.axes[0]), glm::dot(dir, f.axes[1]), glm::dot(dir, f.axes[2])};
   int j = 0;
-  Real dj = d0;
-  if (std::abs(d1) > std::abs(dj)) {
-    j = 1;
-    dj = d1;
-  }
-  if (std::abs(d2) > std::abs(dj)) {
-    j = 2;
-    dj = d2;
-  }
+  if (std::abs(dd[1]) > std::abs(dd[0])) j = 1;
+  if (std::abs(dd[2]) > std::abs(dd[j])) j = 2;
   const int j1 = (j + 1) % 3;
   const int j2 = (j + 2) % 3;
-  const Real sj = dj <= Real(0) ? Real(1) : Real(-1);  // the face of the incident box facing back
-  const Vec3 centre = f.c + (sj * f.g[j]) * f.axes[j];
-  const Vec3 e1 = f.g[j1] * f.axes[j1];
-  const Vec3 e2 = f.g[j2] * f.axes[j2];
+  const Real sj = dd[j] <= Real(0) ? Real(1) : Real(-1);  // the face of the incident box facing back
+  const Vec3 centre = f.c + (sj * gg[j]) * f.axes[j];
+  const Vec3 e1 = gg[j1] * f.axes[j1];
+  const Vec3 e2 = gg[j2] * f.axes[j2];
   static constexpr Real kS1[4] = {1, -1, -1, 1};
   static constexpr Real kS2[4] = {1, 1, -1, -1};
+  // Corner ids (sign bits on the incident box's axes): bit j from sj, bits j1, j2 from kS1, kS2.
+  const std::uint32_t base_bits = sj > Real(0) ? (1u << j) : 0u;
   ClipPoint buf0[8];
   ClipPoint buf1[8];
-  const Real plane = s * f.h[i];
   for (int v = 0; v < 4; ++v) {
     const Vec3 q = centre + kS1[v] * e1 + kS2[v] * e2;
-    const Real gap = (s * q[i] - f.h[i]) * inv_cos;
-    const Vec3 on_plane = q - gap * dir;
+    const Real qv[3] = {q.x, q.y, q.z};
+    const Real gap = (s * qv[i] - hh[i]) * inv_cos;
     ClipPoint& cp = buf0[v];
-    cp.u = on_plane[i1];
-    cp.v = on_plane[i2];
+    cp.u = qv[i1] - gap * dv[i1];
+    cp.v = qv[i2] - gap * dv[i2];
     cp.gap = gap;
-    std::uint32_t bits = 0;
-    const Real sg[3] = {j == 0 ? sj : (j1 == 0 ? kS1[v] : kS2[v]), j == 1 ? sj : (j1 == 1 ? kS1[v] : kS2[v]),
-                        j == 2 ? sj : (j1 == 2 ? kS1[v] : kS2[v])};
-    for (int m = 0; m < 3; ++m) {
-      if (sg[m] > Real(0)) bits |= 1u << m;
-    }
-    cp.id = bits;
+    cp.id = base_bits | (kS1[v] > Real(0) ? (1u << j1) : 0u) | (kS2[v] > Real(0) ? (1u << j2) : 0u);
     cp.side = 0;
     cp.crossing = false;
   }
   int n = 4;
-  n = clip_side(buf0, n, buf1, true, Real(1), f.h[i1], 0);
-  n = clip_side(buf1, n, buf0, false, Real(1), f.h[i2], 1);
-  n = clip_side(buf0, n, buf1, true, Real(-1), f.h[i1], 2);
-  n = clip_side(buf1, n, buf0, false, Real(-1), f.h[i2], 3);
+  n = clip_side(buf0, n, buf1, true, Real(1), hh[i1], 0);
+  n = clip_side(buf1, n, buf0, false, Real(1), hh[i2], 1);
+  n = clip_side(buf0, n, buf1, true, Real(-1), hh[i1], 2);
+  n = clip_side(buf1, n, buf0, false, Real(-1), hh[i2], 3);
   for (int k = 0; k < n; ++k) {
     const ClipPoint& q = buf0[k];
     if (!(q.gap <= contact_distance)) continue;
-    Vec3 on_ref;
-    on_ref[i] = plane;
-    on_ref[i1] = q.u;
-    on_ref[i2] = q.v;
+    Real r3[3];
+    r3[i] = s * hh[i];
+    r3[i1] = q.u;
+    r3[i2] = q.v;
+    const Vec3 on_ref(r3[0], r3[1], r3[2]);
     const int c = out.count++;
     out.on_ref[c] = on_ref;
     out.on_inc[c] = on_ref + q.gap * dir;
@@ -486,9 +513,10 @@ void edge_manifold(const BoxPair& p, const Transform& pose_a, int k, Real sep, c
   // Edge ids: the axis and which of the four parallel edges (sign bits of the normal).
   std::uint32_t ea = 0;
   std::uint32_t eb = 0;
+  const Real nl[3] = {n_local.x, n_local.y, n_local.z};
   for (int q = 0, bit = 0; q < 3; ++q) {
     if (q == i) continue;
-    if (n_local[q] >= Real(0)) ea |= 1u << bit;
+    if (nl[q] >= Real(0)) ea |= 1u << bit;
     ++bit;
   }
   for (int q = 0, bit = 0; q < 3; ++q) {
@@ -512,8 +540,8 @@ bool face_axis_contacts(const BoxPair& p, int k, const Vec3& n_local, Real conta
     f = frame_of_b(p);
     // n_local = s B_j in A's frame, so -n in B's frame is -s e_j.
     const Vec3 bj = b_axis(p, k - 3);
-    dir = Vec3(Real(0));
-    dir[k - 3] = glm::dot(n_local, bj) >= Real(0) ? Real(-1) : Real(1);
+    const Real sd = glm::dot(n_local, bj) >= Real(0) ? Real(-1) : Real(1);
+    dir = Vec3(k == 3 ? sd : Real(0), k == 4 ? sd : Real(0), k == 5 ? sd : Real(0));
   }
   return clip_box_faces(f, dir, contact_distance, fc);
 }
@@ -523,7 +551,7 @@ void support_point(const BoxPair& p, const Transform& pose_a, const Vec3& n_loca
   Vec3 pb = p.t;
   for (int j = 0; j < 3; ++j) {
     const Vec3 bj = b_axis(p, j);
-    pb += (glm::dot(n_local, bj) <= Real(0) ? p.b[j] : -p.b[j]) * bj;
+    pb += (glm::dot(n_local, bj) <= Real(0) ? p.hb[j] : -p.hb[j]) * bj;
   }
   m.count = 1;
   m.points[0] = ContactPoint{pose_a.apply(pb - sep * n_local), pose_a.apply(pb), m.normal, -sep, 0};
