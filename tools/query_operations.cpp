@@ -3,8 +3,8 @@
 #include <array>
 
 #include "query_bound_ops.hpp"
-#include "query_pair_ops.hpp"
 #include "query_broadphase_ops.hpp"
+#include "query_pair_ops.hpp"
 #include "query_shape_ops.hpp"
 
 namespace proxima::tool {
@@ -18,12 +18,12 @@ const std::array kOperations = {
     Operation{"bound", op_bound, "target, volume -> the bounding volume in the world frame"},
     Operation{"fit", op_fit, "points, volume -> the fitted volume and volume_m3"},
     Operation{"mass", op_mass, "target, density? -> volume, mass, centroid, inertia (world axes)"},
+    Operation{"pairs", op_pairs, pairs_synopsis()},
     Operation{"intersect", op_intersect, "a, b -> hit (the placed shapes touch or overlap)"},
     Operation{"distance", op_distance, "a, b -> distance (signed), point_a, point_b, normal (a to b), status, method"},
     Operation{"collide", op_collide,
               "a, b, max_contacts?, contact_distance? -> hit, normal, contacts[point_a, point_b, normal, depth], "
               "status, method"},
-    Operation{"pairs", op_pairs, pairs_synopsis()},
 };
 
 }  // namespace
