@@ -332,6 +332,12 @@ void SweepStorage::gather(const std::vector<ProxyId>& order, int axis, SweepList
 void SweepStorage::radix_sort_ids(std::vector<ProxyId>& ids, int axis) {
   const std::size_t n = ids.size();
   if (n < 2) return;
+  if (n <= 64) {
+    exact_keys_.resize(n);
+    for (std::size_t i = 0; i < n; ++i) exact_keys_[i] = box_[ids[i]].min[axis];
+    insertion_sort(exact_keys_, ids, std::numeric_limits<std::size_t>::max());
+    return;
+  }
   keys_.resize(n);
   keys_tmp_.resize(n);
   std::uint64_t all_or = 0;
@@ -348,6 +354,10 @@ void SweepStorage::radix_sort_ids(std::vector<ProxyId>& ids, int axis) {
   std::uint64_t* src = keys_.data();
   std::uint64_t* dst = keys_tmp_.data();
   for (int shift = 0; shift < 32; shift += kBits) {
+    if (n <= 2048) {  // small lists: a comparison sort beats clearing the histograms
+      std::sort(src, src + n);
+      break;
+    }
     if (((varying >> shift) & (kBuckets - 1)) == 0) continue;
     std::array<std::uint32_t, kBuckets> hist{};
     for (std::size_t i = 0; i < n; ++i) ++hist[(src[i] >> (32 + shift)) & (kBuckets - 1)];
@@ -465,9 +475,23 @@ void MultiBoxPruning::find_pairs(std::vector<ProxyPair>& out, unsigned threads) 
     }
   }
   const std::size_t n = moving_.size() + static_.size();
-  const int g = n == 0 ? 1 : std::clamp(static_cast<int>(std::sqrt(static_cast<double>(n) / 512.0)), 1, 32);
   const double span_b = static_cast<double>(hi_b) - static_cast<double>(lo_b);
   const double span_c = static_cast<double>(hi_c) - static_cast<double>(lo_c);
+  // Cells about kCellBoxes mean box edges wide, at least kMinPerCell boxes per cell on
+  // average, at most 64 x 64 cells.
+  double mean_edge = 0;
+  for (const auto* list : {&moving_, &static_}) {
+    for (ProxyId id : *list) {
+      const Aabb& b = box_[id];
+      mean_edge += static_cast<double>(b.max[ax_b] - b.min[ax_b]) + static_cast<double>(b.max[ax_c] - b.min[ax_c]);
+    }
+  }
+  mean_edge = n == 0 ? 0.0 : mean_edge / (2.0 * static_cast<double>(n));
+  constexpr double kCellBoxes = 4.0;
+  constexpr double kMinPerCell = 48.0;
+  const double by_size = mean_edge > 0 ? std::max(span_b, span_c) / (kCellBoxes * mean_edge) : 1.0;
+  const double by_count = std::sqrt(static_cast<double>(n) / kMinPerCell);
+  const int g = static_cast<int>(std::clamp(std::min(by_size, by_count), 1.0, 64.0));
   const double inv_b = span_b > 0 ? g / span_b : 0.0;
   const double inv_c = span_c > 0 ? g / span_c : 0.0;
   // Monotone cell index of a coordinate (clamped), the same for assignment and ownership.

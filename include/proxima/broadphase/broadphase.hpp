@@ -13,6 +13,12 @@
 /// - find_pairs reports every pair exactly once as (lo, hi) with lo < hi, sorted by (lo, hi):
 ///   the order is deterministic and independent of insertion history and thread count.
 /// - A rejected call (non-finite or inverted box, unknown or duplicate id) changes nothing.
+/// - Parallel pair finding is an optional overload `find_pairs(out, threads)` (threads = 0:
+///   hardware concurrency) whose output is identical to the serial one; structures offering it
+///   satisfy ParallelBroadPhase (any_broadphase.hpp), and parallel_pairs.hpp has a helper
+///   (parallel_pair_chunks: per-chunk outputs concatenated, then sort_pairs).
+/// Shared pieces: pair_tracker.hpp (sort_pairs radix sort, begun/ended deltas), brute_force.hpp
+/// (the reference), any_broadphase.hpp (type erasure, make_broadphase by name).
 
 #include <proxima/geometry/aabb.hpp>
 #include <proxima/geometry/ray.hpp>
