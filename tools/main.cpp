@@ -2,6 +2,7 @@
 //   proxima --version          version and scalar precision
 //   proxima demo [options]     the billiard-break demo (statistics + SVG picture)
 //   proxima query [FILE|-]     the JSON query protocol, one request per line
+//   proxima bench broadphase   one broad-phase structure on a W1 workload file
 #include <proxima/core/config.hpp>
 
 #include <CLI/CLI.hpp>
@@ -10,7 +11,9 @@
 #include <fstream>
 #include <iostream>
 #include <string>
+#include <unistd.h>
 
+#include "bench_command.hpp"
 #include "demo_billiards.hpp"
 #include "json_shapes.hpp"
 #include "query.hpp"
@@ -74,6 +77,23 @@ int run(int argc, char** argv) {
   query_cmd->add_option("input", query_input, "Request file; '-' or absent: standard input");
   query_cmd->footer(query_footer());
 
+  proxima::tool::BenchBroadphaseOptions bench_broadphase;
+  CLI::App* bench_cmd = app.add_subcommand("bench", "Benchmarks on workload files");
+  bench_cmd->require_subcommand(1);
+  CLI::App* bench_broadphase_cmd = bench_cmd->add_subcommand(
+      "broadphase", "One broad-phase structure on a W1 workload: build time, ms/frame, pairs/frame, checksum");
+  bench_broadphase_cmd->add_option("--structure", bench_broadphase.structure, "Structure name (registry)")
+      ->capture_default_str();
+  bench_broadphase_cmd->add_option("--workload", bench_broadphase.workload, "W1 broadphase file")->required();
+  bench_broadphase_cmd->add_option("--frames", bench_broadphase.frames, "Frames to run (0: the file's frames=)")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 1000000));
+  bench_broadphase_cmd->add_option("--threads", bench_broadphase.threads, "Threads for the pair search")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 256));
+  bool bench_no_check = false;
+  bench_broadphase_cmd->add_flag("--no-check", bench_no_check, "Skip the reference checksum");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -83,6 +103,11 @@ int run(int argc, char** argv) {
   try {
     if (demo_cmd->parsed()) return proxima::tool::run_billiards_demo(demo, std::cout, std::cerr);
     if (query_cmd->parsed()) return run_query(query_input);
+    if (bench_broadphase_cmd->parsed()) {
+      bench_broadphase.check = !bench_no_check;
+      bench_broadphase.progress = isatty(STDERR_FILENO) != 0;
+      return proxima::tool::run_bench_broadphase(bench_broadphase, std::cout, std::cerr);
+    }
   } catch (const std::exception& e) {
     std::cerr << "proxima: " << e.what() << "\n";
     return 1;
