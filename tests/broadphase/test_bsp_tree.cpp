@@ -21,7 +21,7 @@ BspTree small_leaves_eager_rebuild() {
   c.rebuild_edits = Real(0);  // rebuild at nearly every find_pairs
   return BspTree(c);
 }
-PROXIMA_BROADPHASE_DIFFERENTIAL_SUITE(BspTreeEagerScenes, small_leaves_eager_rebuild, 8);
+PROXIMA_BROADPHASE_DIFFERENTIAL_SUITE(BspTreeEagerScenes, small_leaves_eager_rebuild, 6);
 
 TEST(BspTree, StandardScenes) {
   test::run_standard_scenes([] { return BspTree(); });

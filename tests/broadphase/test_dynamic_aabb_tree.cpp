@@ -24,7 +24,7 @@ DynamicAabbTree threaded_batch_rebuild_tree() {
   c.rebuild_degradation = Real(0);
   return DynamicAabbTree(c);
 }
-PROXIMA_BROADPHASE_DIFFERENTIAL_SUITE(DynamicAabbTreeThreadedScenes, threaded_batch_rebuild_tree, 8);
+PROXIMA_BROADPHASE_DIFFERENTIAL_SUITE(DynamicAabbTreeThreadedScenes, threaded_batch_rebuild_tree, 6);
 
 TEST(DynamicAabbTree, StandardScenes) {
   test::run_standard_scenes([] { return DynamicAabbTree(); });

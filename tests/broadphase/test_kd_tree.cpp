@@ -21,7 +21,7 @@ KdTree single_record_leaves() {
   c.rebuild_overlap = Real(0);  // rebuild at any degradation
   return KdTree(c);
 }
-PROXIMA_BROADPHASE_DIFFERENTIAL_SUITE(KdTreeSingleLeafScenes, single_record_leaves, 8);
+PROXIMA_BROADPHASE_DIFFERENTIAL_SUITE(KdTreeSingleLeafScenes, single_record_leaves, 6);
 
 TEST(KdTree, StandardScenes) {
   test::run_standard_scenes([] { return KdTree(); });
