@@ -6,7 +6,7 @@
 //                --large=FILE any other W1 file (e.g. 1M boxes written by
 //                proxima_make_workload into the build folder; see bench/RESULTS.md)
 //     mode       frame:   one iteration = one frame: update every box (W1 motion rule) and
-//                         enumerate every pair; 100 frames (10 for files of >= 500k boxes)
+//                         enumerate every pair; 100 frames at 10k, 20 at 100k, 10 at 1M
 //                moving10: only every 10th box moves (the others stay at frame 0)
 //                oneshot: build from scratch (insert all + first pair list), frame 1 boxes
 //     counters   per_frame (time), pairs (per frame), check (1 when the pair checksum of the
@@ -576,7 +576,7 @@ bool register_all(const std::string& dir, const std::vector<std::string>& large,
     auto w = std::make_unique<Loaded>();
     w->workload = std::move(*read);
     w->name = short_name(w->workload.name);
-    w->frames = w->workload.boxes.size() >= 500000 ? std::min(10, w->workload.frames) : w->workload.frames;
+    w->frames = w->workload.frames;
     Loaded* lw = w.get();
     g_loaded.push_back(std::move(w));
     for (const Mode mode : {Mode::Frame, Mode::Moving10, Mode::OneShot}) {
@@ -587,12 +587,19 @@ bool register_all(const std::string& dir, const std::vector<std::string>& large,
           std::string name = "BroadPhase/" + lw->name + "/" + mode_name + "/" + c.name;
           if (threads == 2) name += "/threads:2";
           // The peers' slow cases: bt32BitAxisSweep3 inserts one box at a time into sorted
-          // arrays (6 s for 10k boxes, quadratic): 10k only. Peers run 20 frames at >= 100k
-          // boxes (their checksums against references of 20 frames).
+          // arrays (6 s for 10k boxes, quadratic): 10k only. Everyone runs 20 frames at
+          // >= 100k boxes and 10 at >= 500k (checksums against references of those frames).
           const std::size_t n = lw->workload.boxes.size();
           if (c.name == "bullet_axis_sweep" && n > 20000) continue;
           if (c.peer && n >= 500000 && !large_peers) continue;
-          const int frames = c.peer && n >= 100000 ? std::min(20, lw->frames) : lw->frames;
+          // At >= 500k boxes: frame and one-shot only, without the structures meant for
+          // other cases (BSP: static geometry; quadtree: flat worlds) or too slow there.
+          if (n >= 500000 && (mode == Mode::Moving10 || c.name == "bsp" || c.name == "quadtree" || c.name == "octree" ||
+                              c.name == "kdtree")) {
+            continue;
+          }
+          const int frames =
+              n >= 500000 ? std::min(10, lw->frames) : (n >= 100000 ? std::min(20, lw->frames) : lw->frames);
           auto* b = benchmark::RegisterBenchmark(name.c_str(), [lw, c, mode, threads, frames](benchmark::State& s) {
             run(s, *lw, c, mode, threads, frames);
           });
