@@ -33,4 +33,31 @@ ContactManifold pair_collide(const Box& a, const Transform& pose_a, const Box& b
 template <>
 inline constexpr bool kAnalyticPair<Box, Box> = true;
 
+/// Triangle-box overlap (SAT over 13 axes: the triangle normal, 3 box faces, 9 edge pairs).
+bool pair_intersect(const Triangle& a, const Transform& pose_a, const Box& b, const Transform& pose_b,
+                    const PairRequest& request, PairCache* cache);
+/// Triangle-box signed distance: SAT depth when they overlap, else the exact distance of
+/// the closest features (box edges against the triangle, triangle vertices against the box).
+DistanceResult pair_distance(const Triangle& a, const Transform& pose_a, const Box& b, const Transform& pose_b,
+                             const PairRequest& request, PairCache* cache);
+/// Triangle-box manifold by SAT and clipping (up to 4 points).
+ContactManifold pair_collide(const Triangle& a, const Transform& pose_a, const Box& b, const Transform& pose_b,
+                             const PairRequest& request, PairCache* cache);
+template <>
+inline constexpr bool kAnalyticPair<Triangle, Box> = true;
+
+/// Triangle-triangle overlap (geometry::triangles_intersect, or distance within the contact
+/// distance).
+bool pair_intersect(const Triangle& a, const Transform& pose_a, const Triangle& b, const Transform& pose_b,
+                    const PairRequest& request, PairCache* cache);
+/// Triangle-triangle signed distance: SAT depth (normals, 9 edge pairs, in-plane edge normals
+/// for coplanar pairs) when they overlap, else the exact closest points.
+DistanceResult pair_distance(const Triangle& a, const Transform& pose_a, const Triangle& b, const Transform& pose_b,
+                             const PairRequest& request, PairCache* cache);
+/// Triangle-triangle manifold by SAT and clipping (up to 4 points).
+ContactManifold pair_collide(const Triangle& a, const Transform& pose_a, const Triangle& b, const Transform& pose_b,
+                             const PairRequest& request, PairCache* cache);
+template <>
+inline constexpr bool kAnalyticPair<Triangle, Triangle> = true;
+
 }  // namespace proxima::narrow
