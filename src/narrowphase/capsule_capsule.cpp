@@ -134,6 +134,9 @@ ContactManifold pair_collide(const Capsule& a, const Transform& pose_a, const Ca
   }
   if (two.count < 2) return m;  // one end only: the exact closest pair is the better point
   if (two.points[1].depth > two.points[0].depth) std::swap(two.points[0], two.points[1]);
+  // The pair's deepest point must be among them (else the closest points lie elsewhere, e.g.
+  // near an edge): otherwise keep the exact single point.
+  if (two.points[0].depth < -d.signed_distance - cc.tolerance) return m;
   return two;
 }
 

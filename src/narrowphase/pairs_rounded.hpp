@@ -22,6 +22,8 @@
 ///  - a sphere centre on a triangle: the triangle's normal (b - a) x (c - a), turned to the
 ///    centre's side;
 ///  - a capsule core touching a box or a triangle: the separating-axis test's axis.
+/// Two-point manifolds are used only when their deepest point reproduces the distance query's
+/// depth (within tolerance); otherwise the manifold is the exact single closest pair.
 /// intersect(...) is true iff distance(...).signed_distance <= request.contact_distance.
 
 #include <proxima/shapes/shape.hpp>

@@ -170,6 +170,9 @@ ContactManifold pair_collide(const Triangle& a, const Transform& pose_a, const C
   }
   if (two.count < 2) return m;
   if (two.points[1].depth > two.points[0].depth) std::swap(two.points[0], two.points[1]);
+  // The pair's deepest point must be among them (else the closest points lie elsewhere, e.g.
+  // near an edge): otherwise keep the exact single point.
+  if (two.points[0].depth < -tc.result.signed_distance - tc.tolerance) return m;
   return two;
 }
 
