@@ -9,6 +9,7 @@
 //                         enumerate every pair; 100 frames at 10k, 20 at 100k, 10 at 1M
 //                moving10: only every 10th box moves (the others stay at frame 0)
 //                oneshot: build from scratch (insert all + first pair list), frame 1 boxes
+//                floor:   read every box, one key each, radix sort (the least work of a frame)
 //     counters   per_frame (time), pairs (per frame), check (1 when the pair checksum of the
 //                frames run equals the exact reference: the published W1 checksum for full
 //                runs, a double-precision sort-and-sweep otherwise; 2 when it equals the
@@ -556,6 +557,43 @@ void run(benchmark::State& bm, Loaded& w, const Contestant& who, Mode mode, int 
   bm.SetLabel(who.peer ? "peer" : "proxima");
 }
 
+/// The floor of a frame: read every box (double to Real, as the updates do), make one 32-bit
+/// key per box (its min x quantised over the world) and radix-sort (key, index) pairs, the
+/// least work of a sort-based broad phase before any overlap test or output.
+void run_floor(benchmark::State& bm, Loaded& w) {
+  std::vector<BoxD> boxes;
+  boxes_of(w.workload.boxes, boxes);
+  const std::size_t n = boxes.size();
+  std::vector<Aabb> stored(n);
+  std::vector<std::uint64_t> keys(n);
+  std::vector<std::uint64_t> scratch(n);
+  const double scale = 4294967295.0 / std::max(1e-30, (w.workload.hi - w.workload.lo) * 1.25);
+  for (auto _ : bm) {
+    for (std::size_t i = 0; i < n; ++i) stored[i] = to_aabb(boxes[i]);
+    for (std::size_t i = 0; i < n; ++i) {
+      const double x = std::clamp((double(stored[i].min.x) - w.workload.lo) * scale + 1e8, 0.0, 4294967295.0);
+      keys[i] = (std::uint64_t(x) << 32) | i;
+    }
+    std::uint64_t* src = keys.data();
+    std::uint64_t* dst = scratch.data();
+    for (int shift = 32; shift < 64; shift += 11) {
+      std::size_t count[2048] = {};
+      for (std::size_t i = 0; i < n; ++i) ++count[(src[i] >> shift) & 2047];
+      std::size_t sum = 0;
+      for (std::size_t& c : count) {
+        const std::size_t v = c;
+        c = sum;
+        sum += v;
+      }
+      for (std::size_t i = 0; i < n; ++i) dst[count[(src[i] >> shift) & 2047]++] = src[i];
+      std::swap(src, dst);
+    }
+    benchmark::DoNotOptimize(src[n / 2]);
+  }
+  bm.counters["ns_per_box"] =
+      benchmark::Counter(double(n), benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+}
+
 std::vector<std::unique_ptr<Loaded>> g_loaded;
 
 std::string short_name(const std::string& name) {
@@ -579,6 +617,9 @@ bool register_all(const std::string& dir, const std::vector<std::string>& large,
     w->frames = w->workload.frames;
     Loaded* lw = w.get();
     g_loaded.push_back(std::move(w));
+    benchmark::RegisterBenchmark(("BroadPhase/" + lw->name + "/floor").c_str(), [lw](benchmark::State& st) {
+      run_floor(st, *lw);
+    })->Unit(benchmark::kMillisecond);
     for (const Mode mode : {Mode::Frame, Mode::Moving10, Mode::OneShot}) {
       const char* mode_name = mode == Mode::Frame ? "frame" : (mode == Mode::Moving10 ? "moving10" : "oneshot");
       for (const Contestant& c : who) {
