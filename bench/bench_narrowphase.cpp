@@ -4,7 +4,7 @@
 //      - Boolean, every pair: Proxima intersect (plain GJK, Nesterov GJK), libccd
 //        ccdGJKIntersect and ccdMPRIntersect, FCL fcl::collide (GJKSolver_libccd and
 //        GJKSolver_indep, fcl::Convex), Bullet btGjkPairDetector (btVoronoiSimplexSolver,
-//        btConvexHullShape, margin 0; "no result" or distance <= 0 counts as a hit).
+//        btConvexHullShape, margin 0, Bullet's EPA as penetration solver; distance <= 0 is a hit).
 //      - Distance, the separated pairs: Proxima distance (plain, Nesterov), FCL fcl::distance
 //        (both solvers), Bullet btGjkPairDetector (libccd has no distance query).
 //      - Penetration depth and normal, the overlapping pairs: Proxima distance (GJK + EPA),
@@ -22,11 +22,12 @@
 //
 // Every benchmark reports per_query and the counters that show each library computed the
 // same thing: `hits` (and `mismatch`, the pairs whose answer differs from the reference),
-// `mean` (mean distance, depth or deepest point of the reported pairs) and, where a
-// reference value exists, `max_err`. References, computed once in double before timing:
-// W2 boolean and distance from FCL's GJKSolver_indep distance (tolerance 1e-9; a pair
-// intersects when it reports no positive distance); W2 depth from libccd's GJK + EPA with
-// tolerance 1e-9; W3 from a 15-axis separating-axis test; W7 from the closed forms.
+// `mean` (distance, depth or deepest point, mean over the queries) and, where a
+// reference value exists, `max_err`. References, computed in double before timing (W2: on
+// first use of each size): W2 boolean and penetration depth from an exact separating-axis
+// test over the facet directions of the Minkowski difference (exact_polytope_pair); W2
+// distance from the smaller of FCL's two GJK distances; W3 from a 15-axis separating-axis
+// test; W7 from the closed forms.
 // Shapes are converted to each library's representation before timing.
 #include <benchmark/benchmark.h>
 
