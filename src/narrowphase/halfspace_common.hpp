@@ -116,6 +116,11 @@ inline ContactManifold candidate_manifold(const WorldPlane& plane, const Candida
     p.depth = -gap[static_cast<std::size_t>(i)];
     p.feature_id = make_feature_id(FeatureKind::Vertex, c.index[static_cast<std::size_t>(i)], FeatureKind::Face, 0);
   }
+  if (kept <= request.max_contacts) {
+    std::copy(all.begin(), all.begin() + kept, m.points.begin());
+    m.count = kept;
+    return m;
+  }
   m.count = reduce_contacts(std::span<const ContactPoint>(all.data(), static_cast<std::size_t>(kept)), d.normal,
                             request.max_contacts, m.points);
   return m;
