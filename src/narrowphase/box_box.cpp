@@ -561,6 +561,30 @@ Transform frame_pose(const RefFrame& f, const Transform& pose_a, const Transform
   return f.ref_is_a ? pose_a : pose_b;
 }
 
+// Manifold of an overlapping pair along axis k (exact separation sep): clipped faces for a
+// face axis, the closest points of the supporting edges for an edge axis.
+ContactManifold& overlap_on_axis(const BoxPair& p, const Transform& pose_a, const Transform& pose_b, int k, Real sep,
+                                 const PairRequest& request, ContactManifold& m) {
+  Real check = Real(0);
+  Vec3 n_local;
+  static_cast<void>(axis_separation(p, k, check, n_local));
+  m.status = status_from_distance(sep, p.tol);
+  m.normal = pose_a.apply_vector(n_local);
+  if (k < 6) {
+    FaceContacts fc;
+    RefFrame f;
+    Vec3 dir;
+    if (face_axis_contacts(p, k, n_local, request.contact_distance, fc, f, dir) && fc.count > 0) {
+      reduce_to_manifold(fc, dir, f.ref_is_a, frame_pose(f, pose_a, pose_b), m.normal, request.max_contacts, m);
+    } else {
+      support_point(p, pose_a, n_local, sep, m);
+    }
+    return m;
+  }
+  edge_manifold(p, pose_a, k, sep, n_local, m);
+  return m;
+}
+
 }  // namespace
 
 bool pair_intersect(const Box& a, const Transform& pose_a, const Box& b, const Transform& pose_b,
@@ -713,11 +737,24 @@ ContactManifold pair_collide(const Box& a, const Transform& pose_a, const Box& b
     RefFrame f;
     Vec3 dir;
     if (face_axis_contacts(p, k, n_local, request.contact_distance, fc, f, dir) && fc.count > 0) {
-      reduce_to_manifold(fc, dir, f.ref_is_a, frame_pose(f, pose_a, pose_b), m.normal, request.max_contacts, m);
+      // A preferred (not deepest-separating) face axis is kept only while no point goes
+      // deeper than the pair's exact depth; else the exact axis decides.
+      Real deepest = -kInfinity;
+      for (int q = 0; q < fc.count; ++q) deepest = std::max(deepest, fc.depth[q]);
+      if (k == s.max_axis || deepest <= -s.max_sep + p.tol) {
+        reduce_to_manifold(fc, dir, f.ref_is_a, frame_pose(f, pose_a, pose_b), m.normal, request.max_contacts, m);
+        return m;
+      }
+    } else if (k == s.max_axis) {
+      support_point(p, pose_a, n_local, sep, m);
       return m;
     }
+    if (k != s.max_axis) return overlap_on_axis(p, pose_a, pose_b, s.max_axis, s.max_sep, request, m);
     support_point(p, pose_a, n_local, sep, m);
     return m;
+  }
+  if (k != s.max_axis && -sep > -s.max_sep + p.tol) {
+    return overlap_on_axis(p, pose_a, pose_b, s.max_axis, s.max_sep, request, m);
   }
   edge_manifold(p, pose_a, k, sep, n_local, m);
   return m;
