@@ -179,7 +179,7 @@ SatResult run_sat(const BoxPair& p, Real limit, const PairCache* cache) {
   SatResult s;
   if (cache != nullptr && cache->valid && cache->sat_feature < static_cast<std::uint32_t>(kAxes)) {
     Real sep = Real(0);
-    Vec3 axis;
+    Vec3 axis(Real(0), Real(0), Real(1));
     const int k = static_cast<int>(cache->sat_feature);
     if (axis_separation(p, k, sep, axis) && sep > limit) {
       s.max_sep = sep;
@@ -295,7 +295,7 @@ ClosestFeatures closest_features(const BoxPair& p, const SatResult& s) {
     const Real sep = s.edge_seps[static_cast<std::size_t>(k)];
     if (!(sep > Real(0)) || sep * sep >= best.d2) continue;
     Real check = Real(0);
-    Vec3 n;
+    Vec3 n(Real(0), Real(0), Real(1));
     if (!axis_separation(p, 6 + k, check, n)) continue;
     Vec3 a0;
     Vec3 a1;
@@ -566,14 +566,14 @@ Transform frame_pose(const RefFrame& f, const Transform& pose_a, const Transform
 ContactManifold& overlap_on_axis(const BoxPair& p, const Transform& pose_a, const Transform& pose_b, int k, Real sep,
                                  const PairRequest& request, ContactManifold& m) {
   Real check = Real(0);
-  Vec3 n_local;
+  Vec3 n_local(Real(0), Real(0), Real(1));
   static_cast<void>(axis_separation(p, k, check, n_local));
   m.status = status_from_distance(sep, p.tol);
   m.normal = pose_a.apply_vector(n_local);
   if (k < 6) {
     FaceContacts fc;
     RefFrame f;
-    Vec3 dir;
+    Vec3 dir(Real(0), Real(0), Real(1));
     if (face_axis_contacts(p, k, n_local, request.contact_distance, fc, f, dir) && fc.count > 0) {
       reduce_to_manifold(fc, dir, f.ref_is_a, frame_pose(f, pose_a, pose_b), m.normal, request.max_contacts, m);
     } else {
@@ -634,7 +634,7 @@ DistanceResult pair_distance(const Box& a, const Transform& pose_a, const Box& b
   if (s.max_axis < 6) {
     FaceContacts fc;
     RefFrame f;
-    Vec3 dir;
+    Vec3 dir(Real(0), Real(0), Real(1));
     if (face_axis_contacts(p, s.max_axis, s.max_normal, kInfinity, fc, f, dir) && fc.count > 0) {
       int deepest = 0;
       for (int q = 1; q < fc.count; ++q) {
@@ -728,14 +728,14 @@ ContactManifold pair_collide(const Box& a, const Transform& pose_a, const Box& b
     sep = s.edge_sep;
   }
   Real check = Real(0);
-  Vec3 n_local;
+  Vec3 n_local(Real(0), Real(0), Real(1));
   static_cast<void>(axis_separation(p, k, check, n_local));
   m.status = status_from_distance(sep, p.tol);
   m.normal = pose_a.apply_vector(n_local);
   if (k < 6) {
     FaceContacts fc;
     RefFrame f;
-    Vec3 dir;
+    Vec3 dir(Real(0), Real(0), Real(1));
     if (face_axis_contacts(p, k, n_local, request.contact_distance, fc, f, dir) && fc.count > 0) {
       // A preferred (not deepest-separating) face axis is kept only while no point goes
       // deeper than the pair's exact depth; else the exact axis decides.
