@@ -152,24 +152,35 @@ LocalAnswer solve(const A& a, const B& b, PairSetup<A, B>& setup, const PairRequ
   epa::Settings es;
   es.max_iterations = std::max(request.max_iterations, 1);
   es.max_faces = request.max_epa_faces;
-  es.abs_tolerance = Real(0.1) * setup.tolerance;
+  // Curved shapes converge slowly: a relative 1e-9 of the pair's size is enough in double.
+  es.abs_tolerance = std::max(Real(0.1) * setup.tolerance, Real(1e-9) * setup.scale);
   const bool touching = g.simplex.size < 4;
-  epa::Result e;
-  if (touching) {
+  const auto inflated_epa = [&]() {
     const Real delta = std::max(Real(1024) * kEpsilon * setup.scale, setup.tolerance);
     InflatedSupport<decltype(setup.support_a)> ia{setup.support_a, delta};
     InflatedSupport<decltype(setup.support_b)> ib{setup.support_b, delta};
-    gjk::Settings gs = setup.gjk_settings(request);
-    const gjk::Result gi = gjk::distance(ia, ib, setup.axis, gs);
+    const gjk::Result gi = gjk::distance(ia, ib, setup.axis, setup.gjk_settings(request));
     ans.iterations += gi.iterations;
-    e = epa::penetration(ia, ib, gi.simplex, setup.scale, es);
-    if (e.status != epa::Status::Degenerate) {
-      e.depth -= Real(2) * delta;
-      e.point_a -= delta * e.normal;
-      e.point_b += delta * e.normal;
+    epa::Result ei = epa::penetration(ia, ib, gi.simplex, setup.scale, es);
+    if (ei.status != epa::Status::Degenerate) {
+      ei.depth -= Real(2) * delta;
+      ei.point_a -= delta * ei.normal;
+      ei.point_b += delta * ei.normal;
     }
+    return ei;
+  };
+  epa::Result e;
+  if (touching) {
+    e = inflated_epa();
   } else {
     e = epa::penetration(setup.support_a, setup.support_b, g.simplex, setup.scale, es);
+    if (e.status == epa::Status::MaxIterations) {
+      // Rounding stopped the expansion early: a second polytope, grown on the slightly
+      // inflated cores, meets other slivers; keep the answer with the smaller error bound.
+      ans.iterations += e.iterations;
+      const epa::Result e2 = inflated_epa();
+      if (e2.status != epa::Status::Degenerate && e2.gap < e.gap) e = e2;
+    }
   }
   ans.iterations += e.iterations;
   const bool polytopes = kIsPolytope<A> && kIsPolytope<B>;

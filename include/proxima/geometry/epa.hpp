@@ -59,6 +59,7 @@ struct Result {
   Vec3 normal{Real(0), Real(0), Real(1)};  ///< unit, from A to B: moving B by depth*normal separates
   Vec3 point_a{Real(0)};                   ///< deepest point of A (common frame)
   Vec3 point_b{Real(0)};                   ///< deepest point of B: point_a - depth * normal
+  Real gap = Real(0);                      ///< least support distance seen minus depth: a bound on the depth error
   int iterations = 0;
 };
 
@@ -275,7 +276,7 @@ Result penetration(SupportA& support_a, SupportB& support_b, const gjk::Simplex&
     const Real lb = glm::dot(f.n, glm::cross(c - proj, a - proj)) / den;
     return Vec3(la, lb, Real(1) - la - lb);
   };
-  const auto finish = [&](const detail::Face& nearest, Status status, int iterations) {
+  const auto finish = [&](const detail::Face& nearest, Status status, int iterations, Real gap) {
     // The Minkowski difference of polytopes has flat faces that the polytope splits into
     // coplanar triangles: the witness comes from the one that holds the projection.
     detail::Face f = nearest;
@@ -313,10 +314,12 @@ Result penetration(SupportA& support_a, SupportB& support_b, const gjk::Simplex&
     r.point_a = la * a.a + lb * b.a + lc * c.a;
     r.point_b = la * a.b + lb * b.b + lc * c.b;
     r.iterations = iterations;
+    r.gap = gap;
     return r;
   };
 
   std::array<std::array<std::uint16_t, 2>, kMaxFaces> horizon{};
+  Real upper = std::numeric_limits<Real>::infinity();  // least support distance seen: depth <= it
   for (int it = 0;; ++it) {
     int best = -1;
     Real best_d = std::numeric_limits<Real>::infinity();
@@ -329,15 +332,17 @@ Result penetration(SupportA& support_a, SupportB& support_b, const gjk::Simplex&
     }
     if (best < 0) return r;
     const detail::Face closest = p.faces[static_cast<std::size_t>(best)];
-    if (it >= settings.max_iterations) return finish(closest, Status::MaxIterations, it);
+    if (it >= settings.max_iterations) return finish(closest, Status::MaxIterations, it, upper - closest.d);
     const gjk::Vertex w = make_vertex(closest.n);
     const Real dw = glm::dot(closest.n, w.w);
     const Real tol = std::max(
         {settings.abs_tolerance, settings.rel_tolerance * std::max(closest.d, Real(0)), Real(8) * kEpsilon * scale});
-    if (dw - closest.d <= tol) return finish(closest, Status::Converged, it + 1);
+    upper = std::min(upper, dw);
+    if (dw - closest.d <= tol) return finish(closest, Status::Converged, it + 1, upper - closest.d);
     const Real loose_tol = std::max(Real(32) * tol, Real(4096) * kEpsilon * scale);
     if (p.nv >= kMaxVertices)
-      return finish(closest, dw - closest.d <= loose_tol ? Status::Converged : Status::MaxIterations, it + 1);
+      return finish(closest, dw - closest.d <= loose_tol ? Status::Converged : Status::MaxIterations, it + 1,
+                    upper - closest.d);
     const int wi = p.nv;
     p.verts[static_cast<std::size_t>(wi)] = w;
     ++p.nv;
@@ -379,7 +384,8 @@ Result penetration(SupportA& support_a, SupportB& support_b, const gjk::Simplex&
     // Rounding can leave the polytope unable to grow (a sliver face, a pinched horizon):
     // answer with the nearest face when its gap is within the loose tolerance.
     const auto stuck = [&]() {
-      return finish(closest, dw - closest.d <= loose_tol ? Status::Converged : Status::MaxIterations, it + 1);
+      return finish(closest, dw - closest.d <= loose_tol ? Status::Converged : Status::MaxIterations, it + 1,
+                    upper - closest.d);
     };
     if (overflow || nh < 3) return stuck();
     std::array<int, kMaxFaces> fan{};
