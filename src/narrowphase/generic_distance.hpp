@@ -221,7 +221,7 @@ LocalAnswer solve(const A& a, const B& b, PairSetup<A, B>& setup, const PairRequ
   ans.normal = n;
   ans.signed_distance = g.distance - radii;
   ans.point_a = g.point_a + setup.radius_a * n;
-  ans.point_b = g.point_b - setup.radius_b * n;
+  ans.point_b = ans.point_a + ans.signed_distance * n;  // keeps the witness relation exact
   ans.method = PairMethod::Gjk;
   ans.status = PairStatus::Degenerate;
   return ans;
