@@ -8,17 +8,34 @@ cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
 jobs=$(nproc)
 
+# Open defects (tests/known_failures.txt): an exclusion regex of exact ctest names for one
+# precision, printed so that nobody mistakes the run for a clean one.
+known_failures() {
+  local precision=$1 names
+  names=$(awk -v p="${precision}" '$1 == p { print $2 }' tests/known_failures.txt)
+  [ -n "${names}" ] || return 0
+  echo "== known failures excluded (${precision}; see docs/validation.md):" >&2
+  echo "${names}" | sed 's/^/     /' >&2
+  echo "${names}" | sed 's/[.]/[.]/g; s/^/^/; s/$/( |$)/' | paste -sd'|'
+}
+
 build_and_test() {
-  local preset=$1; shift
+  local preset=$1 precision=$2; shift 2
   echo "== ${preset}: configure and build"
   cmake --preset "${preset}" "$@" >/dev/null || return 1
   cmake --build --preset "${preset}" -j "${jobs}" || return 1
   echo "== ${preset}: test"
-  ctest --preset "${preset}" -j "${jobs}" || return 1
+  local exclude
+  exclude=$(known_failures "${precision}")
+  if [ -n "${exclude}" ]; then
+    ctest --preset "${preset}" -j "${jobs}" -E "${exclude}" || return 1
+  else
+    ctest --preset "${preset}" -j "${jobs}" || return 1
+  fi
 }
 
 status=0
-build_and_test ci-asan -DPROXIMA_TEST_PACKAGE=OFF || status=1
-build_and_test ci-double -DPROXIMA_TEST_PACKAGE=OFF || status=1
-build_and_test ci-release || status=1
+build_and_test ci-asan float -DPROXIMA_TEST_PACKAGE=OFF || status=1
+build_and_test ci-double double -DPROXIMA_TEST_PACKAGE=OFF || status=1
+build_and_test ci-release float || status=1
 exit "${status}"
