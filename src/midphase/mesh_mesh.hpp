@@ -1,0 +1,27 @@
+#pragma once
+/// @file mesh_mesh.hpp
+/// Mesh against mesh (internal to the midphase; reached through geometry_queries.hpp):
+/// boolean, every contact and distance between the triangle sets of two placed meshes, by a
+/// simultaneous descent of their hierarchies with the triangle pair routines of the narrow
+/// phase at the leaves.
+
+#include <proxima/midphase/geometry_queries.hpp>
+
+#include <vector>
+
+namespace proxima::midphase {
+
+/// True when a triangle of A and a triangle of B are within request.contact_distance.
+bool mesh_mesh_intersect(const TriangleMesh& a, const Transform& pose_a, const TriangleMesh& b, const Transform& pose_b,
+                         const PairRequest& request);
+
+/// Minimum signed distance over all triangle pairs with its witnesses (sub.triangle set on
+/// both sides; sub.child left at kNoIndex for the caller to fill).
+GeometryDistance mesh_mesh_distance(const TriangleMesh& a, const Transform& pose_a, const TriangleMesh& b,
+                                    const Transform& pose_b, const PairRequest& request);
+
+/// Appends the contacts of every triangle pair within request.contact_distance.
+void mesh_mesh_collide_all(const TriangleMesh& a, const Transform& pose_a, const TriangleMesh& b,
+                           const Transform& pose_b, const PairRequest& request, std::vector<GeometryContact>& contacts);
+
+}  // namespace proxima::midphase
