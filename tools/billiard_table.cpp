@@ -2,8 +2,8 @@
 //
 // Steps of a frame (BilliardTable::step):
 //  1. rolling resistance: every ball's speed drops by a constant deceleration times dt;
-//  2. broad phase: each ball's world AABB swept over the rest of the frame; the tool's
-//     interim sort-and-sweep pairs the balls, and each box is tested against the cushions'
+//  2. broad phase: each ball's world AABB swept over the rest of the frame; the library's
+//     incremental sweep-and-prune (SweepAndPrune) pairs the balls, and each box is tested against the cushions'
 //     world AABBs (HalfSpace::world_aabb: bounded on the cushion's axis only);
 //  3. narrow phase with time of impact: for a candidate ball pair the relative motion of one
 //     centre is a ray cast against a Sphere of radius 2r at the other centre; for a cushion the
@@ -17,6 +17,7 @@
 // tunnel, whatever their speed.
 #include "billiard_table.hpp"
 
+#include <proxima/core/assert.hpp>
 #include <proxima/shapes/placed.hpp>
 
 #include <algorithm>
@@ -122,7 +123,16 @@ void BilliardTable::find_candidates(std::vector<char>& ball_seen, std::vector<ch
       for (std::uint32_t j = i + 1; j < kBallCount; ++j) ball_pairs_.emplace_back(i, j);
     }
   } else {
-    sweep_.find_pairs(swept_box_, ball_pairs_);
+    for (std::uint32_t i = 0; i < kBallCount; ++i) {
+      const BroadPhaseStatus status =
+          sweep_filled_ ? sweep_.update(i, swept_box_[i]) : sweep_.insert(i, swept_box_[i], ProxyKind::Moving);
+      PROXIMA_ASSERT(status == BroadPhaseStatus::Ok);
+      static_cast<void>(status);
+    }
+    sweep_filled_ = true;
+    sweep_.find_pairs(proxy_pairs_);
+    ball_pairs_.clear();
+    for (const ProxyPair& p : proxy_pairs_) ball_pairs_.emplace_back(p.lo, p.hi);
   }
   for (const IndexPair& p : ball_pairs_) ball_seen[p.first * kBallCount + p.second] = 1;
   cushion_pairs_.clear();

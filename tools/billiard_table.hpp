@@ -4,6 +4,7 @@
 // balls are library Spheres, the cushions library HalfSpaces; the collision response
 // (equal masses, restitution, rolling resistance) lives here in the tool, never in the
 // library.
+#include <proxima/broadphase/sweep_and_prune.hpp>
 #include <proxima/core/math.hpp>
 #include <proxima/geometry/aabb.hpp>
 #include <proxima/shapes/halfspace.hpp>
@@ -11,11 +12,13 @@
 
 #include <array>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
-#include "sort_and_sweep.hpp"
-
 namespace proxima::tool {
+
+/// A pair of indices (ball, ball) with first < second, or (ball, cushion).
+using IndexPair = std::pair<std::uint32_t, std::uint32_t>;
 
 /// The set-up of a break. Lengths in metres, times in seconds, speeds in m/s.
 struct BilliardConfig {
@@ -58,8 +61,9 @@ struct BilliardStats {
 /// The billiard scene and its event-driven simulation.
 ///
 /// Each frame: 1. rolling resistance slows every ball; 2. each ball's world AABB is swept
-/// over the rest of the frame (the Sphere's world_aabb at both ends, merged); 3. the tool's
-/// sort-and-sweep pairs the boxes, and each box is tested against the cushions' world AABBs;
+/// over the rest of the frame (the Sphere's world_aabb at both ends, merged); 3. the library's
+/// incremental sweep-and-prune (SweepAndPrune) pairs the boxes, and each box is tested against the cushions' world
+/// AABBs;
 /// 4. the candidates' times of impact are found by ray casts of the relative motion against
 /// the Minkowski sums (a Sphere of radius 2r for a ball pair, the cushion's HalfSpace pushed
 /// out by r for a cushion; Ericson, Real-Time Collision Detection, 5.5.7); 5. the earliest
@@ -127,7 +131,9 @@ class BilliardTable {
   std::vector<BilliardContact> contacts_;
   std::vector<IndexPair> ball_pairs_;
   std::vector<IndexPair> cushion_pairs_;  // (ball, cushion)
-  SortAndSweep sweep_;
+  SweepAndPrune sweep_;                   // the library's incremental sweep-and-prune over the swept boxes
+  bool sweep_filled_ = false;             // balls inserted into sweep_
+  std::vector<ProxyPair> proxy_pairs_;
   BilliardStats stats_;
   int frame_ = 0;
 };

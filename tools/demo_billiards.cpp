@@ -131,8 +131,7 @@ int run_billiards_demo(const DemoOptions& options, std::ostream& out, std::ostre
                   options.config.frame_rate, static_cast<double>(s.frames) / options.config.frame_rate,
                   static_cast<unsigned long long>(options.config.seed));
     out << line;
-    out << "broad phase: the tool's interim sort-and-sweep over the balls' world AABBs "
-           "(the library has no broad phase yet)\n";
+    out << "broad phase: the library's incremental sweep-and-prune (SweepAndPrune) over the balls' swept AABBs\n";
     std::snprintf(line, sizeof(line),
                   "brute-force pair tests: %llu (%llu ball-ball = %d per frame, %llu ball-cushion = %d per frame)\n",
                   static_cast<unsigned long long>(brute), static_cast<unsigned long long>(s.brute_ball_pairs),

@@ -139,7 +139,7 @@ TEST(CliDemo, PrintsStatisticsAndWritesSvg) {
   ASSERT_EQ(run.status, 0) << run.output;
   const std::string& out = run.output;
   EXPECT_NE(out.find("16 balls, 4 cushions, 600 frames at 60 Hz (10.00 s)"), std::string::npos) << out;
-  EXPECT_NE(out.find("interim sort-and-sweep"), std::string::npos) << out;
+  EXPECT_NE(out.find("incremental sweep-and-prune"), std::string::npos) << out;
   // Brute force: 16*15/2 = 120 ball pairs and 16*4 = 64 ball-cushion pairs per frame.
   EXPECT_NE(out.find("brute-force pair tests: 110400 (72000 ball-ball = 120 per frame, 38400 ball-cushion = 64 "
                      "per frame)"),
