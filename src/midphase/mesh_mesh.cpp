@@ -159,8 +159,38 @@ inline Real node_margin(Real scale, Real contact_distance) {
 struct LeafTriangles {
   std::array<std::array<Vec3, 3>, kMaxLeafTriangles> v;
   std::uint32_t index[kMaxLeafTriangles];
+  Vec3 center[kMaxLeafTriangles];  ///< centroid (distance bound)
+  Real radius[kMaxLeafTriangles];  ///< largest centroid-to-vertex distance
+  Aabb box[kMaxLeafTriangles];     ///< box in A's frame
   std::uint32_t count = 0;
 };
+
+/// Squared lower bound of the distance between triangles a and b: the gap between their
+/// projections on the unit axis u (A towards B) and on each face normal.
+inline Real triangle_gap_squared(const std::array<Vec3, 3>& a, const std::array<Vec3, 3>& b, const Vec3& u) {
+  Real gap = std::min({glm::dot(u, b[0]), glm::dot(u, b[1]), glm::dot(u, b[2])}) -
+             std::max({glm::dot(u, a[0]), glm::dot(u, a[1]), glm::dot(u, a[2])});
+  const auto side_gap = [](const std::array<Vec3, 3>& face, const std::array<Vec3, 3>& other) {
+    const Vec3 n = glm::cross(face[1] - face[0], face[2] - face[0]);
+    const Real len2 = glm::dot(n, n);
+    if (!(len2 > Real(0))) return Real(0);
+    const Real d0 = glm::dot(n, other[0] - face[0]);
+    const Real d1 = glm::dot(n, other[1] - face[0]);
+    const Real d2 = glm::dot(n, other[2] - face[0]);
+    const Real lo = std::min({d0, d1, d2});
+    const Real hi = std::max({d0, d1, d2});
+    const Real g = lo > Real(0) ? lo : (hi < Real(0) ? -hi : Real(0));
+    return g / std::sqrt(len2);
+  };
+  gap = std::max({gap, side_gap(a, b), side_gap(b, a)});
+  return gap > Real(0) ? gap * gap : Real(0);
+}
+
+/// Centroid and bounding radius of a triangle.
+inline void triangle_sphere(const std::array<Vec3, 3>& t, Vec3& c, Real& r) {
+  c = (t[0] + t[1] + t[2]) * (Real(1) / Real(3));
+  r = std::sqrt(std::max({glm::dot(t[0] - c, t[0] - c), glm::dot(t[1] - c, t[1] - c), glm::dot(t[2] - c, t[2] - c)}));
+}
 
 void load_leaf(const TriangleMesh& b, const RelativeFrame& f, const BvhNode& leaf, LeafTriangles& out) {
   const auto prims = b.bvh().primitives();
@@ -172,6 +202,9 @@ void load_leaf(const TriangleMesh& b, const RelativeFrame& f, const BvhNode& lea
     out.index[k] = ti;
     const TriangleIndices& t = tris[ti];
     for (int c = 0; c < 3; ++c) out.v[k][c] = f.rotation * verts[t[c]] + f.t;
+    triangle_sphere(out.v[k], out.center[k], out.radius[k]);
+    out.box[k] = {glm::min(glm::min(out.v[k][0], out.v[k][1]), out.v[k][2]),
+                  glm::max(glm::max(out.v[k][0], out.v[k][1]), out.v[k][2])};
   }
 }
 
@@ -242,18 +275,15 @@ Vec3 facing_normal(const std::array<Vec3, 3>& ta, const Vec3& towards, const Tra
   return pose_a.apply_vector(n);
 }
 
-}  // namespace
-
-bool mesh_mesh_intersect(const TriangleMesh& a, const Transform& pose_a, const TriangleMesh& b, const Transform& pose_b,
-                         const PairRequest& request) {
-  const RelativeFrame f = make_frame(pose_a, pose_b);
-  const Real cd = std::max(request.contact_distance, Real(0));
-  const Real margin = node_margin(pair_scale(a, b, f), cd);
+/// The first triangle pair (A, B) within the contact distance found by the overlap descent,
+/// or false when there is none.
+bool find_pair_within(const TriangleMesh& a, const TriangleMesh& b, const RelativeFrame& f, Real margin, Real cd,
+                      std::uint32_t& found_a, std::uint32_t& found_b) {
   const auto prims_a = a.bvh().primitives();
   LeafTriangles leaf_b;
   std::uint32_t loaded = kNoIndex;
   const BvhNode* nodes_b = b.bvh().nodes().data();
-  const bool stopped = !descend_overlapping(a.bvh(), b.bvh(), f, margin, [&](const BvhNode& la, const BvhNode& lb) {
+  return !descend_overlapping(a.bvh(), b.bvh(), f, margin, [&](const BvhNode& la, const BvhNode& lb) {
     const auto id_b = static_cast<std::uint32_t>(&lb - nodes_b);
     if (id_b != loaded) {
       load_leaf(b, f, lb, leaf_b);
@@ -261,12 +291,31 @@ bool mesh_mesh_intersect(const TriangleMesh& a, const Transform& pose_a, const T
     }
     for (std::uint32_t i = la.first; i != la.first + la.count; ++i) {
       const std::array<Vec3, 3> ta = a.triangle(prims_a[i]);
-      for (std::uint32_t k = 0; k < leaf_b.count; ++k)
-        if (triangles_within(ta, leaf_b.v[k], cd)) return false;
+      const Aabb box_a =
+          Aabb{glm::min(glm::min(ta[0], ta[1]), ta[2]), glm::max(glm::max(ta[0], ta[1]), ta[2])}.inflated(margin);
+      for (std::uint32_t k = 0; k < leaf_b.count; ++k) {
+        if (!box_a.overlaps(leaf_b.box[k])) continue;
+        if (triangles_within(ta, leaf_b.v[k], cd)) {
+          found_a = prims_a[i];
+          found_b = leaf_b.index[k];
+          return false;
+        }
+      }
     }
     return true;
   });
-  return stopped;
+}
+
+}  // namespace
+
+bool mesh_mesh_intersect(const TriangleMesh& a, const Transform& pose_a, const TriangleMesh& b, const Transform& pose_b,
+                         const PairRequest& request) {
+  const RelativeFrame f = make_frame(pose_a, pose_b);
+  const Real cd = std::max(request.contact_distance, Real(0));
+  const Real margin = node_margin(pair_scale(a, b, f), cd);
+  std::uint32_t ta = kNoIndex;
+  std::uint32_t tb = kNoIndex;
+  return find_pair_within(a, b, f, margin, cd, ta, tb);
 }
 
 void mesh_mesh_collide_all(const TriangleMesh& a, const Transform& pose_a, const TriangleMesh& b,
@@ -289,7 +338,10 @@ void mesh_mesh_collide_all(const TriangleMesh& a, const Transform& pose_a, const
     for (std::uint32_t i = la.first; i != la.first + la.count; ++i) {
       const std::uint32_t tri_a = prims_a[i];
       const std::array<Vec3, 3> ta = a.triangle(tri_a);
+      const Aabb box_a =
+          Aabb{glm::min(glm::min(ta[0], ta[1]), ta[2]), glm::max(glm::max(ta[0], ta[1]), ta[2])}.inflated(margin);
       for (std::uint32_t k = 0; k < leaf_b.count; ++k) {
+        if (!box_a.overlaps(leaf_b.box[k])) continue;
         if (!triangles_within(ta, leaf_b.v[k], cd)) continue;
         const std::uint32_t tri_b = leaf_b.index[k];
         const SubShapeId sub_a{kNoIndex, tri_a};
@@ -359,6 +411,24 @@ GeometryDistance mesh_mesh_distance(const TriangleMesh& a, const Transform& pose
   LeafTriangles leaf_b;
   std::uint32_t loaded = kNoIndex;
   bool touching = false;
+  // Intersecting meshes: the overlap descent finds a touching pair far sooner than the
+  // distance descent would.
+  {
+    std::uint32_t hit_a = kNoIndex;
+    std::uint32_t hit_b = kNoIndex;
+    if (find_pair_within(a, b, f, node_margin(scale, Real(0)), Real(0), hit_a, hit_b)) {
+      const std::array<Vec3, 3> ta = a.triangle(hit_a);
+      const std::array<Vec3, 3> tl = b.triangle(hit_b);
+      const std::array<Vec3, 3> tb{f.rotation * tl[0] + f.t, f.rotation * tl[1] + f.t, f.rotation * tl[2] + f.t};
+      best_pair = geometry::closest_points_triangle_triangle(ta[0], ta[1], ta[2], tb[0], tb[1], tb[2]);
+      best2 = Real(0);  // touching within the triangle test's tolerance
+      best_a = hit_a;
+      best_b = hit_b;
+      best_ta = ta;
+      best_tb = tb;
+      touching = true;
+    }
+  }
   while (top != 0 && !touching) {
     const Entry e = stack[--top];
     if (e.lb2 >= best2) continue;
@@ -372,8 +442,21 @@ GeometryDistance mesh_mesh_distance(const TriangleMesh& a, const Transform& pose
       for (std::uint32_t i = nda.first; i != nda.first + nda.count && !touching; ++i) {
         const std::uint32_t tri_a = prims_a[i];
         const std::array<Vec3, 3> ta = a.triangle(tri_a);
+        Vec3 ca;
+        Real ra;
+        triangle_sphere(ta, ca, ra);
         for (std::uint32_t k = 0; k < leaf_b.count; ++k) {
           const std::array<Vec3, 3>& tb = leaf_b.v[k];
+          const Real reach = ra + leaf_b.radius[k];
+          const Vec3 dc = leaf_b.center[k] - ca;
+          const Real dc2 = glm::dot(dc, dc);
+          if (dc2 > reach * reach) {
+            const Real lb = std::sqrt(dc2) - reach;
+            if (lb * lb >= best2) continue;
+            // Projections on the centroid axis and on both face normals bound the distance
+            // much more tightly than the spheres.
+            if (triangle_gap_squared(ta, tb, dc / std::sqrt(dc2)) >= best2) continue;
+          }
           const geometry::ClosestPair cp =
               geometry::closest_points_triangle_triangle(ta[0], ta[1], ta[2], tb[0], tb[1], tb[2]);
           if (cp.distance_squared < best2) {
