@@ -129,7 +129,19 @@ Real box_distance_lower_bound_squared(const RelativeFrame& f, const NodeBox& a, 
     const Real gap = std::abs(tj) - ra - eb[j];
     if (gap > Real(0)) in_b += gap * gap;
   }
-  return std::max(in_a, in_b);
+  Real lb2 = std::max(in_a, in_b);
+  // The axis through the two centres: nearly tight for boxes far apart for their size.
+  const Real dd = glm::dot(d, d);
+  if (dd > Real(0)) {
+    const Real len = std::sqrt(dd);
+    const Vec3 u = d / len;
+    const Real ra = ea[0] * std::abs(u.x) + ea[1] * std::abs(u.y) + ea[2] * std::abs(u.z);
+    Real rb = Real(0);
+    for (int j = 0; j < 3; ++j) rb += eb[j] * std::abs(u.x * r[0][j] + u.y * r[1][j] + u.z * r[2][j]);
+    const Real gap = len - ra - rb;
+    if (gap > Real(0)) lb2 = std::max(lb2, gap * gap);
+  }
+  return lb2;
 }
 
 inline Real extent_sum(const BvhNode& n) {
