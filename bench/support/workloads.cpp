@@ -549,10 +549,10 @@ Result<std::vector<BoxPair>> read_box_pairs(const std::string& path) {
   });
 }
 
-Result<TriangleMesh> read_obj(const std::string& path) {
-  return guarded<TriangleMesh>([&]() -> TriangleMesh {
+Result<ObjMesh> read_obj(const std::string& path) {
+  return guarded<ObjMesh>([&]() -> ObjMesh {
     Source src(path);
-    TriangleMesh mesh;
+    ObjMesh mesh;
     std::string_view line;
     std::vector<std::uint32_t> polygon;
     while (src.next_record(line)) {

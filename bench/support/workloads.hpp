@@ -188,7 +188,7 @@ struct BoxPair {
 
 /// A triangle mesh read from the OBJ subset (0-based indices, counter-clockwise seen from
 /// outside).
-struct TriangleMesh {
+struct ObjMesh {
   std::vector<Vec3d> vertices;                          ///< vertex positions, local frame
   std::vector<std::array<std::uint32_t, 3>> triangles;  ///< vertex indices, 0-based
 };
@@ -314,7 +314,7 @@ Result<std::vector<BoxPair>> read_box_pairs(const std::string& path);
 /// W4 OBJ subset: `v x y z`, `f i j k` (1-based; also `i/t/n` forms, negative relative
 /// indices, polygons fanned into triangles); `vn`, `vt`, `o`, `g`, `s`, `usemtl`, `mtllib`
 /// lines are ignored, any other statement is an error.
-Result<TriangleMesh> read_obj(const std::string& path);
+Result<ObjMesh> read_obj(const std::string& path);
 /// W4 `mesh_poses` (needs count, a, b).
 Result<MeshPoses> read_mesh_poses(const std::string& path);
 /// W5 `rays` (needs count, mesh).

@@ -178,7 +178,7 @@ TEST_F(SharedWorkloads, BoxPairs) {
 
 /// True when every directed edge appears once and its reverse too (closed, consistently
 /// oriented 2-manifold).
-bool closed_and_oriented(const TriangleMesh& mesh) {
+bool closed_and_oriented(const ObjMesh& mesh) {
   std::set<std::pair<std::uint32_t, std::uint32_t>> edges;
   for (const auto& t : mesh.triangles) {
     for (int k = 0; k < 3; ++k) {
