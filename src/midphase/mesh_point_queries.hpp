@@ -1,0 +1,55 @@
+#pragma once
+// Internal: point queries on a triangle mesh given as plain arrays plus its BVH (an empty Bvh
+// means "scan every triangle"), shared by TriangleMesh::contains / closest_point /
+// mass_properties and testable without a TriangleMesh.
+
+#include <proxima/midphase/bvh.hpp>
+#include <proxima/shapes/indexed_mesh.hpp>
+#include <proxima/shapes/mass_properties.hpp>
+#include <proxima/shapes/surface_point.hpp>
+
+#include <array>
+#include <cstdint>
+#include <span>
+
+namespace proxima::detail {
+
+/// The arrays of a mesh the point queries read (all in the mesh's local frame).
+struct MeshView {
+  std::span<const Vec3> vertices;                           ///< positions
+  std::span<const TriangleIndices> triangles;               ///< triangles
+  std::span<const std::array<std::uint32_t, 3>> neighbors;  ///< triangle across edge e (e -> e+1), kNoIndex if none
+  bool closed = false;   ///< closed and outward oriented: distances are signed, contains is exact
+  Real scale = Real(1);  ///< largest extent of the mesh's box (tolerances)
+};
+
+/// Nearest triangle to `point` and the nearest point on it.
+struct MeshClosest {
+  std::uint32_t triangle = 0xffffffffu;  ///< triangle index (kNoIndex when none)
+  Vec3 point{Real(0)};                   ///< nearest surface point
+  Real distance_squared = Real(0);       ///< |point - query|^2
+  Vec3 pseudo_normal{Real(0)};           ///< angle-weighted pseudo-normal of the nearest feature (not unit)
+};
+
+/// Nearest surface point by BVH descent pruned with the current best distance (a linear scan
+/// when `bvh` is empty), with the pseudo-normal of the feature holding it (Baerentzen and
+/// Aanaes 2005). Finite `point` only.
+MeshClosest mesh_closest(const MeshView& mesh, const Bvh& bvh, const Vec3& point);
+
+/// TriangleMesh::closest_point semantics over the arrays.
+SurfacePoint mesh_closest_point(const MeshView& mesh, const Bvh& bvh, const Vec3& point);
+
+/// TriangleMesh::contains semantics: closed meshes by the sign of the pseudo-normal at the
+/// nearest feature (points within the tolerance of the surface count as inside), open ones by
+/// the generalised winding number >= 1/2.
+bool mesh_contains(const MeshView& mesh, const Bvh& bvh, const Vec3& point);
+
+/// Generalised winding number of `point` (Jacobson et al. 2013): the sum of the signed solid
+/// angles of the triangles over 4 pi, in double. O(n).
+double mesh_winding_number(const MeshView& mesh, const Vec3& point);
+
+/// Volume, centroid and inertia of the enclosed solid by the divergence theorem (zero for an
+/// open mesh).
+MassProperties mesh_mass_properties(const MeshView& mesh, Real density);
+
+}  // namespace proxima::detail
