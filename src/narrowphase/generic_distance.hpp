@@ -155,6 +155,28 @@ LocalAnswer solve(const A& a, const B& b, PairSetup<A, B>& setup, const PairRequ
   // Curved shapes converge slowly: a relative 1e-9 of the pair's size is enough in double.
   es.abs_tolerance = std::max(Real(0.1) * setup.tolerance, Real(1e-9) * setup.scale);
   const bool touching = g.simplex.size < 4;
+  const bool polytopes = kIsPolytope<A> && kIsPolytope<B>;
+  // EPA converges only linearly on curved supports: unless its gap is already within
+  // rounding, Newton steps on the support function of D take its normal to the minimum.
+  // The refined support distance is an upper bound of the depth; the witnesses are support
+  // points (combined across an edge or face of D) with point_a - point_b = depth * normal.
+  const auto polish = [&](epa::Result& ep, auto& sa, auto& sb) {
+    if (polytopes || ep.status == epa::Status::Degenerate) return;
+    const Real target = Real(64) * kEpsilon * setup.scale;
+    if (ep.status == epa::Status::Converged && ep.gap <= target) return;
+    // From the normal of EPA's least upper bound (its nearest face's normal may be worse).
+    const epa::Refinement f =
+        epa::refine(sa, sb, ep.upper_normal, setup.scale, std::clamp(request.max_iterations, 1, 96));
+    ep.iterations += f.iterations;
+    // Unconverged, EPA's own answer stands (at its cap: the nearest face, a lower bound).
+    if (!f.converged || !(f.depth <= ep.depth + ep.gap + target)) return;
+    ep.status = epa::Status::Converged;
+    ep.gap = std::max(f.depth - ep.depth, Real(0));
+    ep.depth = f.depth;
+    ep.normal = f.normal;
+    ep.point_a = f.support_a;
+    ep.point_b = f.support_b;
+  };
   const auto inflated_epa = [&]() {
     const Real delta = std::max(Real(1024) * kEpsilon * setup.scale, setup.tolerance);
     InflatedSupport<decltype(setup.support_a)> ia{setup.support_a, delta};
@@ -162,6 +184,7 @@ LocalAnswer solve(const A& a, const B& b, PairSetup<A, B>& setup, const PairRequ
     const gjk::Result gi = gjk::distance(ia, ib, setup.axis, setup.gjk_settings(request));
     ans.iterations += gi.iterations;
     epa::Result ei = epa::penetration(ia, ib, gi.simplex, setup.scale, es);
+    polish(ei, ia, ib);
     if (ei.status != epa::Status::Degenerate) {
       ei.depth -= Real(2) * delta;
       ei.point_a -= delta * ei.normal;
@@ -174,6 +197,7 @@ LocalAnswer solve(const A& a, const B& b, PairSetup<A, B>& setup, const PairRequ
     e = inflated_epa();
   } else {
     e = epa::penetration(setup.support_a, setup.support_b, g.simplex, setup.scale, es);
+    polish(e, setup.support_a, setup.support_b);
     if (e.status == epa::Status::MaxIterations) {
       // Rounding stopped the expansion early: a second polytope, grown on the slightly
       // inflated cores, meets other slivers; keep the answer with the smaller error bound.
@@ -183,7 +207,6 @@ LocalAnswer solve(const A& a, const B& b, PairSetup<A, B>& setup, const PairRequ
     }
   }
   ans.iterations += e.iterations;
-  const bool polytopes = kIsPolytope<A> && kIsPolytope<B>;
   if (e.status == epa::Status::Converged || (e.status == epa::Status::MaxIterations && !polytopes)) {
     ans.normal = e.normal;
     ans.signed_distance = -(e.depth + radii);  // e.depth may be slightly negative when touching

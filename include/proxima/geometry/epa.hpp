@@ -35,7 +35,7 @@ namespace proxima::epa {
 /// How EPA stopped.
 enum class Status : std::uint8_t {
   Converged,      ///< the nearest face is exact within tolerance
-  MaxIterations,  ///< the cap stopped it: depth is an upper bound (nearest face so far)
+  MaxIterations,  ///< the cap stopped it: depth is a lower bound (nearest face so far)
   Degenerate,     ///< D is flat or the polytope could not grow: no answer (fall back)
 };
 
@@ -60,6 +60,7 @@ struct Result {
   Vec3 point_a{Real(0)};                   ///< deepest point of A (common frame)
   Vec3 point_b{Real(0)};                   ///< deepest point of B: point_a - depth * normal
   Real gap = Real(0);                      ///< least support distance seen minus depth: a bound on the depth error
+  Vec3 upper_normal{Real(0), Real(0), Real(1)};  ///< unit normal along which that least support distance was seen
   int iterations = 0;
 };
 
@@ -276,6 +277,8 @@ Result penetration(SupportA& support_a, SupportB& support_b, const gjk::Simplex&
     const Real lb = glm::dot(f.n, glm::cross(c - proj, a - proj)) / den;
     return Vec3(la, lb, Real(1) - la - lb);
   };
+  Real upper = std::numeric_limits<Real>::infinity();  // least support distance seen: depth <= it
+  Vec3 upper_normal(Real(0), Real(0), Real(1));        // ... seen along this normal
   const auto finish = [&](const detail::Face& nearest, Status status, int iterations, Real gap) {
     // The Minkowski difference of polytopes has flat faces that the polytope splits into
     // coplanar triangles: the witness comes from the one that holds the projection.
@@ -315,11 +318,11 @@ Result penetration(SupportA& support_a, SupportB& support_b, const gjk::Simplex&
     r.point_b = la * a.b + lb * b.b + lc * c.b;
     r.iterations = iterations;
     r.gap = gap;
+    r.upper_normal = std::isfinite(upper) ? upper_normal : f.n;
     return r;
   };
 
   std::array<std::array<std::uint16_t, 2>, kMaxFaces> horizon{};
-  Real upper = std::numeric_limits<Real>::infinity();  // least support distance seen: depth <= it
   for (int it = 0;; ++it) {
     int best = -1;
     Real best_d = std::numeric_limits<Real>::infinity();
@@ -337,7 +340,10 @@ Result penetration(SupportA& support_a, SupportB& support_b, const gjk::Simplex&
     const Real dw = glm::dot(closest.n, w.w);
     const Real tol = std::max(
         {settings.abs_tolerance, settings.rel_tolerance * std::max(closest.d, Real(0)), Real(8) * kEpsilon * scale});
-    upper = std::min(upper, dw);
+    if (dw < upper) {
+      upper = dw;
+      upper_normal = closest.n;
+    }
     if (dw - closest.d <= tol) return finish(closest, Status::Converged, it + 1, upper - closest.d);
     const Real loose_tol = std::max(Real(32) * tol, Real(4096) * kEpsilon * scale);
     if (p.nv >= kMaxVertices)
@@ -422,6 +428,267 @@ Result penetration(SupportA& support_a, SupportB& support_b, const gjk::Simplex&
       p.faces[static_cast<std::size_t>(nslot)].adj_edge[2] = 1;
     }
   }
+}
+
+/// Outcome of epa::refine.
+struct Refinement {
+  bool improved = false;                   ///< a normal with a smaller support distance than the start was found
+  bool converged = false;                  ///< the last Newton step changed the support distance by rounding only
+  Real depth = Real(0);                    ///< support distance of D along `normal`: an upper bound of the depth
+  Vec3 normal{Real(0), Real(0), Real(1)};  ///< unit, from A to B
+  Vec3 support_a{Real(0)};                 ///< witness on A: support points of A along normal (tipped), combined
+  Vec3 support_b{Real(0)};   ///< witness on B: the same for B along -normal; support_a - support_b = depth normal
+  Vec3 tangential{Real(0)};  ///< D's support along normal minus depth * normal: 0 at a smooth minimum
+  int iterations = 0;        ///< support-pair queries made
+};
+
+/// Refines a penetration normal on the support function of D = A - B: the depth is the
+/// minimum over unit n of h(n) = n . s_D(n), a smooth function of n where D is strictly
+/// convex, whose gradient on the sphere is the part of s_D(n) across n and whose Hessian is
+/// the support map's Jacobian minus h(n) (estimated by forward differences of the support).
+/// Trust-region Newton iterations from `start_normal`; a step is kept only when it lowers h,
+/// so the answer is an upper bound of the depth no worse than the start. EPA converges only
+/// linearly on curved supports; a few of these steps reach the precision's accuracy. Never
+/// NaN (a start of zero length uses +z). O(max_steps x 3 support queries).
+template <class SupportA, class SupportB>
+Refinement refine(SupportA& support_a, SupportB& support_b, const Vec3& start_normal, Real length_scale,
+                  int max_steps = 96) {
+  Refinement r;
+  const Real scale = std::max(length_scale, std::numeric_limits<Real>::min());
+  const Real l2 = glm::dot(start_normal, start_normal);
+  Vec3 n = l2 > Real(0) && std::isfinite(l2) ? start_normal / std::sqrt(l2) : Vec3(Real(0), Real(0), Real(1));
+  Vec3 a = support_a(n);
+  Vec3 b = support_b(-n);
+  Vec3 p = a - b;
+  Real h = glm::dot(n, p);
+  r.iterations = 1;
+  const Real h_start = h;
+  // Forward-difference step (radians): truncation ~eta against rounding ~eps/eta.
+  const Real eta = Real(4) * std::cbrt(kEpsilon);
+  const Real flat = Real(8) * kEpsilon * scale;  // a change of h within rounding
+  // Stop when no step within the trust radius can lower h by more than this (a kink of h,
+  // where D has an edge or a ruled side, is approached by shrinking the radius).
+  const Real settle = std::sqrt(kEpsilon) * std::sqrt(std::sqrt(kEpsilon)) * scale;
+  Real radius = Real(0.25);  // trust radius (radians)
+  const auto unit = [](const Vec3& v) { return v / std::sqrt(glm::dot(v, v)); };
+  Vec3 t1(Real(0));
+  Vec3 t2(Real(0));
+  Real g1 = Real(0);
+  Real g2 = Real(0);
+  Real h11 = Real(0);
+  Real h12 = Real(0);
+  Real h22 = Real(0);
+  bool fresh = false;     // gradient and Hessian belong to the current n
+  bool steepest = false;  // the next trial is a gradient step (the Newton one failed)
+  for (int step = 0; step < max_steps; ++step) {
+    if (!fresh) {
+      // Tangent basis (Duff et al., "Building an orthonormal basis, revisited", JCGT 2017).
+      const Real sign = std::copysign(Real(1), n.z);
+      const Real q = Real(-1) / (sign + n.z);
+      const Real m = n.x * n.y * q;
+      t1 = Vec3(Real(1) + sign * n.x * n.x * q, sign * m, -sign * n.x);
+      t2 = Vec3(m, sign + n.y * n.y * q, -n.y);
+      g1 = glm::dot(t1, p);
+      g2 = glm::dot(t2, p);
+      if (std::sqrt(g1 * g1 + g2 * g2) <= flat) {
+        r.converged = true;
+        break;
+      }
+      const Vec3 n1 = unit(n + eta * t1);
+      const Vec3 n2 = unit(n + eta * t2);
+      const Vec3 p1 = support_a(n1) - support_b(-n1);
+      const Vec3 p2 = support_a(n2) - support_b(-n2);
+      r.iterations += 2;
+      h11 = glm::dot(t1, p1 - p) / eta - h;
+      h22 = glm::dot(t2, p2 - p) / eta - h;
+      h12 = Real(0.5) * (glm::dot(t2, p1 - p) + glm::dot(t1, p2 - p)) / eta;
+      fresh = true;
+    }
+    // Shift the Hessian to positive definite (Levenberg-Marquardt), solve, clip to the radius.
+    const Real tr = Real(0.5) * (h11 + h22);
+    const Real disc = std::sqrt(Real(0.25) * (h11 - h22) * (h11 - h22) + h12 * h12);
+    const Real lambda_min = tr - disc;
+    const Real floor = Real(1e-3) * std::max(std::abs(tr) + disc, flat);
+    const Real mu = lambda_min < floor ? floor - lambda_min : Real(0);
+    const Real k11 = h11 + mu;
+    const Real k22 = h22 + mu;
+    const Real det = k11 * k22 - h12 * h12;
+    Real d1 = Real(0);
+    Real d2 = Real(0);
+    if (det > Real(0) && std::isfinite(det)) {
+      d1 = -(k22 * g1 - h12 * g2) / det;
+      d2 = -(k11 * g2 - h12 * g1) / det;
+    }
+    const Real gl = std::sqrt(g1 * g1 + g2 * g2);
+    Real len = std::sqrt(d1 * d1 + d2 * d2);
+    // A full Newton step on a positive definite Hessian that predicts no gain beyond
+    // rounding: the smooth minimum is reached.
+    const bool newton_exact = mu == Real(0) && len <= radius && Real(-0.5) * (g1 * d1 + g2 * d2) <= flat;
+    if (steepest || !(len > Real(0)) || !std::isfinite(len)) {  // a gradient step
+      d1 = -g1 / gl * radius;
+      d2 = -g2 / gl * radius;
+      len = radius;
+    } else if (len > radius) {
+      d1 *= radius / len;
+      d2 *= radius / len;
+      len = radius;
+    }
+    const Vec3 n_try = unit(n + d1 * t1 + d2 * t2);
+    const Vec3 a_try = support_a(n_try);
+    const Vec3 b_try = support_b(-n_try);
+    ++r.iterations;
+    const Vec3 p_try = a_try - b_try;
+    const Real h_try = glm::dot(n_try, p_try);
+    if (h_try < h - flat) {  // a gain beyond rounding (on a flat stretch of h, stay put)
+      n = n_try;
+      a = a_try;
+      b = b_try;
+      p = p_try;
+      h = h_try;
+      fresh = false;
+      steepest = false;
+      radius = std::min(Real(0.5), std::max(radius, Real(2) * len));
+    } else if (newton_exact && !steepest) {
+      r.converged = true;
+      break;
+    } else if (!steepest) {
+      steepest = true;  // at a kink of h the Newton model misleads: try the plain gradient
+    } else {
+      steepest = false;
+      radius = Real(0.25) * len;
+      if (radius * scale <= settle) {  // no step within reach can gain more than `settle`
+        r.converged = true;
+        break;
+      }
+    }
+  }
+  r.improved = h < h_start;
+  r.depth = h;
+  r.normal = n;
+  r.tangential = p - h * n;
+  // Witnesses. Where D's support along n is not unique (a face or edge of D: a cylinder's
+  // cap or side against a point), one support point can be anywhere on that feature. The
+  // feature's own support in a tangent direction e is D's support along n tipped by
+  // sqrt(eps) towards e, so a small GJK in the tangent plane finds the feature's point
+  // nearest the line along n; the same convex weights give points of A and B.
+  {
+    const Real sign = std::copysign(Real(1), n.z);
+    const Real q = Real(-1) / (sign + n.z);
+    const Real m = n.x * n.y * q;
+    t1 = Vec3(Real(1) + sign * n.x * n.x * q, sign * m, -sign * n.x);
+    t2 = Vec3(m, sign + n.y * n.y * q, -n.y);
+    const Real tip = std::sqrt(kEpsilon);
+    // Up to three kept points plus one new: support points and tangent coordinates.
+    std::array<Vec3, 4> pa{};
+    std::array<Vec3, 4> pb{};
+    std::array<Real, 4> u{};
+    std::array<Real, 4> v{};
+    std::array<Real, 4> lam{};
+    pa[0] = a;
+    pb[0] = b;
+    u[0] = glm::dot(t1, p);
+    v[0] = glm::dot(t2, p);
+    lam[0] = Real(1);
+    int count = 1;
+    Real mu = u[0];
+    Real mv = v[0];
+    const Real close = Real(4) * kEpsilon * scale;
+    for (int it = 0; it < 16; ++it) {
+      const Real mm = mu * mu + mv * mv;
+      if (std::sqrt(mm) <= close) break;
+      const Real ml = std::sqrt(mm);
+      const Vec3 d = unit(n - tip * (mu / ml * t1 + mv / ml * t2));
+      const Vec3 na = support_a(d);
+      const Vec3 nb = support_b(-d);
+      ++r.iterations;
+      const Vec3 w = na - nb;
+      const Real nu = glm::dot(t1, w);
+      const Real nv = glm::dot(t2, w);
+      if (mm - (mu * nu + mv * nv) <= close * ml) break;  // no progress towards the line
+      const auto k = static_cast<std::size_t>(count);
+      pa[k] = na;
+      pb[k] = nb;
+      u[k] = nu;
+      v[k] = nv;
+      const int total = count + 1;
+      // Smallest-norm point of the hull of the points: vertices, segments, triangles.
+      std::array<Real, 4> best{};
+      Real best_norm = std::numeric_limits<Real>::infinity();
+      const auto consider = [&](const std::array<Real, 4>& l) {
+        Real x = Real(0);
+        Real y = Real(0);
+        for (std::size_t c = 0; c < 4; ++c) {
+          x += l[c] * u[c];
+          y += l[c] * v[c];
+        }
+        const Real nn = x * x + y * y;
+        if (nn < best_norm) {
+          best_norm = nn;
+          best = l;
+        }
+      };
+      for (std::size_t i0 = 0; i0 < static_cast<std::size_t>(total); ++i0) {
+        std::array<Real, 4> w1{};
+        w1[i0] = Real(1);
+        consider(w1);
+        for (std::size_t j0 = i0 + 1; j0 < static_cast<std::size_t>(total); ++j0) {
+          const Real eu = u[j0] - u[i0];
+          const Real ev = v[j0] - v[i0];
+          const Real ee = eu * eu + ev * ev;
+          if (ee > Real(0)) {
+            const Real t = -(u[i0] * eu + v[i0] * ev) / ee;
+            if (t > Real(0) && t < Real(1)) {
+              std::array<Real, 4> w2{};
+              w2[i0] = Real(1) - t;
+              w2[j0] = t;
+              consider(w2);
+            }
+          }
+          for (std::size_t k0 = j0 + 1; k0 < static_cast<std::size_t>(total); ++k0) {
+            const Real den = (u[j0] - u[i0]) * (v[k0] - v[i0]) - (v[j0] - v[i0]) * (u[k0] - u[i0]);
+            if (!(std::abs(den) > Real(0))) continue;
+            const Real li = (u[j0] * v[k0] - v[j0] * u[k0]) / den;
+            const Real lj = (u[k0] * v[i0] - v[k0] * u[i0]) / den;
+            const Real lk = Real(1) - li - lj;
+            if (li >= Real(0) && lj >= Real(0) && lk >= Real(0)) {
+              std::array<Real, 4> w3{};
+              w3[i0] = li;
+              w3[j0] = lj;
+              w3[k0] = lk;
+              consider(w3);
+            }
+          }
+        }
+      }
+      // Keep the points with weight (at most three).
+      count = 0;
+      mu = Real(0);
+      mv = Real(0);
+      for (std::size_t c = 0; c < static_cast<std::size_t>(total); ++c) {
+        if (!(best[c] > Real(0))) continue;
+        const auto o = static_cast<std::size_t>(count++);
+        pa[o] = pa[c];
+        pb[o] = pb[c];
+        u[o] = u[c];
+        v[o] = v[c];
+        lam[o] = best[c];
+        mu += best[c] * u[c];
+        mv += best[c] * v[c];
+      }
+      for (auto c = static_cast<std::size_t>(count); c < 4; ++c) lam[c] = Real(0);
+      if (count >= 3) break;  // the origin's projection is inside a triangle: done
+    }
+    Vec3 wa(Real(0));
+    Vec3 wb(Real(0));
+    for (std::size_t c = 0; c < static_cast<std::size_t>(count); ++c) {
+      wa += lam[c] * pa[c];
+      wb += lam[c] * pb[c];
+    }
+    const Vec3 residual = (wa - wb) - h * n;
+    r.support_a = wa - Real(0.5) * residual;
+    r.support_b = wb + Real(0.5) * residual;
+  }
+  return r;
 }
 
 }  // namespace proxima::epa
