@@ -22,6 +22,18 @@
 //
 // The stack bound: every pop that pushes two pairs goes one level deeper on one side, so at
 // most depth(A) + depth(B) + 1 pairs are ever pending.
+//
+// Penetration: two meshes are surfaces here, so intersecting meshes get signed distance 0
+// (status Touching) with witnesses at a common point of a crossing triangle pair and the
+// normal of A's triangle turned towards B's; no penetration depth is computed.
+//
+// Node type, by measurement on W4 (icosphere 20,480 against torus knot 50,000 triangles,
+// 200 poses): oriented boxes fitted per node (DiTO over the subtree's vertices) cut the
+// distance descent from 4,259 to 1,310 node pairs a query and the time by about 1.8x, the
+// boolean by about 1.7x, but cost 0.9 s to build for both meshes; fitted bottom-up (children's
+// corners) they build in 0.18 s but visit 2,221 pairs and make the boolean slower than the
+// boxes. TriangleMesh stores only its AABB hierarchy, so the AABB nodes are used, with B's
+// nodes tested as oriented boxes in A's frame.
 #include "mesh_mesh.hpp"
 
 #include <proxima/core/tolerance.hpp>
