@@ -153,7 +153,7 @@ GeometryDistance distance_compound(const Compound& a, const Transform& pa, Geome
   stack[top++] = {0, midphase::aabb_gap(nodes[0].bounds(), box)};
   while (top != 0) {
     const Entry e = stack[--top];
-    if (e.gap > bound) continue;
+    if (e.gap > bound && e.gap > Real(0)) continue;  // a box gap bounds gaps, not depths
     const BvhNode& node = nodes[e.node];
     if (node.is_leaf()) {
       for (std::uint32_t s = node.first; s != node.first + node.count; ++s) {
@@ -170,11 +170,11 @@ GeometryDistance distance_compound(const Compound& a, const Transform& pa, Geome
     const std::uint32_t l = node.first, r = node.first + 1;
     const Real gl = midphase::aabb_gap(nodes[l].bounds(), box), gr = midphase::aabb_gap(nodes[r].bounds(), box);
     if (gl <= gr) {
-      if (gr <= bound) stack[top++] = {r, gr};
-      if (gl <= bound) stack[top++] = {l, gl};
+      if (gr <= bound || gr <= Real(0)) stack[top++] = {r, gr};
+      if (gl <= bound || gl <= Real(0)) stack[top++] = {l, gl};
     } else {
-      if (gl <= bound) stack[top++] = {l, gl};
-      if (gr <= bound) stack[top++] = {r, gr};
+      if (gl <= bound || gl <= Real(0)) stack[top++] = {l, gl};
+      if (gr <= bound || gr <= Real(0)) stack[top++] = {r, gr};
     }
   }
   return best;

@@ -14,7 +14,7 @@
 ///     a manifold whose normal is not the triangle's face normal is checked point by point.
 ///     Each contact point on the triangle is classified (barycentric coordinates) as face,
 ///     edge or vertex. On an active (convex or boundary) edge, or a vertex with an active
-///     edge, the contact is real and kept. On an inactive (flat or concave) edge or vertex,
+///     edge anywhere in its fan, the contact is real and kept. On an inactive (flat or concave) edge or vertex,
 ///     the normal is replaced by the face normal and the depth recomputed along it (the
 ///     depth of the shape's support point below the triangle's plane); the corrected contact
 ///     is dropped when a neighbouring triangle sharing its feature's vertices already gave a
@@ -103,6 +103,26 @@ Feature classify(const std::array<Vec3, 3>& v, const Vec3& p) {
   if (zeros >= 2) return {2, !z0 ? 0 : (!z1 ? 1 : 2)};
   // One weight ~0: the edge opposite that vertex. Edge e joins vertex e and e+1.
   return {1, z0 ? 1 : (z1 ? 2 : 0)};
+}
+
+/// True when some edge of the mesh at vertex `vertex` (a corner of triangle `t`) is active:
+/// walks the triangle fan around the vertex through the neighbours (at most 64 steps; an
+/// open fan or a walk that does not close counts as active).
+bool vertex_active(const TriangleMesh& mesh, std::uint32_t t, std::uint32_t vertex) {
+  const auto tris = mesh.triangles();
+  std::uint32_t cur = t;
+  for (int step = 0; step < 64; ++step) {
+    const TriangleIndices& idx = tris[cur];
+    const int j = idx[0] == vertex ? 0 : (idx[1] == vertex ? 1 : 2);
+    if (idx[static_cast<std::size_t>(j)] != vertex) return true;
+    const std::uint8_t bits = mesh.active_edges(cur);
+    if (((bits >> j) & 1u) || ((bits >> ((j + 2) % 3)) & 1u)) return true;
+    const std::uint32_t next = mesh.neighbors(cur)[static_cast<std::size_t>(j)];
+    if (next == kNoIndex) return true;
+    if (next == t) return false;
+    cur = next;
+  }
+  return true;
 }
 
 /// Per-thread scratch for collide_all (grows to the largest query, then allocation-free).
@@ -249,7 +269,7 @@ GeometryDistance mesh_convex_distance(const TriangleMesh& mesh, const Transform&
   stack[top++] = {0, aabb_gap(nodes[0].bounds(), box)};
   while (top != 0) {
     const Entry e = stack[--top];
-    if (e.gap > bound) continue;
+    if (e.gap > bound && e.gap > Real(0)) continue;  // a box gap bounds gaps, not depths
     const BvhNode& node = nodes[e.node];
     if (node.is_leaf()) {
       for (std::uint32_t i = node.first; i != node.first + node.count; ++i) {
@@ -269,11 +289,11 @@ GeometryDistance mesh_convex_distance(const TriangleMesh& mesh, const Transform&
     const std::uint32_t l = node.first, rr = node.first + 1;
     const Real gl = aabb_gap(nodes[l].bounds(), box), gr = aabb_gap(nodes[rr].bounds(), box);
     if (gl <= gr) {  // nearer popped first
-      if (gr <= bound) stack[top++] = {rr, gr};
-      if (gl <= bound) stack[top++] = {l, gl};
+      if (gr <= bound || gr <= Real(0)) stack[top++] = {rr, gr};
+      if (gl <= bound || gl <= Real(0)) stack[top++] = {l, gl};
     } else {
-      if (gl <= bound) stack[top++] = {l, gl};
-      if (gr <= bound) stack[top++] = {rr, gr};
+      if (gl <= bound || gl <= Real(0)) stack[top++] = {l, gl};
+      if (gr <= bound || gr <= Real(0)) stack[top++] = {rr, gr};
     }
   }
   return best;
@@ -290,8 +310,8 @@ void mesh_convex_collide_all(const TriangleMesh& mesh, const Transform& pose_mes
   const Transform rel = relative(pose_mesh, pose_convex);
   const Aabb box = visit_convex(convex, [&](const auto& s) { return s.world_aabb(rel); }).inflated(cd);
   const Vec3 center_local = box.center();
-  // Cosine above which a manifold normal counts as the face normal (about 1.1 degrees).
-  const Real face_cos = Real(0.9998);
+  // Cosine above which a manifold normal counts as the face normal (about 0.1 degree).
+  const Real face_cos = Real(1) - Real(2e-6);
   Scratch& sc = scratch();
   sc.pending.clear();
   sc.voided.clear();
@@ -330,9 +350,8 @@ void mesh_convex_collide_all(const TriangleMesh& mesh, const Transform& pose_mes
             v0 = idx[static_cast<std::size_t>(feat.index)];
             v1 = idx[static_cast<std::size_t>((feat.index + 1) % 3)];
           } else if (feat.kind == 2) {
-            const int prev = (feat.index + 2) % 3;
-            real = ((active >> feat.index) & 1u) || ((active >> prev) & 1u);
             v0 = v1 = idx[static_cast<std::size_t>(feat.index)];
+            real = vertex_active(mesh, t, v0);
           }
           if (real) {
             contacts.push_back(c);
