@@ -12,9 +12,9 @@
 //                floor:   read every box, one key each, radix sort (the least work of a frame)
 //     counters   per_frame (time), pairs (per frame), check (1 when the pair checksum of the
 //                frames run equals the exact reference: the published W1 checksum for full
-//                runs, a double-precision sort-and-sweep otherwise; 2 when it equals the
+//                runs, a double-precision grid search otherwise; 2 when it equals the
 //                reference of the boxes rounded to proxima::Real, which a float build and
-//                Bullet see; 0 otherwise), build_ms (insert all), mem_MB
+//                Bullet see; 0 otherwise), build_ms (insert all, CPU), mem_MB
 //                (peak malloc'd bytes during build + frames, mallinfo2), missing (pairs per
 //                frame that the structure did not report, relative to the reference)
 //
@@ -36,7 +36,14 @@
 #include <proxima/broadphase/loose_octree.hpp>
 #include <proxima/broadphase/uniform_grid.hpp>
 
+#include <csignal>
+#include <ctime>
+#include <fstream>
 #include <malloc.h>
+#include <poll.h>
+#include <sstream>
+#include <sys/wait.h>
+#include <unistd.h>
 #if __has_include(<proxima/broadphase/any_broadphase.hpp>)
 #include <proxima/broadphase/any_broadphase.hpp>
 #define PROXIMA_BENCH_HAVE_REGISTRY 1
@@ -422,27 +429,72 @@ struct Loaded {
   std::map<std::pair<Mode, int>, PairChecksum> reference_real;  // boxes rounded to proxima::Real
 };
 
-/// Sort-and-sweep on x over the boxes rounded to Real (what a float build stores): the
-/// pairs a correct Real-precision broad phase reports.
+/// Every overlapping pair of the boxes (closed, double; rounded to Real first when `round`,
+/// which is what a float build stores) into `sum`, by a uniform grid of cells at least as
+/// large as the largest box: each box tests the boxes whose min corner lies in one of the
+/// 27 cells around its own min corner's cell, larger indices only. O(n + cells + tests),
+/// linear at constant density (a sweep on one axis is O(n^(5/3)) there: 10^10 tests per
+/// frame at 1M boxes, which is why the first 1M runs never finished their reference).
 void add_rounded_pairs(const std::vector<BroadphaseBox>& state, PairChecksum& sum, bool round = true) {
   std::vector<BoxD> boxes;
   boxes_of(state, boxes);
+  const std::size_t n = boxes.size();
+  if (n < 2) return;
+  double mn[3] = {1e300, 1e300, 1e300};
+  double mx[3] = {-1e300, -1e300, -1e300};
+  double extent = 0;
   for (BoxD& b : boxes) {
-    if (!round) break;
     for (int k = 0; k < 3; ++k) {
-      b.lo[k] = double(Real(b.lo[k]));
-      b.hi[k] = double(Real(b.hi[k]));
+      if (round) {
+        b.lo[k] = double(Real(b.lo[k]));
+        b.hi[k] = double(Real(b.hi[k]));
+      }
+      mn[k] = std::min(mn[k], b.lo[k]);
+      mx[k] = std::max(mx[k], b.lo[k]);
+      extent = std::max(extent, b.hi[k] - b.lo[k]);
     }
   }
-  std::vector<std::uint32_t> order(boxes.size());
-  for (std::size_t i = 0; i < order.size(); ++i) order[i] = std::uint32_t(i);
-  std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
-    return boxes[a].lo[0] < boxes[b].lo[0] || (boxes[a].lo[0] == boxes[b].lo[0] && a < b);
-  });
-  for (std::size_t i = 0; i < order.size(); ++i) {
-    const BoxD& a = boxes[order[i]];
-    for (std::size_t j = i + 1; j < order.size() && boxes[order[j]].lo[0] <= a.hi[0]; ++j) {
-      if (overlap_d(a, boxes[order[j]])) sum.add(order[i], order[j], boxes.size());
+  // 1 % margin: a pair's min corners are then cells apart by at most 1 despite rounding.
+  double cell = std::max(extent * 1.01, 1e-300);
+  std::int64_t dims[3];
+  for (;;) {
+    std::int64_t total = 1;
+    for (int k = 0; k < 3; ++k) {
+      dims[k] = std::int64_t(std::min((mx[k] - mn[k]) / cell, 1e9)) + 1;
+      total = total > (std::int64_t(1) << 40) / dims[k] ? (std::int64_t(1) << 40) : total * dims[k];
+    }
+    if (total <= std::int64_t(4 * n + 64)) break;
+    cell *= 1.5;
+  }
+  auto coord = [&](const BoxD& b, int k) {
+    return std::clamp(std::int64_t((b.lo[k] - mn[k]) / cell), std::int64_t(0), dims[k] - 1);
+  };
+  const std::size_t cells = std::size_t(dims[0] * dims[1] * dims[2]);
+  std::vector<std::uint32_t> start(cells + 1, 0);
+  std::vector<std::uint32_t> key(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    key[i] = std::uint32_t((coord(boxes[i], 0) * dims[1] + coord(boxes[i], 1)) * dims[2] + coord(boxes[i], 2));
+    ++start[key[i] + 1];
+  }
+  for (std::size_t c = 0; c < cells; ++c) start[c + 1] += start[c];
+  std::vector<std::uint32_t> items(n);
+  {
+    std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
+    for (std::size_t i = 0; i < n; ++i) items[fill[key[i]]++] = std::uint32_t(i);
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    const BoxD& a = boxes[i];
+    const std::int64_t c0 = coord(a, 0), c1 = coord(a, 1), c2 = coord(a, 2);
+    for (std::int64_t x = std::max<std::int64_t>(c0 - 1, 0); x <= std::min(c0 + 1, dims[0] - 1); ++x) {
+      for (std::int64_t y = std::max<std::int64_t>(c1 - 1, 0); y <= std::min(c1 + 1, dims[1] - 1); ++y) {
+        for (std::int64_t z = std::max<std::int64_t>(c2 - 1, 0); z <= std::min(c2 + 1, dims[2] - 1); ++z) {
+          const std::size_t c = std::size_t((x * dims[1] + y) * dims[2] + z);
+          for (std::uint32_t k = start[c]; k < start[c + 1]; ++k) {
+            const std::uint32_t j = items[k];
+            if (j > i && overlap_d(a, boxes[j])) sum.add(i, j, n);
+          }
+        }
+      }
     }
   }
 }
@@ -526,9 +578,12 @@ void run(benchmark::State& bm, Loaded& w, const Contestant& who, Mode mode, int 
     bm.counters["pairs"] = double(sum.pairs);
   } else {
     boxes_of(state, boxes);
-    const auto t0 = std::chrono::steady_clock::now();
+    // CPU time of the build (the machine may be shared; builds run on one thread).
+    timespec t0{}, t1{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t0);
     runner->build(boxes);
-    build_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t1);
+    build_ms = double(t1.tv_sec - t0.tv_sec) * 1e3 + double(t1.tv_nsec - t0.tv_nsec) * 1e-6;
     peak = heap_bytes();
     int frame = 0;
     for (auto _ : bm) {
@@ -561,38 +616,260 @@ void run(benchmark::State& bm, Loaded& w, const Contestant& who, Mode mode, int 
 /// The floor of a frame: read every box (double to Real, as the updates do), make one 32-bit
 /// key per box (its min x quantised over the world) and radix-sort (key, index) pairs, the
 /// least work of a sort-based broad phase before any overlap test or output.
-void run_floor(benchmark::State& bm, Loaded& w) {
+struct FloorBuffers {
   std::vector<BoxD> boxes;
-  boxes_of(w.workload.boxes, boxes);
-  const std::size_t n = boxes.size();
-  std::vector<Aabb> stored(n);
-  std::vector<std::uint64_t> keys(n);
-  std::vector<std::uint64_t> scratch(n);
+  std::vector<Aabb> stored;
+  std::vector<std::uint64_t> keys;
+  std::vector<std::uint64_t> scratch;
+};
+
+void floor_pass(const Loaded& w, FloorBuffers& f) {
+  const std::size_t n = f.boxes.size();
   const double scale = 4294967295.0 / std::max(1e-30, (w.workload.hi - w.workload.lo) * 1.25);
-  for (auto _ : bm) {
-    for (std::size_t i = 0; i < n; ++i) stored[i] = to_aabb(boxes[i]);
-    for (std::size_t i = 0; i < n; ++i) {
-      const double x = std::clamp((double(stored[i].min.x) - w.workload.lo) * scale + 1e8, 0.0, 4294967295.0);
-      keys[i] = (std::uint64_t(x) << 32) | i;
-    }
-    std::uint64_t* src = keys.data();
-    std::uint64_t* dst = scratch.data();
-    for (int shift = 32; shift < 64; shift += 11) {
-      std::size_t count[2048] = {};
-      for (std::size_t i = 0; i < n; ++i) ++count[(src[i] >> shift) & 2047];
-      std::size_t sum = 0;
-      for (std::size_t& c : count) {
-        const std::size_t v = c;
-        c = sum;
-        sum += v;
-      }
-      for (std::size_t i = 0; i < n; ++i) dst[count[(src[i] >> shift) & 2047]++] = src[i];
-      std::swap(src, dst);
-    }
-    benchmark::DoNotOptimize(src[n / 2]);
+  for (std::size_t i = 0; i < n; ++i) f.stored[i] = to_aabb(f.boxes[i]);
+  for (std::size_t i = 0; i < n; ++i) {
+    const double x = std::clamp((double(f.stored[i].min.x) - w.workload.lo) * scale + 1e8, 0.0, 4294967295.0);
+    f.keys[i] = (std::uint64_t(x) << 32) | i;
   }
-  bm.counters["ns_per_box"] =
-      benchmark::Counter(double(n), benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+  std::uint64_t* src = f.keys.data();
+  std::uint64_t* dst = f.scratch.data();
+  for (int shift = 32; shift < 64; shift += 11) {
+    std::size_t count[2048] = {};
+    for (std::size_t i = 0; i < n; ++i) ++count[(src[i] >> shift) & 2047];
+    std::size_t sum = 0;
+    for (std::size_t& c : count) {
+      const std::size_t v = c;
+      c = sum;
+      sum += v;
+    }
+    for (std::size_t i = 0; i < n; ++i) dst[count[(src[i] >> shift) & 2047]++] = src[i];
+    std::swap(src, dst);
+  }
+  benchmark::DoNotOptimize(src[n / 2]);
+}
+
+FloorBuffers floor_buffers(const Loaded& w) {
+  FloorBuffers f;
+  boxes_of(w.workload.boxes, f.boxes);
+  f.stored.resize(f.boxes.size());
+  f.keys.resize(f.boxes.size());
+  f.scratch.resize(f.boxes.size());
+  return f;
+}
+
+void run_floor(benchmark::State& bm, Loaded& w) {
+  FloorBuffers f = floor_buffers(w);
+  for (auto _ : bm) floor_pass(w, f);
+  bm.counters["ns_per_box"] = benchmark::Counter(
+      double(f.boxes.size()), benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+}
+
+/// CPU seconds of this process (all threads).
+double process_cpu_s() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
+}
+
+double wall_s() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
+
+/// CPU seconds (user + system) used so far by child process `pid`, from /proc (0 if gone).
+double child_cpu_s(pid_t pid) {
+  std::ifstream in("/proc/" + std::to_string(pid) + "/stat");
+  std::string text;
+  std::getline(in, text);
+  const std::size_t close = text.rfind(')');
+  if (close == std::string::npos) return 0;
+  std::istringstream f(text.substr(close + 2));
+  std::string field;
+  double user = 0, system = 0;
+  for (int k = 3; k <= 15 && (f >> field); ++k) {
+    if (k == 14) user = std::stod(field);
+    if (k == 15) system = std::stod(field);
+  }
+  return (user + system) / double(sysconf(_SC_CLK_TCK));
+}
+
+/// Large-workload runs (--large=FILE): each structure and peer runs `frames` frames in a
+/// forked child under a time budget, so that a structure far too slow at this size is
+/// stopped and recorded as such ("> X s") instead of holding the whole run. The child
+/// reports over a pipe, one line per step:
+///   build <wall ms> <cpu ms>  |  frame <cpu ms> <wall ms> <pairs>  |  end <check> <mem MB>
+/// The budget is CPU time. The child stops by itself after the frame during which the budget
+/// ran out; the parent kills it 5 CPU seconds after the budget (a build or a frame that
+/// alone takes longer) or after 4 budgets of wall time.
+void large_child(int fd, Loaded& w, const Contestant& who, int threads, int frames, double budget_s,
+                 const std::vector<PairChecksum>& exact, const std::vector<PairChecksum>& rounded) {
+  auto say = [fd](const std::string& line) {
+    const std::string text = line + "\n";
+    if (write(fd, text.data(), text.size()) < 0) _exit(3);
+  };
+  const double start = wall_s();
+  const double cpu_start = process_cpu_s();
+  const std::size_t heap0 = heap_bytes();
+  std::vector<BroadphaseBox> state = w.workload.boxes;
+  std::vector<BoxD> boxes;
+  std::vector<std::uint32_t> moved;
+  boxes_of(state, boxes);
+  std::unique_ptr<Runner> runner = who.make(threads);
+  const double c0 = process_cpu_s();
+  runner->build(boxes);
+  const double c1 = process_cpu_s();
+  say("build " + std::to_string((wall_s() - start) * 1e3) + " " + std::to_string((c1 - c0) * 1e3));
+  std::size_t peak = heap_bytes();
+  PairChecksum sum;
+  int done = 0;
+  for (int f = 0; f < frames; ++f) {
+    advance(w, state, Mode::Frame, moved);
+    boxes_of(state, boxes);
+    const double a0 = process_cpu_s();
+    const double b0 = wall_s();
+    runner->update(boxes, moved);
+    runner->find_pairs();
+    const double a1 = process_cpu_s();
+    const double b1 = wall_s();
+    PairChecksum frame_sum;
+    for (const ProxyPair& p : runner->pairs()) frame_sum.add(p.lo, p.hi, state.size());
+    sum.merge(frame_sum);
+    peak = std::max(peak, heap_bytes());
+    ++done;
+    say("frame " + std::to_string((a1 - a0) * 1e3) + " " + std::to_string((b1 - b0) * 1e3) + " " +
+        std::to_string(frame_sum.pairs));
+    if (process_cpu_s() - cpu_start > budget_s) break;
+  }
+  const int check = sum == exact[std::size_t(done)] ? 1 : (sum == rounded[std::size_t(done)] ? 2 : 0);
+  say("end " + std::to_string(check) + " " + std::to_string(double(peak > heap0 ? peak - heap0 : 0) / 1e6) + " " +
+      std::to_string((double(exact[std::size_t(done)].pairs) - double(sum.pairs)) / double(std::max(1, done))));
+}
+
+/// Runs every contestant on one large file (see large_child) and appends one JSON object per
+/// run, in Google Benchmark's layout plus `frames_done` and `over_budget` (1: stopped by the
+/// budget; cpu_time is then a lower bound when no frame finished).
+void run_large(Loaded& w, int frames, double budget_s, const std::string& only, std::vector<std::string>& json) {
+  frames = std::min(frames, w.frames);
+  // Cumulative references after 0..frames frames (a stopped run is checked on its frames).
+  std::vector<PairChecksum> exact(1), rounded(1);
+  {
+    const double t0 = wall_s();
+    std::vector<BroadphaseBox> state = w.workload.boxes;
+    std::vector<std::uint32_t> moved;
+    for (int f = 0; f < frames; ++f) {
+      advance(w, state, Mode::Frame, moved);
+      PairChecksum e = exact.back(), r = rounded.back();
+      add_rounded_pairs(state, e, false);
+      add_rounded_pairs(state, r, true);
+      exact.push_back(e);
+      rounded.push_back(r);
+    }
+    std::cerr << w.name << ": reference of " << frames << " frames in " << (wall_s() - t0) << " s, "
+              << double(exact.back().pairs) / frames << " pairs per frame\n";
+  }
+  {
+    // The floor at this size (see run_floor): 3 passes, the fastest kept.
+    FloorBuffers f = floor_buffers(w);
+    double best = 1e300;
+    for (int k = 0; k < 3; ++k) {
+      const double c0 = process_cpu_s();
+      floor_pass(w, f);
+      best = std::min(best, process_cpu_s() - c0);
+    }
+    std::ostringstream o;
+    o << "{\"name\": \"BroadPhase/" << w.name << "/floor\", \"run_type\": \"iteration\", \"iterations\": 3"
+      << ", \"real_time\": " << best * 1e3 << ", \"cpu_time\": " << best * 1e3 << ", \"time_unit\": \"ms\"}";
+    json.push_back(o.str());
+  }
+  for (const Contestant& c : contestants()) {
+    if (!only.empty() && ("," + only + ",").find("," + c.name + ",") == std::string::npos) continue;
+    bool one_thread_over = false;
+    for (const int threads : {1, 2}) {
+      // Two threads only where one thread finished within the budget.
+      if (threads == 2 && (!c.threaded || one_thread_over)) continue;
+      int fds[2];
+      if (pipe(fds) != 0) throw std::runtime_error("pipe");
+      std::cout.flush();
+      std::cerr.flush();
+      const pid_t pid = fork();
+      if (pid == 0) {
+        close(fds[0]);
+        try {
+          large_child(fds[1], w, c, threads, frames, budget_s, exact, rounded);
+        } catch (const std::exception& e) {
+          std::cerr << c.name << ": " << e.what() << "\n";
+          _exit(2);
+        }
+        _exit(0);
+      }
+      close(fds[1]);
+      const double start = wall_s();
+      std::string text;
+      bool killed = false;
+      double child_cpu = 0;
+      for (;;) {
+        // The budget is CPU time (the machine may be shared): the child's CPU time is read
+        // from /proc; it is killed once over budget + 5 s, or after 4 budgets of wall time.
+        child_cpu = child_cpu_s(pid);
+        const double left = std::min(budget_s + 5 - child_cpu, 4 * budget_s - (wall_s() - start));
+        if (left <= 0) {
+          kill(pid, SIGKILL);
+          killed = true;
+          break;
+        }
+        pollfd p{fds[0], POLLIN, 0};
+        if (poll(&p, 1, int(std::min(left, 1.0) * 1000) + 1) > 0) {
+          char buf[4096];
+          const ssize_t got = read(fds[0], buf, sizeof buf);
+          if (got <= 0) break;
+          text.append(buf, std::size_t(got));
+        }
+      }
+      close(fds[0]);
+      int status = 0;
+      waitpid(pid, &status, 0);
+      const double elapsed = wall_s() - start;
+      // Parse the child's lines.
+      double build_ms = -1, build_cpu = -1, cpu = 0, wall = 0, pairs = 0, mem = 0, missing = 0;
+      int done = 0, check = -1;
+      std::istringstream in(text);
+      std::string line;
+      while (std::getline(in, line)) {
+        std::istringstream f(line);
+        std::string tag;
+        f >> tag;
+        if (tag == "build") f >> build_ms >> build_cpu;
+        if (tag == "frame") {
+          double a = 0, b = 0, p = 0;
+          f >> a >> b >> p;
+          cpu += a;
+          wall += b;
+          pairs += p;
+          ++done;
+        }
+        if (tag == "end") f >> check >> mem >> missing;
+      }
+      const bool over = killed || done < frames;
+      if (threads == 1) one_thread_over = over;
+      double cpu_ms = done > 0 ? cpu / done : 0;
+      double wall_ms = done > 0 ? wall / done : 0;
+      if (done == 0) {
+        // No frame finished: the frame took at least the CPU time left after the build.
+        cpu_ms = (child_cpu - std::max(0.0, build_cpu) / 1e3) * 1e3;
+        wall_ms = (elapsed - std::max(0.0, build_ms) / 1e3) * 1e3;
+      }
+      std::string name = "BroadPhase/" + w.name + "/frame/" + c.name;
+      if (threads == 2) name += "/threads:2";
+      std::ostringstream o;
+      o << "{\"name\": \"" << name << "\", \"run_type\": \"iteration\", \"iterations\": " << done
+        << ", \"real_time\": " << wall_ms << ", \"cpu_time\": " << cpu_ms << ", \"time_unit\": \"ms\""
+        << ", \"build_ms\": " << (build_ms < 0 ? elapsed * 1e3 : build_ms)
+        << ", \"build_cpu_ms\": " << (build_cpu < 0 ? child_cpu * 1e3 : build_cpu)
+        << ", \"build_done\": " << (build_ms >= 0) << ", \"pairs\": " << (done > 0 ? pairs / done : 0)
+        << ", \"check\": " << check << ", \"mem_MB\": " << mem << ", \"missing\": " << missing
+        << ", \"frames_done\": " << done << ", \"over_budget\": " << int(over) << ", \"budget_s\": " << budget_s
+        << ", \"label\": \"" << (c.peer ? "peer" : "proxima") << "\"}";
+      json.push_back(o.str());
+      std::cout << o.str() << std::endl;
+    }
+  }
 }
 
 std::vector<std::unique_ptr<Loaded>> g_loaded;
@@ -602,12 +879,11 @@ std::string short_name(const std::string& name) {
   return name.rfind(prefix, 0) == 0 ? name.substr(prefix.size()) : name;
 }
 
-bool register_all(const std::string& dir, const std::vector<std::string>& large, bool large_peers) {
+bool register_all(const std::string& dir) {
   std::vector<std::string> files;
   for (const char* f : {"broadphase_uniform_10k.txt", "broadphase_uniform_100k.txt", "broadphase_clustered_100k.txt"}) {
     files.push_back(proxima::bench::workload_path(dir, f));
   }
-  files.insert(files.end(), large.begin(), large.end());
   const auto who = contestants();
   for (const std::string& path : files) {
     auto read = proxima::bench::read_broadphase(path);
@@ -628,20 +904,11 @@ bool register_all(const std::string& dir, const std::vector<std::string>& large,
           if (threads == 2 && (!c.threaded || mode == Mode::Moving10)) continue;
           std::string name = "BroadPhase/" + lw->name + "/" + mode_name + "/" + c.name;
           if (threads == 2) name += "/threads:2";
-          // The peers' slow cases: bt32BitAxisSweep3 inserts one box at a time into sorted
-          // arrays (6 s for 10k boxes, quadratic): 10k only. Everyone runs 20 frames at
-          // >= 100k boxes and 10 at >= 500k (checksums against references of those frames).
+          // bt32BitAxisSweep3 inserts one box at a time into sorted arrays (1.5 s of CPU
+          // for 10k boxes, quadratic): 10k only here; the --large runs try it under a budget.
           const std::size_t n = lw->workload.boxes.size();
           if (c.name == "bullet_axis_sweep" && n > 20000) continue;
-          if (c.peer && n >= 500000 && !large_peers) continue;
-          // At >= 500k boxes: frame and one-shot only, without the structures meant for
-          // other cases (BSP: static geometry; quadtree: flat worlds) or too slow there.
-          if (n >= 500000 && (mode == Mode::Moving10 || c.name == "bsp" || c.name == "quadtree" || c.name == "octree" ||
-                              c.name == "kdtree")) {
-            continue;
-          }
-          const int frames =
-              n >= 500000 ? std::min(10, lw->frames) : (n >= 100000 ? std::min(20, lw->frames) : lw->frames);
+          const int frames = n >= 100000 ? std::min(20, lw->frames) : lw->frames;
           auto* b = benchmark::RegisterBenchmark(name.c_str(), [lw, c, mode, threads, frames](benchmark::State& s) {
             run(s, *lw, c, mode, threads, frames);
           });
@@ -657,22 +924,55 @@ bool register_all(const std::string& dir, const std::vector<std::string>& large,
 }  // namespace
 
 int main(int argc, char** argv) {
-  // --large=FILE (repeatable): more W1 files, e.g. 1M boxes from proxima_make_workload;
-  // --large-peers: also run the peers on files of >= 500k boxes (slow).
+  // --large=FILE (repeatable): W1 files of any size (e.g. 1M boxes from
+  // proxima_make_workload), every structure and peer run in a child process under a budget
+  // (run_large); --large-frames=N (default 5), --large-budget=S seconds per run (default 60),
+  // --large-only=a,b (those contestants only), --large-out=FILE (JSON, default
+  // bench_broadphase_large.json); with any --large the Google Benchmark runs on the shared
+  // files are skipped unless --standard is given too.
   std::vector<std::string> large;
-  bool large_peers = false;
+  int large_frames = 5;
+  double budget = 60;
+  std::string only;
+  std::string large_out = "bench_broadphase_large.json";
+  bool standard = false;
   int kept = 1;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     if (arg.rfind("--large=", 0) == 0) {
       large.push_back(arg.substr(8));
-    } else if (arg == "--large-peers") {
-      large_peers = true;
+    } else if (arg.rfind("--large-frames=", 0) == 0) {
+      large_frames = std::stoi(arg.substr(15));
+    } else if (arg.rfind("--large-budget=", 0) == 0) {
+      budget = std::stod(arg.substr(15));
+    } else if (arg.rfind("--large-only=", 0) == 0) {
+      only = arg.substr(13);
+    } else if (arg.rfind("--large-out=", 0) == 0) {
+      large_out = arg.substr(12);
+    } else if (arg == "--standard") {
+      standard = true;
     } else {
       argv[kept++] = argv[i];
     }
   }
   argc = kept;
-  return proxima::bench::run_benchmarks(argc, argv,
-                                        [&](const std::string& dir) { return register_all(dir, large, large_peers); });
+  if (!large.empty()) {
+    std::vector<std::string> json;
+    for (const std::string& path : large) {
+      auto read = proxima::bench::read_broadphase(path);
+      if (!read) return proxima::bench::report_load_error(read.error()) ? 0 : 1;
+      Loaded w;
+      w.workload = std::move(*read);
+      w.name = short_name(w.workload.name);
+      w.frames = w.workload.frames;
+      run_large(w, large_frames, budget, only, json);
+    }
+    std::ofstream out(large_out);
+    out << "{\"context\": {\"large_frames\": " << large_frames << ", \"budget_s\": " << budget
+        << ", \"proxima_real\": \"" << (sizeof(Real) == 4 ? "float" : "double") << "\"},\n \"benchmarks\": [\n";
+    for (std::size_t i = 0; i < json.size(); ++i) out << "  " << json[i] << (i + 1 < json.size() ? ",\n" : "\n");
+    out << "]}\n";
+    if (!standard) return 0;
+  }
+  return proxima::bench::run_benchmarks(argc, argv, [&](const std::string& dir) { return register_all(dir); });
 }

@@ -2,7 +2,9 @@
 """Turns proxima_bench_broadphase JSON output into the tables of bench/RESULTS.md and the
 data file of bench/plot_broadphase.gp (time per frame against N, uniform workloads).
 
-usage: broadphase_results.py RESULTS.json|CONSOLE.txt OUT_DIR
+usage: broadphase_results.py RESULTS.json|CONSOLE.txt [MORE.json ...] OUT_DIR
+(several inputs are merged, e.g. the Google Benchmark JSON of the shared files and the
+--large-out JSON of the 1M runs; a later input replaces an earlier row of the same name)
 writes OUT_DIR/broadphase_tables.md and OUT_DIR/broadphase_vs_n.dat
 """
 import json
@@ -39,8 +41,11 @@ def read_console(path):
     return {"benchmarks": benchmarks}
 
 
-data = read_console(sys.argv[1]) if sys.argv[1].endswith(".txt") else json.load(open(sys.argv[1]))
-out_dir = sys.argv[2]
+data = {"benchmarks": []}
+for path in sys.argv[1:-1]:
+    part = read_console(path) if path.endswith(".txt") else json.load(open(path))
+    data["benchmarks"] += part["benchmarks"]
+out_dir = sys.argv[-1]
 rows = {}
 for b in data["benchmarks"]:
     parts = b["name"].split("/")
@@ -72,7 +77,16 @@ def wall(b):
 
 
 def cell(b):
-    return "%.3g" % ms(b) if b else "-"
+    if not b:
+        return "-"
+    if b.get("over_budget"):
+        # Stopped by the per-run budget of the --large runs.
+        if not b.get("build_done", 1):
+            return "build > %.0f s (stopped)" % (b.get("build_cpu_ms", b["build_ms"]) / 1e3)
+        if b.get("frames_done", 0) == 0:
+            return "> %.3g s/frame (stopped)" % (ms(b) / 1e3)
+        return "%.3g (%d frames in budget)" % (ms(b), b["frames_done"])
+    return "%.3g" % ms(b)
 
 
 lines = []
@@ -106,7 +120,7 @@ for mode, title in [("frame", "Time per frame (ms): update every box + all pairs
                 cells.append("-")
                 continue
             text = cell(b)
-            if s in peers and best[w]:
+            if s in peers and best[w] and not b.get("over_budget"):
                 text += " (%.1fx)" % (ms(b) / best[w])
             b2 = rows.get((w, mode, s, 2))
             if b2:
@@ -116,6 +130,8 @@ for mode, title in [("frame", "Time per frame (ms): update every box + all pairs
         if all(c == "-" for c in cells):
             continue
         lines.append("| " + name + " | " + " | ".join(cells) + " |")
+    if mode == "frame":
+        lines.append("| brute | " + " | ".join("skipped, O(n^2)" for w in workloads) + " |")
     lines.append("")
 
 lines.append("#### Frame mode details: pairs per frame, checksum, build time (ms), peak heap (MB)\n")
@@ -129,7 +145,12 @@ for s in structures:
             cells.append("-")
             continue
         c = int(b.get("check", -1))
-        text = "%.0f, %s, %.3g, %.3g" % (b.get("pairs", 0), check_text.get(c, "?"), b.get("build_ms", 0), b.get("mem_MB", 0))
+        if not b.get("build_done", 1):
+            cells.append("build > %.0f s (stopped)" % (b.get("build_cpu_ms", b["build_ms"]) / 1e3))
+            continue
+        text = "%.0f, %s, %.3g, %.3g" % (b.get("pairs", 0), check_text.get(c, "?"), b.get("build_cpu_ms", b.get("build_ms", 0)), b.get("mem_MB", 0))
+        if b.get("over_budget"):
+            text += ", %d frames" % b.get("frames_done", 0)
         if b.get("missing", 0) > 0.001:
             text += ", misses %.2f/frame" % b["missing"]
         cells.append(text)
@@ -148,6 +169,7 @@ with open(out_dir + "/broadphase_vs_n.dat", "w") as f:
         vals = []
         for s in cols:
             b = rows.get((w, "frame", s, 1))
-            vals.append("%.6g" % ms(b) if b else "NaN")
+            ok = b and not (b.get("over_budget") and b.get("frames_done", 0) == 0)
+            vals.append("%.6g" % ms(b) if ok else "NaN")
         f.write(str(n) + " " + " ".join(vals) + "\n")
 print("columns:", " ".join(cols))

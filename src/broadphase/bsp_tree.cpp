@@ -17,8 +17,9 @@
 ///    and go behind when the query's projection reaches back_max, in front when it reaches
 ///    front_min. Rays prune by the subtree boxes.
 /// 5. find_pairs: rebuild when the search work grew past rebuild_work times its value after
-///    the last build, when edits accumulated, or when a leaf overflowed; one box query per
-///    Moving proxy; moving-moving pairs kept when the other id is larger; radix-sorted.
+///    the last build, when edits accumulated, or when a leaf overflowed; then the tree against
+///    itself (tree_pair_descent.hpp: simultaneous descent on the subtree boxes, Ericson
+///    6.5.3), each pair met once; radix-sorted.
 /// References: H. Fuchs, Z. Kedem, B. Naylor, "On visible surface generation by a priori tree
 /// structures", SIGGRAPH 1980; C. Ericson, Real-Time Collision Detection, chapter 8 (BSP trees)
 /// and 7.3.
@@ -29,10 +30,10 @@
 #include <proxima/geometry/raycast.hpp>
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <limits>
 
+#include "broadphase/tree_pair_descent.hpp"
 #include "broadphase/tree_support.hpp"
 
 namespace proxima {
@@ -394,6 +395,31 @@ void BspTree::query_ray(const Ray& ray, Real max_t, const RayQueryCallback& on_r
 
 // ---- pairs ------------------------------------------------------------------------------------
 
+/// The tree for detail::TreePairDescent: proxies at any node, subtree boxes `bounds`.
+struct BspTree::DescentView {
+  const BspTree& t;
+  std::uint32_t root() const { return 0; }
+  const Aabb& bounds(std::uint32_t n) const { return t.nodes_[n].bounds; }
+  template <class F>
+  void children(std::uint32_t n, F f) const {
+    const Node& node = t.nodes_[n];
+    if (!node.internal()) return;
+    f(node.back);
+    f(node.front);
+    if (node.middle != kNull) f(node.middle);
+  }
+  std::size_t item_count(std::uint32_t n) const { return t.nodes_[n].items.size(); }
+  template <class F>
+  void items(std::uint32_t n, F f) const {
+    for (const ProxyId id : t.nodes_[n].items) f(t.proxies_[id].box, id);
+  }
+  bool accept(ProxyId a, ProxyId b) const {
+    const Proxy& p = t.proxies_[a];
+    const Proxy& q = t.proxies_[b];
+    return (p.kind == ProxyKind::Moving || q.kind == ProxyKind::Moving) && can_pair(p.filter, q.filter);
+  }
+};
+
 void BspTree::find_pairs(std::vector<ProxyPair>& out, unsigned threads) {
   out.clear();
   bool rebuilt = false;
@@ -402,29 +428,10 @@ void BspTree::find_pairs(std::vector<ProxyPair>& out, unsigned threads) {
     rebuild();
     rebuilt = true;
   }
-  std::atomic<std::uint64_t> visited{0};
-  std::atomic<std::uint64_t> tested{0};
-  parallel_pair_chunks(proxies_.size(), threads, out,
-                       [&](std::size_t begin, std::size_t end, std::vector<ProxyPair>& list) {
-                         BroadPhaseStats local;
-                         for (std::size_t i = begin; i < end; ++i) {
-                           const Proxy& p = proxies_[i];
-                           if (p.node == kNull || p.kind != ProxyKind::Moving) continue;
-                           const auto self = static_cast<ProxyId>(i);
-                           visit_box(p.box, local, [&](ProxyId other) {
-                             if (other == self) return true;
-                             const Proxy& q = proxies_[other];
-                             if (q.kind == ProxyKind::Moving && other < self) return true;
-                             if (can_pair(p.filter, q.filter))
-                               list.push_back(self < other ? ProxyPair{self, other} : ProxyPair{other, self});
-                             return true;
-                           });
-                         }
-                         visited.fetch_add(local.nodes_visited, std::memory_order_relaxed);
-                         tested.fetch_add(local.pairs_tested, std::memory_order_relaxed);
-                       });
+  BroadPhaseStats found;
+  if (!nodes_.empty()) detail::descend_pairs(DescentView{*this}, threads, out, found);
   sort_pairs(out, sort_scratch_);
-  const BroadPhaseStats st{visited.load(), tested.load(), out.size()};
+  const BroadPhaseStats st{found.nodes_visited, found.pairs_tested, out.size()};
   stats_ = st;
   // Quality watch: the work of the first pair search after a build is the baseline; when the
   // work grows past rebuild_work times it (plus slack for the pairs themselves), the next

@@ -11,8 +11,9 @@
 /// 4. queries descend into the left child when the query reaches below clip_left and into the
 ///    right child when it reaches above clip_right; leaves test the records' boxes.
 /// 5. find_pairs: rebuild if needed (pending inserts, many removals, degraded slabs), else exact
-///    refit; one box query per Moving record; moving-moving pairs kept when the other id is
-///    larger; radix-sorted.
+///    refit (which also stores every subtree's box); then the tree against itself
+///    (tree_pair_descent.hpp: simultaneous descent on the subtree boxes, Ericson 6.5.3);
+///    radix-sorted.
 /// References: C. Wächter, A. Keller, "Instant ray tracing: the bounding interval hierarchy",
 /// EGSR 2006; C. Ericson, Real-Time Collision Detection, 7.3 (k-d trees).
 
@@ -22,8 +23,8 @@
 #include <proxima/geometry/raycast.hpp>
 
 #include <algorithm>
-#include <atomic>
 
+#include "broadphase/tree_pair_descent.hpp"
 #include "broadphase/tree_support.hpp"
 
 namespace proxima {
@@ -73,11 +74,13 @@ std::uint32_t KdTree::build(std::uint32_t begin, std::uint32_t end, std::uint32_
 
 Aabb KdTree::refit(std::uint32_t node, double& overlap_sum, std::size_t& internal_count) {
   Node& n = nodes_[node];
+  if (bounds_.size() != nodes_.size()) bounds_.resize(nodes_.size());
   if (n.leaf) {
     Aabb box = Aabb::empty();
     for (std::uint32_t i = n.begin; i < n.begin + n.count; ++i) {
       if (records_[i].id != kDead) box.grow(records_[i].box);
     }
+    bounds_[node] = box;
     return box;
   }
   const Aabb left = refit(node + 1, overlap_sum, internal_count);
@@ -92,7 +95,8 @@ Aabb KdTree::refit(std::uint32_t node, double& overlap_sum, std::size_t& interna
     if (width > 0 && overlap > 0) overlap_sum += std::min(1.0, overlap / width);
     ++internal_count;
   }
-  return merge(left, right);
+  bounds_[node] = merge(left, right);
+  return bounds_[node];
 }
 
 void KdTree::widen(std::uint32_t leaf, const Aabb& box) {
@@ -315,6 +319,32 @@ void KdTree::query_ray(const Ray& ray, Real max_t, const RayQueryCallback& on_ra
 
 // ---- pairs ------------------------------------------------------------------------------------
 
+/// The tree for detail::TreePairDescent: records at leaves only, subtree boxes from refit.
+struct KdTree::DescentView {
+  const KdTree& t;
+  std::uint32_t root() const { return 0; }
+  const Aabb& bounds(std::uint32_t n) const { return t.bounds_[n]; }
+  template <class F>
+  void children(std::uint32_t n, F f) const {
+    if (t.nodes_[n].leaf) return;
+    f(n + 1);
+    f(t.nodes_[n].right);
+  }
+  std::size_t item_count(std::uint32_t n) const { return t.nodes_[n].leaf ? t.nodes_[n].count : 0; }
+  template <class F>
+  void items(std::uint32_t n, F f) const {
+    const Node& node = t.nodes_[n];
+    for (std::uint32_t i = node.begin; i < node.begin + node.count; ++i) {
+      if (t.records_[i].id != kDead) f(t.records_[i].box, t.records_[i].id);
+    }
+  }
+  bool accept(ProxyId a, ProxyId b) const {
+    const Proxy& p = t.proxies_[a];
+    const Proxy& q = t.proxies_[b];
+    return (p.kind == ProxyKind::Moving || q.kind == ProxyKind::Moving) && can_pair(p.filter, q.filter);
+  }
+};
+
 void KdTree::find_pairs(std::vector<ProxyPair>& out, unsigned threads) {
   out.clear();
   if (!pending_.empty() || dead_ * 4 > records_.size() || (nodes_.empty() && count_ > 0)) {
@@ -327,31 +357,10 @@ void KdTree::find_pairs(std::vector<ProxyPair>& out, unsigned threads) {
     const double mean = internal ? sum / static_cast<double>(internal) : 0.0;
     if (mean > build_overlap_ + static_cast<double>(config_.rebuild_overlap)) rebuild();
   }
-  std::atomic<std::uint64_t> visited{0};
-  std::atomic<std::uint64_t> tested{0};
-  parallel_pair_chunks(records_.size(), threads, out,
-                       [&](std::size_t begin, std::size_t end, std::vector<ProxyPair>& list) {
-                         BroadPhaseStats st;
-                         for (std::size_t i = begin; i < end; ++i) {
-                           const Record& r = records_[i];
-                           if (r.id == kDead) continue;
-                           const Proxy& p = proxies_[r.id];
-                           if (p.kind != ProxyKind::Moving) continue;
-                           const ProxyId self = r.id;
-                           visit_box(r.box, st, [&](ProxyId other) {
-                             if (other == self) return true;
-                             const Proxy& q = proxies_[other];
-                             if (q.kind == ProxyKind::Moving && other < self) return true;
-                             if (can_pair(p.filter, q.filter))
-                               list.push_back(self < other ? ProxyPair{self, other} : ProxyPair{other, self});
-                             return true;
-                           });
-                         }
-                         visited.fetch_add(st.nodes_visited, std::memory_order_relaxed);
-                         tested.fetch_add(st.pairs_tested, std::memory_order_relaxed);
-                       });
+  BroadPhaseStats st;
+  if (!nodes_.empty()) detail::descend_pairs(DescentView{*this}, threads, out, st);
   sort_pairs(out, sort_scratch_);
-  stats_ = {visited.load(), tested.load(), out.size()};
+  stats_ = {st.nodes_visited, st.pairs_tested, out.size()};
 }
 
 // ---- inspection -------------------------------------------------------------------------------

@@ -6,12 +6,14 @@
 /// 2. a box goes down the child holding its centre while that child's loose bounds (centre
 /// +- 2 half) contain it, children created on demand; the stored loose bounds are the only
 /// numbers the placement, the pair walk and the queries compare with, so "every box lies in
-/// its node's loose bounds" holds exactly despite rounding; 3. find_pairs walks the tree
-/// depth-first, carrying the ancestors' boxes that overlap the current node's loose bounds;
-/// 4. empty leaves are deleted as boxes leave them.
+/// its node's loose bounds" holds exactly despite rounding; 3. find_pairs gathers the boxes
+/// node by node, fits a tight box to every subtree and descends the tree against itself on
+/// those boxes (Ericson 6.5.3; see the header); 4. empty leaves are deleted as boxes leave
+/// them.
 
 #include <proxima/broadphase/loose_octree.hpp>
 #include <proxima/broadphase/pair_tracker.hpp>
+#include <proxima/broadphase/parallel_pairs.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -283,34 +285,147 @@ void LooseTree<Dim>::rebuild() {
 }
 
 template <int Dim>
-void LooseTree<Dim>::pairs_of(std::size_t begin, std::size_t end, std::vector<std::int32_t>& stack,
-                              std::vector<ProxyPair>& out, BroadPhaseStats& st) const {
-  const auto ids = proxies_.ids();
-  for (std::size_t s = begin; s < end; ++s) {
-    const ProxyId id = ids[s];
-    const detail::ProxyRecord& a = proxies_[id];
-    const Real own_half = nodes_[std::size_t(node_of_[id])].half;
-    stack.clear();
-    stack.push_back(root_);
-    while (!stack.empty()) {
-      const Node& n = nodes_[std::size_t(stack.back())];
-      stack.pop_back();
-      ++st.nodes_visited;
-      if (n.half <= own_half) {
-        // Same depth (equal halves: they are the root's half times exact powers of two):
-        // the larger id reports; deeper nodes: this box reports.
-        const bool same_depth = n.half == own_half;
-        for (std::uint32_t other = n.first; other != kNone; other = next_[other]) {
-          if (same_depth && other <= id) continue;
-          ++st.pairs_tested;
-          const detail::ProxyRecord& b = proxies_[other];
-          if (a.box.overlaps(b.box) && detail::may_pair(a, b)) out.push_back(ordered(id, other));
-        }
-      }
-      for (const std::int32_t child : n.child) {
-        if (child != kNil && nodes_[std::size_t(child)].loose.overlaps(a.box)) stack.push_back(child);
-      }
+void LooseTree<Dim>::gather() {
+  const std::size_t nn = nodes_.size();
+  own_begin_.assign(nn, 0);
+  own_fit_.assign(nn, Aabb::empty());
+  fit_.resize(nn);
+  // Depth-first order from the root; positions of each node's own boxes follow it.
+  order_.clear();
+  order_.push_back(root_);
+  std::uint32_t position = 0;
+  for (std::size_t k = 0; k < order_.size(); ++k) {
+    const Node& n = nodes_[std::size_t(order_[k])];
+    own_begin_[std::size_t(order_[k])] = position;
+    position += n.count;
+    for (const std::int32_t child : n.child) {
+      if (child != kNil) order_.push_back(child);
     }
+  }
+  items_.resize(position);
+  for (const std::int32_t node : order_) {
+    const Node& n = nodes_[std::size_t(node)];
+    std::uint32_t at = own_begin_[std::size_t(node)];
+    Aabb fit = Aabb::empty();
+    for (std::uint32_t id = n.first; id != kNone; id = next_[id]) {
+      const Aabb& box = proxies_[id].box;
+      items_[at++] = {box, id};
+      fit.grow(box);
+    }
+    own_fit_[std::size_t(node)] = fit;
+    if (n.count > 16) {
+      std::sort(items_.begin() + own_begin_[std::size_t(node)], items_.begin() + at,
+                [](const Item& x, const Item& y) { return x.box.min.x < y.box.min.x; });
+    }
+  }
+  // Subtree boxes bottom-up (children come after their parent in order_).
+  for (std::size_t k = order_.size(); k-- > 0;) {
+    const std::int32_t node = order_[k];
+    Aabb fit = own_fit_[std::size_t(node)];
+    for (const std::int32_t child : nodes_[std::size_t(node)].child) {
+      if (child != kNil) fit.grow(fit_[std::size_t(child)]);
+    }
+    fit_[std::size_t(node)] = fit;
+  }
+}
+
+template <int Dim>
+void LooseTree<Dim>::test_items(std::uint32_t begin, std::uint32_t end, std::uint32_t begin2, std::uint32_t end2,
+                                std::vector<ProxyPair>& out, BroadPhaseStats& st) const {
+  for (std::uint32_t i = begin; i < end; ++i) {
+    const Item& a = items_[i];
+    for (std::uint32_t j = begin2; j < end2; ++j) {
+      const Item& b = items_[j];
+      ++st.pairs_tested;
+      if (a.box.overlaps(b.box) && detail::may_pair(proxies_[a.id], proxies_[b.id])) out.push_back(ordered(a.id, b.id));
+    }
+  }
+}
+
+template <int Dim>
+void LooseTree<Dim>::items_vs_subtree(std::uint32_t begin, std::uint32_t end, const Aabb& fit, std::int32_t node,
+                                      std::vector<ProxyPair>& out, BroadPhaseStats& st) const {
+  ++st.nodes_visited;
+  if (!fit.overlaps(fit_[std::size_t(node)])) return;
+  const Node& n = nodes_[std::size_t(node)];
+  if (n.count != 0 && fit.overlaps(own_fit_[std::size_t(node)])) {
+    const std::uint32_t b = own_begin_[std::size_t(node)];
+    test_items(begin, end, b, b + n.count, out, st);
+  }
+  for (const std::int32_t child : n.child) {
+    if (child != kNil) items_vs_subtree(begin, end, fit, child, out, st);
+  }
+}
+
+template <int Dim>
+void LooseTree<Dim>::own_pairs(std::int32_t node, std::vector<ProxyPair>& out, BroadPhaseStats& st) const {
+  const Node& n = nodes_[std::size_t(node)];
+  if (n.count == 0) return;
+  const std::uint32_t begin = own_begin_[std::size_t(node)];
+  const std::uint32_t end = begin + n.count;
+  // Own boxes among themselves: a sweep on x (sorted by gather when more than 16).
+  for (std::uint32_t i = begin; i < end; ++i) {
+    const Item& a = items_[i];
+    for (std::uint32_t j = i + 1; j < end; ++j) {
+      const Item& b = items_[j];
+      if (n.count > 16 && b.box.min.x > a.box.max.x) break;
+      ++st.pairs_tested;
+      if (a.box.overlaps(b.box) && detail::may_pair(proxies_[a.id], proxies_[b.id])) out.push_back(ordered(a.id, b.id));
+    }
+  }
+  for (const std::int32_t child : n.child) {
+    if (child != kNil) items_vs_subtree(begin, end, own_fit_[std::size_t(node)], child, out, st);
+  }
+}
+
+template <int Dim>
+void LooseTree<Dim>::self_pairs(std::int32_t node, std::vector<ProxyPair>& out, BroadPhaseStats& st) const {
+  ++st.nodes_visited;
+  own_pairs(node, out, st);
+  const Node& n = nodes_[std::size_t(node)];
+  for (int i = 0; i < kChildren; ++i) {
+    if (n.child[i] == kNil) continue;
+    self_pairs(n.child[i], out, st);
+    for (int j = i + 1; j < kChildren; ++j) {
+      if (n.child[j] != kNil) cross_pairs(n.child[i], n.child[j], out, st);
+    }
+  }
+}
+
+template <int Dim>
+void LooseTree<Dim>::cross_pairs(std::int32_t a, std::int32_t b, std::vector<ProxyPair>& out,
+                                 BroadPhaseStats& st) const {
+  ++st.nodes_visited;
+  if (!fit_[std::size_t(a)].overlaps(fit_[std::size_t(b)])) return;
+  const Node& na = nodes_[std::size_t(a)];
+  const Node& nb = nodes_[std::size_t(b)];
+  // Own boxes of each against the whole other subtree, then the child pairs.
+  if (na.count != 0) {
+    const std::uint32_t begin = own_begin_[std::size_t(a)];
+    items_vs_subtree(begin, begin + na.count, own_fit_[std::size_t(a)], b, out, st);
+  }
+  if (nb.count != 0) {
+    const std::uint32_t begin = own_begin_[std::size_t(b)];
+    for (const std::int32_t child : na.child) {
+      if (child != kNil) items_vs_subtree(begin, begin + nb.count, own_fit_[std::size_t(b)], child, out, st);
+    }
+  }
+  for (const std::int32_t ca : na.child) {
+    if (ca == kNil || !fit_[std::size_t(ca)].overlaps(fit_[std::size_t(b)])) continue;
+    for (const std::int32_t cb : nb.child) {
+      if (cb != kNil) cross_pairs(ca, cb, out, st);
+    }
+  }
+}
+
+template <int Dim>
+void LooseTree<Dim>::run_task(const Task& task, std::vector<ProxyPair>& out, BroadPhaseStats& st) const {
+  if (task.b == kNil) {
+    self_pairs(task.a, out, st);
+  } else if (task.b == task.a) {
+    own_pairs(task.a, out, st);
+  } else {
+    cross_pairs(task.a, task.b, out, st);
   }
 }
 
@@ -320,26 +435,43 @@ void LooseTree<Dim>::find_pairs(std::vector<ProxyPair>& out) {
   stats_ = {};
   const std::size_t n = proxies_.size();
   if (root_ == kNil || n == 0) return;
+  gather();
   const int threads = std::max(1, std::min(threads_, int(n / 1024) + 1));
   if (threads == 1) {
-    pairs_of(0, n, stack_, out, stats_);
+    self_pairs(root_, out, stats_);
   } else {
-    thread_pairs_.resize(std::size_t(threads));
-    thread_stacks_.resize(std::size_t(threads));
-    std::vector<BroadPhaseStats> st(static_cast<std::size_t>(threads));
-    const auto nt = std::size_t(threads);
-    auto work = [&](std::size_t t) {
-      thread_pairs_[t].clear();
-      pairs_of(n * t / nt, n * (t + 1) / nt, thread_stacks_[t], thread_pairs_[t], st[t]);
-    };
-    std::vector<std::thread> pool;
-    for (std::size_t t = 1; t < nt; ++t) pool.emplace_back(work, t);
-    work(0);
-    for (std::thread& th : pool) th.join();
-    for (std::size_t t = 0; t < nt; ++t) {
-      out.insert(out.end(), thread_pairs_[t].begin(), thread_pairs_[t].end());
-      stats_.nodes_visited += st[t].nodes_visited;
-      stats_.pairs_tested += st[t].pairs_tested;
+    // Split self(root) into tasks (own part, self of each child, cross of each child pair),
+    // then split the self tasks again while there are few tasks.
+    tasks_.assign(1, Task{root_, kNil});
+    for (int round = 0; round < 3 && tasks_.size() < std::size_t(threads) * 16; ++round) {
+      std::vector<Task> next;
+      for (const Task& t : tasks_) {
+        if (t.b != kNil) {
+          next.push_back(t);
+          continue;
+        }
+        const Node& nd = nodes_[std::size_t(t.a)];
+        next.push_back({t.a, t.a});
+        for (int i = 0; i < kChildren; ++i) {
+          if (nd.child[i] == kNil) continue;
+          next.push_back({nd.child[i], kNil});
+          for (int j = i + 1; j < kChildren; ++j) {
+            if (nd.child[j] != kNil) next.push_back({nd.child[i], nd.child[j]});
+          }
+        }
+      }
+      tasks_.swap(next);
+    }
+    std::vector<BroadPhaseStats> st(tasks_.size());
+    parallel_pair_chunks(
+        tasks_.size(), unsigned(threads), out,
+        [&](std::size_t begin, std::size_t end, std::vector<ProxyPair>& part) {
+          for (std::size_t k = begin; k < end; ++k) run_task(tasks_[k], part, st[k]);
+        },
+        1);
+    for (const BroadPhaseStats& s : st) {
+      stats_.nodes_visited += s.nodes_visited;
+      stats_.pairs_tested += s.pairs_tested;
     }
   }
   sort_pairs(out, sort_scratch_);
@@ -452,7 +584,8 @@ int LooseTree<Dim>::depth() const {
 template <int Dim>
 std::size_t LooseTree<Dim>::memory_bytes() const {
   return capacity_bytes(node_of_) + capacity_bytes(next_) + capacity_bytes(prev_) + capacity_bytes(nodes_) +
-         capacity_bytes(free_) + capacity_bytes(stack_) + sort_scratch_.keys.capacity() * 16 +
+         capacity_bytes(free_) + capacity_bytes(items_) + capacity_bytes(own_begin_) + capacity_bytes(own_fit_) +
+         capacity_bytes(fit_) + capacity_bytes(order_) + sort_scratch_.keys.capacity() * 16 +
          proxies_.size() * (sizeof(detail::ProxyRecord) + sizeof(ProxyId));
 }
 

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <proxima/broadphase/broadphase.hpp>
+#include <proxima/broadphase/proxy_table.hpp>
 #include <proxima/core/tolerance.hpp>
 #include <proxima/geometry/raycast.hpp>
 
@@ -133,6 +134,38 @@ void expect_queries_match(const S& s, const ReferenceScene& ref, Random& rng, Re
       if (const auto hit = geometry::ray_aabb(ray, Real(1), p.box)) want_ray[id] = hit->t;
     }
     EXPECT_EQ(got_ray, want_ray);
+  }
+}
+
+/// find_pairs(out, threads) for 1, 2 and 5 threads against an O(n^2) loop on 3000 boxes
+/// (varying sizes, clusters, touching boxes; static boxes and filters included): enough boxes
+/// for the structures' parallel splits.
+template <class Make>
+void expect_threaded_pairs_match_o2_loop(Make make) {
+  for (const SceneKind kind : {SceneKind::Varying, SceneKind::Clustered, SceneKind::Touching}) {
+    auto s = make();
+    Random rng(std::uint64_t(kind) + 40);
+    std::vector<::proxima::detail::ProxyRecord> records;
+    for (ProxyId id = 0; id < 3000; ++id) {
+      ::proxima::detail::ProxyRecord r;
+      r.box = random_box(rng, kind, Real(60));
+      r.kind = rng.integer(0, 4) == 0 ? ProxyKind::Static : ProxyKind::Moving;
+      r.filter = random_filter(rng);
+      records.push_back(r);
+      ASSERT_EQ(s.insert(id, r.box, r.kind, r.filter), BroadPhaseStatus::Ok);
+    }
+    std::vector<ProxyPair> want;
+    for (ProxyId a = 0; a < records.size(); ++a) {
+      for (ProxyId b = a + 1; b < records.size(); ++b) {
+        if (records[a].box.overlaps(records[b].box) && ::proxima::detail::may_pair(records[a], records[b]))
+          want.push_back({a, b});
+      }
+    }
+    for (const unsigned threads : {1u, 2u, 5u}) {
+      std::vector<ProxyPair> got;
+      s.find_pairs(got, threads);
+      EXPECT_EQ(got, want) << "threads " << threads;
+    }
   }
 }
 

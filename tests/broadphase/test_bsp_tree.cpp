@@ -5,6 +5,7 @@
 #include <proxima/broadphase/bsp_tree.hpp>
 
 #include "broadphase/broadphase_scenes.hpp"
+#include "broadphase/structure_checks.hpp"
 #include "broadphase/tree_structure_checks.hpp"
 
 namespace proxima {
@@ -78,6 +79,10 @@ TEST(BspTree, DiagonalWallsUseObliquePlanes) {
 TEST(BspTree, ParallelEqualsSerial) {
   BspTree s;
   test::check_parallel_equals_serial(s, 61);
+}
+
+TEST(BspTree, ThreadedPairsEqualAnO2Loop) {
+  test::expect_threaded_pairs_match_o2_loop([] { return BspTree(); });
 }
 
 }  // namespace

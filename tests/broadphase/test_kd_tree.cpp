@@ -5,6 +5,7 @@
 #include <proxima/broadphase/kd_tree.hpp>
 
 #include "broadphase/broadphase_scenes.hpp"
+#include "broadphase/structure_checks.hpp"
 #include "broadphase/tree_structure_checks.hpp"
 
 namespace proxima {
@@ -75,6 +76,10 @@ TEST(KdTree, SmallMotionRefitsLargeMotionRebuilds) {
 TEST(KdTree, ParallelEqualsSerial) {
   KdTree s;
   test::check_parallel_equals_serial(s, 61);
+}
+
+TEST(KdTree, ThreadedPairsEqualAnO2Loop) {
+  test::expect_threaded_pairs_match_o2_loop([] { return KdTree(); });
 }
 
 }  // namespace

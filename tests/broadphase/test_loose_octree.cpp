@@ -51,6 +51,10 @@ TYPED_TEST(LooseTreeTest, RebuildKeepsPairs) {
   EXPECT_EQ(before, after);
 }
 
+TYPED_TEST(LooseTreeTest, ThreadedPairsEqualAnO2Loop) {
+  test::expect_threaded_pairs_match_o2_loop([] { return TypeParam(); });
+}
+
 TYPED_TEST(LooseTreeTest, Rejections) {
   TypeParam s;
   test::expect_rejections(s);

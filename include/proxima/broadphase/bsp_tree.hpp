@@ -117,6 +117,7 @@ class BspTree {
     ProxyKind kind = ProxyKind::Static;
   };
 
+  struct DescentView;  // the tree as seen by the pair descent (bsp_tree.cpp)
   void place(ProxyId id);
   void detach(ProxyId id);
   std::uint32_t build(std::vector<ProxyId>& ids, std::uint32_t parent, int depth);

@@ -16,8 +16,10 @@
 ///   (O(n log n)) when quality has degraded: proxies inserted since the last build (they wait
 ///   in a pending list scanned linearly by queries), many removals, or clip slabs whose mean
 ///   overlap grew by more than `rebuild_overlap` of the node widths since the build.
-/// - Pair finding: one box query per Moving proxy against the whole tree (moving-moving pairs
-///   kept once by id order), results sorted.
+/// - Pair finding: a simultaneous descent of the tree against itself on the subtree boxes
+///   kept by the refit (self of a node = self of each child + cross of the children; cross
+///   of two nodes with overlapping boxes descends into the children; two leaves test their
+///   records), each pair met once; top tasks split among threads; results sorted.
 ///
 /// Complexity: build O(n log n); update O(log n); queries O(log n + k) for well-spread data;
 /// find_pairs O(n log n + k) plus any refit/rebuild. Not safe for concurrent calls.
@@ -114,10 +116,13 @@ class KdTree {
   void widen(std::uint32_t leaf, const Aabb& box);
   template <class Visit>
   void visit_box(const Aabb& box, BroadPhaseStats& st, Visit&& visit) const;
+  struct DescentView;  // the tree as seen by the pair descent (kd_tree.cpp)
 
   KdTreeConfig config_;
   std::vector<Node> nodes_;
+  std::vector<Aabb> bounds_;  ///< by node: box of the subtree (exact after refit)
   std::vector<Record> records_;
+
   std::vector<ProxyId> pending_;
   std::vector<Proxy> proxies_;
   std::size_t count_ = 0;

@@ -11,12 +11,16 @@
 /// at the depth where H/2 < h <= H, whatever its position). Nodes are created on demand and
 /// deleted when empty; the root doubles towards a box that leaves it.
 ///
-/// Steps of find_pairs: every box walks down the nodes whose loose bounds it overlaps (boxes
-/// in sibling nodes can overlap: loose bounds overlap) and tests the boxes of the nodes at its
-/// own depth (larger ids only) and deeper, so each pair is tested once, by its shallower box.
-/// The boxes are split among threads (set_thread_count). Pairs are radix-sorted.
-/// O(n (d + v) + k') with d the depth, v the neighbour nodes met (<= 27 per level for similar
-/// sizes) and k' the candidates.
+/// Steps of find_pairs: 1. the boxes are gathered node by node into one array (a node's own
+/// boxes contiguous, sorted on x when many) and every node gets the tight box of its own
+/// boxes and of its subtree (bottom-up); 2. a simultaneous descent of the tree against itself
+/// on those tight boxes: self(N) = N's own boxes among themselves (sweep on x), against each
+/// child subtree, self of each child, cross of each child pair; cross(A, B) = own boxes of
+/// each against the other subtree, then the child pairs whose tight boxes overlap (the
+/// Ericson 6.5.3 BVH-BVH descent with the octree nodes as volumes); no per-box walk from the
+/// root. The top tasks (self and cross of the first levels) are split among threads
+/// (set_thread_count); pairs are radix-sorted. O(n + nodes + node pairs met + k') with k' the
+/// candidate pairs of overlapping tight boxes.
 /// Queries walk the nodes whose loose bounds the box, point or ray meets.
 
 #include <proxima/broadphase/broadphase.hpp>
@@ -99,8 +103,25 @@ class LooseTree {
   void link(ProxyId id, std::int32_t node);
   void unlink(ProxyId id);
   void prune(std::int32_t node);
-  void pairs_of(std::size_t begin, std::size_t end, std::vector<std::int32_t>& stack, std::vector<ProxyPair>& out,
-                BroadPhaseStats& st) const;
+  struct Item {
+    Aabb box;
+    ProxyId id;
+  };
+  /// One unit of pair work: self(a) when b == kNil, the own part of self(a) (own boxes among
+  /// themselves and against each child subtree) when b == a, cross(a, b) otherwise.
+  struct Task {
+    std::int32_t a;
+    std::int32_t b;
+  };
+  void gather();
+  void run_task(const Task& task, std::vector<ProxyPair>& out, BroadPhaseStats& st) const;
+  void own_pairs(std::int32_t node, std::vector<ProxyPair>& out, BroadPhaseStats& st) const;
+  void self_pairs(std::int32_t node, std::vector<ProxyPair>& out, BroadPhaseStats& st) const;
+  void cross_pairs(std::int32_t a, std::int32_t b, std::vector<ProxyPair>& out, BroadPhaseStats& st) const;
+  void items_vs_subtree(std::uint32_t begin, std::uint32_t end, const Aabb& fit, std::int32_t node,
+                        std::vector<ProxyPair>& out, BroadPhaseStats& st) const;
+  void test_items(std::uint32_t begin, std::uint32_t end, std::uint32_t begin2, std::uint32_t end2,
+                  std::vector<ProxyPair>& out, BroadPhaseStats& st) const;
   bool query_node(std::int32_t node, const Aabb& box, const OverlapQueryCallback& on_overlap) const;
 
   detail::ProxyTable proxies_;
@@ -112,9 +133,13 @@ class LooseTree {
   std::int32_t root_ = kNil;
   Real min_half_ = 0;  // nodes are not split below this half size
   int threads_ = 1;
-  std::vector<std::int32_t> stack_;
-  std::vector<std::vector<std::int32_t>> thread_stacks_;
-  std::vector<std::vector<ProxyPair>> thread_pairs_;
+  // find_pairs scratch (step 1 of find_pairs), by node unless said otherwise.
+  std::vector<Item> items_;               // by gathered position
+  std::vector<std::uint32_t> own_begin_;  // first gathered position of the node's own boxes
+  std::vector<Aabb> own_fit_;             // tight box of the own boxes
+  std::vector<Aabb> fit_;                 // tight box of the subtree
+  std::vector<std::int32_t> order_;       // nodes in depth-first order
+  std::vector<Task> tasks_;
   PairSortScratch sort_scratch_;
   mutable BroadPhaseStats stats_;
 };
