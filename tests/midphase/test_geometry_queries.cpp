@@ -141,13 +141,17 @@ TEST(Compound, AgreesWithBruteForceOverChildren) {
     }
     const GeometryDistance d = distance(gc, pc, go, po, request);
     EXPECT_NEAR(d.result.signed_distance, best, kTol) << "case " << k;
-    if (std::abs(d.result.signed_distance - best) < kTol * Real(0.01)) EXPECT_EQ(d.a.child, best_child);
+    if (std::abs(d.result.signed_distance - best) < kTol * Real(0.01)) {
+      EXPECT_EQ(d.a.child, best_child);
+    }
     // Mirrored.
     const GeometryDistance dm = distance(go, po, gc, pc, request);
     EXPECT_NEAR(dm.result.signed_distance, best, kTol);
     EXPECT_EQ(dm.b.child, d.a.child);
     const bool in = intersect(gc, pc, go, po, request);
-    if (std::abs(best - request.contact_distance) > kTol) EXPECT_EQ(in, best <= request.contact_distance) << k;
+    if (std::abs(best - request.contact_distance) > kTol) {
+      EXPECT_EQ(in, best <= request.contact_distance) << k;
+    }
     hits += in;
     std::vector<GeometryContact> all;
     collide_all(gc, pc, go, po, request, all);
@@ -197,7 +201,9 @@ TEST(Compound, CompoundAgainstCompoundAgreesWithAllChildPairs) {
     EXPECT_NEAR(d.result.signed_distance, best, kTol) << k;
     std::vector<GeometryContact> all;
     collide_all(GeometryRef(a), pa, GeometryRef(b), pb, request, all);
-    if (mm > Real(0.05)) EXPECT_EQ(all.size(), count) << k;
+    if (mm > Real(0.05)) {
+      EXPECT_EQ(all.size(), count) << k;
+    }
     hits += !all.empty();
     for (const GeometryContact& c : all) {
       EXPECT_LT(c.a.child, ka.size());
@@ -237,6 +243,7 @@ TEST(MeshConvex, NoGhostContactsSlidingOverAFlatGrid) {
         for (std::uint32_t t = 0; t < grid.triangle_count(); ++t) {
           const auto v = grid.triangle(t);
           const Triangle tri = Triangle::create(v[0], v[1], v[2]).value();
+          if (!tri.local_aabb().overlaps(box.world_aabb(pb).inflated(Real(0.05)))) continue;
           const ContactManifold raw = collide(ShapeRef(tri), Transform{}, ShapeRef(box), pb, request);
           if (raw.count > 0 && raw.normal.z < Real(1) - Real(1e-4)) ++raw_ghosts;
         }
