@@ -12,11 +12,12 @@
 //     normal turned from the segment's centre towards the box centre; witnesses: the closest
 //     points of the box and of the core moved out along the normal by the overlap (they touch
 //     there), the core's point moved back;
-//  4. manifold: when the normal is within kFaceCosine of a face normal, the core is clipped
-//     to that face's side planes; each clipped end whose gap (its height over the face minus
-//     r) is within contact_distance + tolerance is a contact with the exact face normal. Two
-//     distinct ends give the two-point manifold of a capsule lying on a face; otherwise the
-//     single closest pair.
+//  4. manifold: when the normal n is within kFaceCosine of a face normal, the core is clipped
+//     to that face's side planes; each clipped end whose gap (its height over the box's
+//     supporting plane along n, minus r; for a face contact its height over the face) is
+//     within contact_distance + tolerance is a contact with the pair's normal, so no point is
+//     deeper than the pair. Two distinct ends give the two-point manifold of a capsule lying
+//     on a face; otherwise the single closest pair.
 #include "narrowphase/pairs_rounded.hpp"
 #include "narrowphase/rounded_common.hpp"
 
@@ -145,9 +146,12 @@ ContactManifold pair_collide(const Capsule& a, const Transform& pose_a, const Bo
   }
   const Vec3 d = cb.p1 - cb.p0;
   if (!((t1 - t0) * glm::length(d) > cb.tolerance)) return m;
-  Vec3 f_local(Real(0));
-  f_local[axis] = side;
-  const Vec3 normal = -pose_b.apply_vector(f_local);
+  // Gaps along the pair's own normal (within kFaceCosine of the face's, equal to it for a
+  // face contact): the box's supporting plane along -n is at n . x = -(|n| . h), so no core
+  // point can be deeper along n than the pair itself (an edge axis d x e_i close to a face
+  // axis has a smaller overlap than the face).
+  const Vec3& normal = cb.result.normal;
+  const Real plane = -(std::abs(n_local.x) * h.x + std::abs(n_local.y) * h.y + std::abs(n_local.z) * h.z);
   const std::uint32_t face = static_cast<std::uint32_t>(2 * axis) + (side > Real(0) ? 1u : 0u);
   ContactManifold two;
   two.normal = normal;
@@ -156,7 +160,7 @@ ContactManifold pair_collide(const Capsule& a, const Transform& pose_a, const Bo
   for (int k = 0; k < 2; ++k) {
     const Real t = k == 0 ? t0 : t1;
     const Vec3 p = cb.p0 + t * d;
-    const Real gap = side * p[axis] - h[axis] - a.radius();
+    const Real gap = plane - glm::dot(n_local, p) - a.radius();
     if (!(gap <= request.contact_distance + cb.tolerance)) continue;
     ContactPoint& c = two.points[static_cast<std::size_t>(two.count++)];
     c.point_a = pose_b.apply(p) + a.radius() * normal;

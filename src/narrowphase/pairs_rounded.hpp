@@ -5,26 +5,27 @@
 /// pair_distance, pair_collide and the trait kAnalyticPair<A, B> = true.
 ///
 /// Rounded pairs: a sphere (point core) or capsule (segment core) against a sphere, capsule,
-/// box or triangle. Each routine finds the closest points of the cores with the
-/// geometry/closest_points.hpp routines and adds the radii; when the cores touch or overlap,
-/// the penetration direction comes from the pair's closed form (deepest box face,
-/// separating-axis test of segment against box or triangle, common normal of crossing
-/// segments). All O(1), no allocation.
+/// box or triangle, and a segment against a segment (a capsule core without radius). Each routine finds the closest
+/// points of the cores with the geometry/closest_points.hpp routines and adds the radii; when the cores touch or
+/// overlap, the penetration direction comes from the pair's closed form (deepest box face, separating-axis test of
+/// segment against box or triangle, common normal of crossing segments). All O(1), no allocation.
 ///
 /// Degenerate configurations get a deterministic normal, never NaN. Cores closer than the
 /// pair's tolerance (request.tolerance, else linear_tolerance of the pair's scale) count as
 /// touching, because the direction between their closest points is then rounding noise:
 ///  - sphere-sphere with coincident centres: A's local +x axis (in world);
 ///  - a sphere centre on a capsule's core: the capsule's local +x axis (perpendicular to it);
-///  - crossing capsule cores: the common normal of the axes, turned towards B's centre; for
-///    parallel or zero-length cores, A's local +x axis (B's when A is the zero-length one
-///    would not matter: every perpendicular is as good), turned towards B's centre;
+///  - crossing capsule cores or segments: the common normal of the axes, turned towards B's
+///    centre; for parallel or zero-length cores, A's local +x axis with its component along
+///    A's core removed (B's core when A has no length; a perpendicular of the core when +x
+///    lies along it), turned towards B's centre: always orthogonal to the cores;
 ///  - a sphere centre on a triangle: the triangle's normal (b - a) x (c - a), turned to the
 ///    centre's side;
 ///  - a capsule core touching a box or a triangle: the separating-axis test's axis.
 /// Two-point manifolds are used only when their deepest point reproduces the distance query's
 /// depth (within tolerance); otherwise the manifold is the exact single closest pair.
-/// intersect(...) is true iff distance(...).signed_distance <= request.contact_distance.
+/// intersect(...) is true iff distance(...).signed_distance <= request.contact_distance; the
+/// sphere, capsule and segment pairs answer it directly from the squared core distance.
 
 #include <proxima/shapes/shape.hpp>
 
@@ -43,6 +44,11 @@
 
 namespace proxima::narrow {
 
+// Two segments (no interior): segment-segment closest points, the capsule pair with radii 0.
+// Touching or crossing segments get distance 0 along a normal orthogonal to both (the common
+// normal, or for parallel segments a perpendicular from A's local +x axis). Manifold: two
+// points (the ends of the overlap) for parallel overlapping segments, else one.
+PROXIMA_ROUNDED_PAIR(Segment, Segment)
 // Triangle (two-sided, no thickness) against a sphere: closest point of the triangle to the
 // centre. Manifold: one point.
 PROXIMA_ROUNDED_PAIR(Triangle, Sphere)

@@ -8,7 +8,8 @@
 //     y, then z; the + face when the coordinate is 0): normal = -(face normal), signed
 //     distance -(h_i - |c_i|) - r, box witness c projected on that face;
 //  4. sphere witness c + r normal.
-// Manifold: that single point; feature id: the box vertex, edge or face holding q.
+// Manifold: that single point; feature id: the box vertex, edge or face holding q. intersect
+// compares the squared distance of the centre to the box with (contact distance + r)^2.
 #include "narrowphase/pairs_rounded.hpp"
 #include "narrowphase/rounded_common.hpp"
 
@@ -65,9 +66,18 @@ DistanceResult pair_distance(const Sphere& a, const Transform& pose_a, const Box
 }
 
 bool pair_intersect(const Sphere& a, const Transform& pose_a, const Box& b, const Transform& pose_b,
-                    const PairRequest& request, PairCache* cache) {
+                    const PairRequest& request, PairCache* /*cache*/) {
   if (!finite_poses(pose_a, pose_b)) return false;
-  return pair_distance(a, pose_a, b, pose_b, request, cache).signed_distance <= request.contact_distance;
+  // Squared distance of the centre to the solid box (box frame) against (contact distance +
+  // r)^2; a centre inside is at depth r + (distance to the nearest face) <= r.
+  const Real reach = request.contact_distance + a.radius();
+  const Vec3& h = b.half_extents();
+  const Vec3 c = pose_b.inverse_apply(pose_a.position);
+  const Vec3 e = c - glm::clamp(c, -h, h);
+  const Real d2 = length_squared(e);
+  if (d2 > Real(0)) return reach >= Real(0) && d2 <= reach * reach;
+  const Real inside = std::min({h.x - std::abs(c.x), h.y - std::abs(c.y), h.z - std::abs(c.z)});
+  return -inside - a.radius() <= request.contact_distance;
 }
 
 ContactManifold pair_collide(const Sphere& a, const Transform& pose_a, const Box& b, const Transform& pose_b,

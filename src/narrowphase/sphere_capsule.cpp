@@ -7,7 +7,8 @@
 //     takes the capsule's local +x axis (perpendicular to the core);
 //  3. witnesses: c and q pushed out along the normal by their radii.
 // Manifold: that single point; feature id: sphere surface against the capsule's bottom end
-// (vertex 0), top end (vertex 1) or side (edge 0).
+// (vertex 0), top end (vertex 1) or side (edge 0). intersect compares the squared distance of
+// the centre to the core (capsule frame) with (contact distance + radii)^2.
 #include <proxima/geometry/closest_points.hpp>
 
 #include "narrowphase/pairs_rounded.hpp"
@@ -49,9 +50,21 @@ DistanceResult pair_distance(const Sphere& a, const Transform& pose_a, const Cap
 }
 
 bool pair_intersect(const Sphere& a, const Transform& pose_a, const Capsule& b, const Transform& pose_b,
-                    const PairRequest& request, PairCache* cache) {
+                    const PairRequest& request, PairCache* /*cache*/) {
   if (!finite_poses(pose_a, pose_b)) return false;
-  return pair_distance(a, pose_a, b, pose_b, request, cache).signed_distance <= request.contact_distance;
+  // Squared distance of the centre to the core (in the capsule's frame, where the core is
+  // the z axis from -half_length to half_length) against (contact distance + radii)^2.
+  const Real reach = request.contact_distance + a.radius() + b.radius();
+  if (!(reach >= Real(0))) return false;
+  const Vec3 c = pose_b.inverse_apply(pose_a.position);
+  const Real hl = b.half_length();
+  const Real dz = c.z - std::clamp(c.z, -hl, hl);
+  const Real d2 = c.x * c.x + c.y * c.y + dz * dz;
+  if (d2 <= reach * reach) return true;
+  // A centre within the tolerance of the core counts as on it (as in pair_distance).
+  const Real tol =
+      resolve_tolerance(request, detail::pair_scale(pose_a, pose_b, a.radius() + b.radius() + b.half_length()));
+  return d2 <= tol * tol;
 }
 
 ContactManifold pair_collide(const Sphere& a, const Transform& pose_a, const Capsule& b, const Transform& pose_b,

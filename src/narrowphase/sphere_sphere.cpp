@@ -4,7 +4,8 @@
 //  1. v = centre_b - centre_a; its length minus both radii is the signed distance;
 //  2. the normal is v / |v|; coincident centres take A's local +x axis (world frame);
 //  3. witnesses: each centre pushed out along the normal by its radius.
-// Manifold: that single point (feature ids: the surfaces of both spheres).
+// Manifold: that single point (feature ids: the surfaces of both spheres). intersect compares
+// the squared centre distance with (contact distance + radii)^2.
 #include "narrowphase/pairs_rounded.hpp"
 #include "narrowphase/rounded_common.hpp"
 
@@ -22,9 +23,11 @@ DistanceResult pair_distance(const Sphere& a, const Transform& pose_a, const Sph
 }
 
 bool pair_intersect(const Sphere& a, const Transform& pose_a, const Sphere& b, const Transform& pose_b,
-                    const PairRequest& request, PairCache* cache) {
+                    const PairRequest& request, PairCache* /*cache*/) {
   if (!finite_poses(pose_a, pose_b)) return false;
-  return pair_distance(a, pose_a, b, pose_b, request, cache).signed_distance <= request.contact_distance;
+  // |cb - ca| - ra - rb <= contact distance, without the square root.
+  const Real reach = request.contact_distance + a.radius() + b.radius();
+  return reach >= Real(0) && length_squared(pose_b.position - pose_a.position) <= reach * reach;
 }
 
 ContactManifold pair_collide(const Sphere& a, const Transform& pose_a, const Sphere& b, const Transform& pose_b,
