@@ -7,9 +7,10 @@
 //     centre of the mesh's box); fragments keep the plane of the face they came from.
 //  2. Build iteratively (an explicit task stack, so convex solids that give a chain of depth n
 //     do not exhaust the call stack): for a node's polygon list, score up to max_candidates
-//     face planes by k * splits + (1 - k) * |front - back| and take the cheapest; polygons
-//     within the plane thickness of it are consumed, the others go to the front or back
-//     list, straddling ones are split (Sutherland-Hodgman with thick planes, Ericson 8.3.4).
+//     face planes by k * splits + (1 - k) * |front - back| (counted over at most 256 of the
+//     node's polygons) and take the cheapest; polygons within the plane thickness of it are
+//     consumed, the others go to the front or back list, straddling ones are split
+//     (Sutherland-Hodgman with thick planes, Ericson 8.3.4).
 //  3. An empty front list is an outside leaf (in front of an outward face with no other face
 //     in the cell), an empty back list an inside leaf.
 //  4. Point queries descend by the sign of the plane distance; within the tolerance both
@@ -154,6 +155,10 @@ struct Builder {
   }
 };
 
+// Candidate planes are scored against at most this many polygons of the node (evenly spread),
+// so that choosing a plane costs O(max_candidates) per node rather than O(n max_candidates).
+constexpr std::size_t kScoredPolygons = 256;
+
 struct Task {
   std::vector<std::uint32_t> polys;
   std::uint32_t parent = 0;
@@ -264,6 +269,7 @@ Result<BspPolyhedron> BspPolyhedron::create(const IndexedMesh& mesh, const BspBu
     // Choose the splitting plane among up to max_candidates polygons spread over the list.
     const std::size_t np = task.polys.size();
     const std::size_t candidates = std::min<std::size_t>(np, options.max_candidates);
+    const std::size_t scored = std::min<std::size_t>(np, kScoredPolygons);
     std::uint32_t best_plane = b.polygons[task.polys[0]].plane;
     double best_cost = std::numeric_limits<double>::infinity();
     for (std::size_t ci = 0; ci < candidates; ++ci) {
@@ -272,8 +278,8 @@ Result<BspPolyhedron> BspPolyhedron::create(const IndexedMesh& mesh, const BspBu
       std::size_t front = 0;
       std::size_t back = 0;
       std::size_t splits = 0;
-      for (const std::uint32_t pi : task.polys) {
-        switch (b.side_of_polygon(pl, b.polygons[pi])) {
+      for (std::size_t si = 0; si < scored; ++si) {
+        switch (b.side_of_polygon(pl, b.polygons[task.polys[si * np / scored]])) {
           case Side::Front: ++front; break;
           case Side::Back: ++back; break;
           case Side::Straddle: ++splits; break;

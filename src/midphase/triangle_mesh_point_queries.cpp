@@ -2,10 +2,11 @@
 // mass properties.
 //
 // Steps:
-//  1. Closest point: depth-first BVH descent that enters a node only when its box is within the
-//     best distance found so far (the radius shrinks as triangles are tested); each leaf
-//     triangle by Ericson's closest point on a triangle (geometry/closest_points.hpp). Ties
-//     keep the lower triangle index.
+//  1. Closest point: depth-first BVH descent, nearer child first, that enters a node only when
+//     its box is within the best distance found so far (the radius shrinks as triangles are
+//     tested, and is checked again when a node is popped); each leaf triangle by Ericson's
+//     closest point on a triangle (geometry/closest_points.hpp). Ties keep the lower triangle
+//     index.
 //  2. Sign (closed meshes): the sign of (query - nearest point) . N, with N the angle-weighted
 //     pseudo-normal of the feature holding the nearest point: the face normal, the sum of the
 //     two face normals at an edge, the sum of incident face normals weighted by their angles at
@@ -137,8 +138,33 @@ MeshClosest mesh_closest(const MeshView& mesh, const Bvh& bvh, const Vec3& point
   if (bvh.empty()) {
     for (std::uint32_t t = 0; t < mesh.triangles.size(); ++t) test(t);
   } else {
-    bvh.traverse([&](const BvhNode& node) { return squared_distance_to_box(point, node) <= best.distance_squared; },
-                 test);
+    // Nearer child first; a node's box distance is checked again when it is popped, against
+    // the radius found meanwhile (Bvh::traverse tests nodes when they are pushed).
+    const std::span<const BvhNode> nodes = bvh.nodes();
+    const std::span<const std::uint32_t> prims = bvh.primitives();
+    struct Entry {
+      std::uint32_t node;
+      Real d2;
+    };
+    Entry stack[2 * Bvh::kMaxDepth + 2];
+    std::uint32_t top = 0;
+    stack[top++] = {0, squared_distance_to_box(point, nodes[0])};
+    while (top != 0) {
+      const Entry e = stack[--top];
+      if (e.d2 > best.distance_squared) continue;
+      const BvhNode& node = nodes[e.node];
+      if (node.is_leaf()) {
+        for (std::uint32_t i = node.first; i != node.first + node.count; ++i) test(prims[i]);
+        continue;
+      }
+      const Real d0 = squared_distance_to_box(point, nodes[node.first]);
+      const Real d1 = squared_distance_to_box(point, nodes[node.first + 1]);
+      const bool left_first = d0 <= d1;
+      const Entry near{left_first ? node.first : node.first + 1, left_first ? d0 : d1};
+      const Entry far{left_first ? node.first + 1 : node.first, left_first ? d1 : d0};
+      if (far.d2 <= best.distance_squared) stack[top++] = far;
+      if (near.d2 <= best.distance_squared) stack[top++] = near;
+    }
   }
   if (best.triangle != kNoIndex) best.pseudo_normal = feature_pseudo_normal(mesh, best.triangle, best_tp.barycentric);
   return best;

