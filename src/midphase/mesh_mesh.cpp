@@ -120,7 +120,8 @@ bool boxes_overlap(const RelativeFrame& f, const NodeBox& a, const NodeBox& bl, 
 /// A lower bound of the squared distance between A's box and B's box: the larger of the
 /// squared distances between each box and the axis-aligned box enclosing the other in its
 /// frame.
-Real box_distance_lower_bound_squared(const RelativeFrame& f, const NodeBox& a, const NodeBox& bl) {
+Real box_distance_lower_bound_squared(const RelativeFrame& f, const NodeBox& a, const NodeBox& bl,
+                                      Real prune2 = std::numeric_limits<Real>::infinity()) {
   const Vec3 bc = f.rotation * bl.c + f.t;
   const Vec3 d = bc - a.c;  // A's frame
   const Real t[3] = {d.x, d.y, d.z};
@@ -142,6 +143,7 @@ Real box_distance_lower_bound_squared(const RelativeFrame& f, const NodeBox& a, 
     if (gap > Real(0)) in_b += gap * gap;
   }
   Real lb2 = std::max(in_a, in_b);
+  if (lb2 >= prune2) return lb2;  // pruned already: the finer bound is not needed
   // The axis through the two centres: nearly tight for boxes far apart for their size.
   const Real dd = glm::dot(d, d);
   if (dd > Real(0)) {
@@ -186,28 +188,34 @@ struct LeafTriangles {
   Vec3 center[kMaxLeafTriangles];  ///< centroid (distance bound)
   Real radius[kMaxLeafTriangles];  ///< largest centroid-to-vertex distance
   Aabb box[kMaxLeafTriangles];     ///< box in A's frame
+  Vec3 normal[kMaxLeafTriangles];  ///< unit normal in A's frame (zero when degenerate)
   std::uint32_t count = 0;
 };
 
 /// Squared lower bound of the distance between triangles a and b: the gap between their
 /// projections on the unit axis u (A towards B) and on each face normal.
-inline Real triangle_gap_squared(const std::array<Vec3, 3>& a, const std::array<Vec3, 3>& b, const Vec3& u) {
+inline Real triangle_gap_squared(const std::array<Vec3, 3>& a, const Vec3& na, const std::array<Vec3, 3>& b,
+                                 const Vec3& nb, const Vec3& u) {
   Real gap = std::min({glm::dot(u, b[0]), glm::dot(u, b[1]), glm::dot(u, b[2])}) -
              std::max({glm::dot(u, a[0]), glm::dot(u, a[1]), glm::dot(u, a[2])});
-  const auto side_gap = [](const std::array<Vec3, 3>& face, const std::array<Vec3, 3>& other) {
-    const Vec3 n = glm::cross(face[1] - face[0], face[2] - face[0]);
-    const Real len2 = glm::dot(n, n);
-    if (!(len2 > Real(0))) return Real(0);
+  // n: unit normal of `face` (or zero for a degenerate one).
+  const auto side_gap = [](const std::array<Vec3, 3>& face, const Vec3& n, const std::array<Vec3, 3>& other) {
     const Real d0 = glm::dot(n, other[0] - face[0]);
     const Real d1 = glm::dot(n, other[1] - face[0]);
     const Real d2 = glm::dot(n, other[2] - face[0]);
     const Real lo = std::min({d0, d1, d2});
     const Real hi = std::max({d0, d1, d2});
-    const Real g = lo > Real(0) ? lo : (hi < Real(0) ? -hi : Real(0));
-    return g / std::sqrt(len2);
+    return lo > Real(0) ? lo : (hi < Real(0) ? -hi : Real(0));
   };
-  gap = std::max({gap, side_gap(a, b), side_gap(b, a)});
+  gap = std::max({gap, side_gap(a, na, b), side_gap(b, nb, a)});
   return gap > Real(0) ? gap * gap : Real(0);
+}
+
+/// Unit normal of a triangle, zero when degenerate.
+inline Vec3 unit_normal(const std::array<Vec3, 3>& t) {
+  const Vec3 n = glm::cross(t[1] - t[0], t[2] - t[0]);
+  const Real len2 = glm::dot(n, n);
+  return len2 > Real(0) ? n / std::sqrt(len2) : Vec3(Real(0));
 }
 
 /// Centroid and bounding radius of a triangle.
@@ -227,6 +235,7 @@ void load_leaf(const TriangleMesh& b, const RelativeFrame& f, const BvhNode& lea
     const TriangleIndices& t = tris[ti];
     for (int c = 0; c < 3; ++c) out.v[k][c] = f.rotation * verts[t[c]] + f.t;
     triangle_sphere(out.v[k], out.center[k], out.radius[k]);
+    out.normal[k] = unit_normal(out.v[k]);
     out.box[k] = {glm::min(glm::min(out.v[k][0], out.v[k][1]), out.v[k][2]),
                   glm::max(glm::max(out.v[k][0], out.v[k][1]), out.v[k][2])};
   }
@@ -469,6 +478,7 @@ GeometryDistance mesh_mesh_distance(const TriangleMesh& a, const Transform& pose
         Vec3 ca;
         Real ra;
         triangle_sphere(ta, ca, ra);
+        const Vec3 na_unit = unit_normal(ta);
         for (std::uint32_t k = 0; k < leaf_b.count; ++k) {
           const std::array<Vec3, 3>& tb = leaf_b.v[k];
           const Real reach = ra + leaf_b.radius[k];
@@ -479,7 +489,7 @@ GeometryDistance mesh_mesh_distance(const TriangleMesh& a, const Transform& pose
             if (lb * lb >= best2) continue;
             // Projections on the centroid axis and on both face normals bound the distance
             // much more tightly than the spheres.
-            if (triangle_gap_squared(ta, tb, dc / std::sqrt(dc2)) >= best2) continue;
+            if (triangle_gap_squared(ta, na_unit, tb, leaf_b.normal[k], dc / std::sqrt(dc2)) >= best2) continue;
           }
           const geometry::ClosestPair cp =
               geometry::closest_points_triangle_triangle(ta[0], ta[1], ta[2], tb[0], tb[1], tb[2]);
@@ -504,12 +514,12 @@ GeometryDistance mesh_mesh_distance(const TriangleMesh& a, const Transform& pose
     Entry c1;
     if (split_a) {
       const NodeBox box_b = node_box(ndb);
-      c0 = {nda.first, e.b, box_distance_lower_bound_squared(f, node_box(na[nda.first]), box_b)};
-      c1 = {nda.first + 1, e.b, box_distance_lower_bound_squared(f, node_box(na[nda.first + 1]), box_b)};
+      c0 = {nda.first, e.b, box_distance_lower_bound_squared(f, node_box(na[nda.first]), box_b, best2)};
+      c1 = {nda.first + 1, e.b, box_distance_lower_bound_squared(f, node_box(na[nda.first + 1]), box_b, best2)};
     } else {
       const NodeBox box_a = node_box(nda);
-      c0 = {e.a, ndb.first, box_distance_lower_bound_squared(f, box_a, node_box(nb[ndb.first]))};
-      c1 = {e.a, ndb.first + 1, box_distance_lower_bound_squared(f, box_a, node_box(nb[ndb.first + 1]))};
+      c0 = {e.a, ndb.first, box_distance_lower_bound_squared(f, box_a, node_box(nb[ndb.first]), best2)};
+      c1 = {e.a, ndb.first + 1, box_distance_lower_bound_squared(f, box_a, node_box(nb[ndb.first + 1]), best2)};
     }
     if (c1.lb2 < c0.lb2) std::swap(c0, c1);  // c0 nearer: pushed last, popped first
     if (c1.lb2 < best2) stack[top++] = c1;
