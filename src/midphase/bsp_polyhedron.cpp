@@ -175,7 +175,8 @@ Result<BspPolyhedron> BspPolyhedron::create(const IndexedMesh& mesh, const BspBu
   if (!report.closed) {
     return make_error(ErrorCode::InvalidArgument, "mesh",
                       "not closed: " + std::to_string(report.boundary_edges) + " boundary and " +
-                          std::to_string(report.non_manifold_edges) + " non-manifold edges");
+                          std::to_string(report.non_manifold_edges) +
+                          " non-manifold edges (repair_mesh welds duplicated vertices)");
   }
   if (!report.oriented) {
     return make_error(ErrorCode::InvalidArgument, "mesh",

@@ -73,8 +73,9 @@ struct BspStats {
 };
 
 /// Solid-leaf BSP tree of a closed polyhedron (local frame of the mesh, length units).
-/// Immutable after create; queries allocate nothing except classify_segment's output and,
-/// for trees deeper than 64 levels where a segment straddles many planes, its work stack.
+/// Immutable after create; queries allocate nothing except classify_segment's output and a
+/// work stack that outgrows its 64 in-place entries (a point near many planes, a segment
+/// crossing many planes of a deep tree).
 class BspPolyhedron {
  public:
   /// Builds the tree from the faces of `mesh`.
@@ -118,7 +119,8 @@ class BspPolyhedron {
   const Vec3& reference() const { return reference_; }
   /// Box of the mesh's vertices.
   const Aabb& bounds() const { return bounds_; }
-  /// Default point tolerance: 4 times the plane thickness used at build.
+  /// Default point tolerance (length): twice the plane thickness used at build, at least
+  /// half of linear_tolerance(largest box extent).
   Real tolerance() const { return tolerance_; }
   /// Build statistics.
   const BspStats& stats() const { return stats_; }
