@@ -55,13 +55,17 @@ Vec3 world_extreme(const Shape& shape, const Transform& pose, const Vec3& n) {
 }
 
 // Places B so that A's farthest point in n and B's farthest point in -n are `gap` apart
-// along n (n is forced to a half-space's normal when one is involved).
-Transform place_touching(const Shape& a, const Transform& pose_a, const Shape& b, const Quat& rot_b, Vec3 n, Real gap) {
+// along n (n is forced to a half-space's normal when one is involved). `support_a` and
+// `support_b` receive those two world points (support_b = support_a + gap n).
+Transform place_touching(const Shape& a, const Transform& pose_a, const Shape& b, const Quat& rot_b, Vec3 n, Real gap,
+                         Vec3* support_a = nullptr, Vec3* support_b = nullptr) {
   if (const HalfSpace* h = std::get_if<HalfSpace>(&a)) n = pose_a.apply_vector(h->normal());
   if (const HalfSpace* h = std::get_if<HalfSpace>(&b)) n = -(rot_b * h->normal());
   const Vec3 pa = world_extreme(a, pose_a, n);
   const Transform at_origin{Vec3(Real(0)), rot_b};
   const Vec3 sb = world_extreme(b, at_origin, -n);
+  if (support_a) *support_a = pa;
+  if (support_b) *support_b = pa + gap * n;
   return Transform{pa - sb + gap * n, rot_b};
 }
 
@@ -75,16 +79,28 @@ TEST(Degenerate, TouchingSupportsEveryPair) {
         const Vec3 n = rng.unit_vector();
         const Quat rot_b = rng.rotation();
         for (Real gap : {Real(0), Real(0.01), Real(-0.01)}) {
-          const Transform pose_b = place_touching(a, pose_a, b, rot_b, n, gap);
+          Vec3 sa;
+          Vec3 sb;
+          const Transform pose_b = place_touching(a, pose_a, b, rot_b, n, gap, &sa, &sb);
           checker.check(a, pose_a, b, pose_b, label + " gap=" + std::to_string(gap));
           const DistanceResult d = distance(a, pose_a, b, pose_b);
           const Real tol = Real(4) * test::narrow_tolerance(Real(2));
           if (gap >= Real(0)) {
+            // The slab between the two support planes separates them, and the support
+            // points are gap apart: the distance is exactly the gap.
             EXPECT_NEAR(d.signed_distance, gap, tol) << label << " gap " << gap;
           } else {
-            // Overlap: the depth is at most the overlap along n.
+            // A lies in n . x <= n . sa and B in n . x >= n . sa + gap: the depth is at most
+            // the overlap along n.
             EXPECT_GE(d.signed_distance, gap - tol) << label;
-            EXPECT_LE(d.signed_distance, tol) << label;
+            // The construction makes an overlap only where a support point lies inside the
+            // other shape; a shape without volume (point, segment, triangle) has no inside,
+            // and a solid's inside need not hold the direction n at a vertex or rim. The
+            // signed distance is at most the signed distance of either support point to the
+            // other shape (the shape layer's closest_point, not the narrow phase), which is
+            // <= 0 exactly when the construction overlaps.
+            const Real bound = std::min(test::surface_distance(b, pose_b, sa), test::surface_distance(a, pose_a, sb));
+            EXPECT_LE(d.signed_distance, bound + tol) << label << " support points " << bound;
           }
         }
       },
@@ -381,6 +397,49 @@ TEST(DegenerateRegression, CapsuleCoreInsideConeHasFullDepth) {
   const double ref = test::reference_signed_distance(a, pa, b, pb).signed_distance;  // about -0.8309
   const DistanceResult d = distance(a, pa, b, pb);
   EXPECT_NEAR(double(d.signed_distance), ref, double(test::narrow_tolerance(Real(3)))) << test::status_name(d.status);
+}
+
+// Identical segments at one pose (found by IdenticalShapesAtIdenticalPoses): the normal of
+// touching segments must be orthogonal to both, so that moving B along it by eps leaves
+// them exactly eps apart (analytic: the distance of two parallel segments offset
+// perpendicularly by eps is eps). Also collinear overlapping, coplanar crossing and parallel
+// coplanar segments.
+TEST(DegenerateRegression, IdenticalSegmentsNormalOrthogonal) {
+  test::Random rng(5);
+  const Real eps = Real(1e-2);
+  for (int i = 0; i < 50; ++i) {
+    const Vec3 p = rng.vec3(Real(-1), Real(1));
+    const Vec3 q = p + rng.unit_vector() * rng.uniform(Real(0.2), Real(2));
+    const Shape s = Segment::create(p, q).value();
+    const Transform pose = rng.pose(Real(2));
+    const Vec3 u = glm::normalize(pose.apply_vector(q - p));
+    const DistanceResult d = distance(s, pose, s, pose);
+    const Real tol = test::narrow_tolerance(Real(4));
+    EXPECT_NEAR(d.signed_distance, Real(0), tol);
+    EXPECT_LE(std::abs(glm::dot(d.normal, u)), Real(1e-4)) << "normal along the segment";
+    EXPECT_TRUE(intersect(s, pose, s, pose));
+    Transform apart = pose;
+    apart.position += eps * d.normal;
+    EXPECT_NEAR(distance(s, pose, s, apart).signed_distance, eps, tol);
+    // Collinear, overlapping half of the length.
+    Transform slid = pose;
+    slid.position += Real(0.5) * glm::length(q - p) * u;
+    const DistanceResult dc = distance(s, pose, s, slid);
+    EXPECT_NEAR(dc.signed_distance, Real(0), tol);
+    EXPECT_LE(std::abs(glm::dot(dc.normal, u)), Real(1e-4)) << "collinear";
+    slid.position += eps * dc.normal;
+    EXPECT_NEAR(distance(s, pose, s, slid).signed_distance, eps, tol) << "collinear moved apart";
+    const ContactManifold m = collide(s, pose, s, pose);
+    ASSERT_GE(m.count, 1);
+    for (int k = 0; k < m.count; ++k) EXPECT_NEAR(m.points[static_cast<std::size_t>(k)].depth, Real(0), tol);
+    // Crossing at their midpoints in a common plane: the normal is the plane's.
+    const Vec3 w = glm::normalize(glm::cross(u, rng.unit_vector()));
+    const Vec3 mid = pose.apply(Real(0.5) * (p + q));
+    const Shape cross_seg = Segment::create(mid - w, mid + w).value();
+    const DistanceResult dx = distance(s, pose, cross_seg, Transform::identity());
+    EXPECT_NEAR(dx.signed_distance, Real(0), tol);
+    EXPECT_NEAR(std::abs(glm::dot(dx.normal, glm::normalize(glm::cross(u, w)))), Real(1), Real(1e-4)) << "crossing";
+  }
 }
 
 }  // namespace

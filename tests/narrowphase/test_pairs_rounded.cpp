@@ -428,5 +428,53 @@ TEST(PairsRounded, NonFinitePoses) {
       PairStatus::InvalidInput);
 }
 
+// Found by AllPairs/Invariants (box_capsule, double): the capsule's core crosses a box face
+// nearly flat, an edge axis d x e_i within kFaceCosine of the face normal has a smaller
+// overlap than the face, and the two-point manifold measured along the face normal had a
+// point deeper than the pair. Checked against the long double sampled minimum overlap, and
+// every manifold point no deeper than the pair.
+TEST(PairsRounded, CapsuleBoxTwoPointsNoDeeperThanThePair) {
+  struct Case {
+    Vec3 h, box_p;
+    Quat box_q;
+    Real r, hl;
+    Vec3 cap_p;
+    Quat cap_q;
+  };
+  const auto q = [](double x, double y, double z, double w) {
+    return glm::normalize(Quat(Real(w), Real(x), Real(y), Real(z)));
+  };
+  const Case cases[] = {
+      {Vec3(Real(1.307066), Real(0.835003332), Real(0.959975018)),
+       Vec3(Real(-0.387421227), Real(0.450722493), Real(0.429801934)),
+       q(-0.529235894, 0.765702388, -0.192353085, -0.310820707), Real(0.144346204), Real(0.647949299),
+       Vec3(Real(-1.25679878), Real(1.01954643), Real(-0.710642041)),
+       q(0.542700555, 0.480060774, -0.21920096, -0.65342842)},
+      {Vec3(Real(1.06040302), Real(0.235739397), Real(1.21270588)),
+       Vec3(Real(-0.0929970382), Real(-0.317790456), Real(0.221856952)),
+       q(-0.610342979, 0.371296962, -0.337612842, 0.612892798), Real(0.404891117), Real(0.422182799),
+       Vec3(Real(0.414200677), Real(0.700946057), Real(0.432824242)),
+       q(-0.404427161, 0.60003761, 0.0413300899, 0.688974137)},
+  };
+  int k = 0;
+  for (const Case& c : cases) {
+    const Capsule a = capsule(c.r, c.hl);
+    const Box b = box(c.h);
+    const Transform pa = at(c.cap_p, c.cap_q);
+    const Transform pb = at(c.box_p, c.box_q);
+    const Real tol = test::pair_tol(scale_of(pa, pb, Real(3)));
+    test::Reference ref;
+    test::check_pair(a, pa, b, pb, ref, tol, Real(0), "capsule-box case " + std::to_string(k));
+    const DistanceResult d = pair_distance(a, pa, b, pb, PairRequest{}, nullptr);
+    const ContactManifold m = pair_collide(a, pa, b, pb, PairRequest{}, nullptr);
+    ASSERT_GT(m.count, 0);
+    for (int i = 0; i < m.count; ++i) {
+      EXPECT_LE(m.points[static_cast<std::size_t>(i)].depth, -d.signed_distance + tol)
+          << "case " << k << " point " << i;
+    }
+    ++k;
+  }
+}
+
 }  // namespace
 }  // namespace proxima
