@@ -160,8 +160,8 @@ LocalAnswer solve(const A& a, const B& b, PairSetup<A, B>& setup, const PairRequ
   // rounding, Newton steps on the support function of D take its normal to the minimum.
   // The refined support distance is an upper bound of the depth; the witnesses are support
   // points (combined across an edge or face of D) with point_a - point_b = depth * normal.
-  const auto polish = [&](epa::Result& ep, auto& sa, auto& sb) {
-    if (polytopes || ep.status == epa::Status::Degenerate) return;
+  const auto polish = [&](epa::Result& ep, auto& sa, auto& sb, bool curved) {
+    if (!curved || ep.status == epa::Status::Degenerate) return;
     const Real target = Real(64) * kEpsilon * setup.scale;
     if (ep.status == epa::Status::Converged && ep.gap <= target) return;
     // From the normal of EPA's least upper bound (its nearest face's normal may be worse).
@@ -169,7 +169,7 @@ LocalAnswer solve(const A& a, const B& b, PairSetup<A, B>& setup, const PairRequ
         epa::refine(sa, sb, ep.upper_normal, setup.scale, std::clamp(request.max_iterations, 1, 96));
     ep.iterations += f.iterations;
     // Unconverged, EPA's own answer stands (at its cap: the nearest face, a lower bound).
-    if (!f.converged || !(f.depth <= ep.depth + ep.gap + target)) return;
+    if (!f.converged || !(f.depth <= ep.depth + ep.gap + kSqrtEpsilon * setup.scale)) return;
     ep.status = epa::Status::Converged;
     ep.gap = std::max(f.depth - ep.depth, Real(0));
     ep.depth = f.depth;
@@ -184,7 +184,7 @@ LocalAnswer solve(const A& a, const B& b, PairSetup<A, B>& setup, const PairRequ
     const gjk::Result gi = gjk::distance(ia, ib, setup.axis, setup.gjk_settings(request));
     ans.iterations += gi.iterations;
     epa::Result ei = epa::penetration(ia, ib, gi.simplex, setup.scale, es);
-    polish(ei, ia, ib);
+    polish(ei, ia, ib, true);  // inflated cores are curved
     if (ei.status != epa::Status::Degenerate) {
       ei.depth -= Real(2) * delta;
       ei.point_a -= delta * ei.normal;
@@ -197,7 +197,7 @@ LocalAnswer solve(const A& a, const B& b, PairSetup<A, B>& setup, const PairRequ
     e = inflated_epa();
   } else {
     e = epa::penetration(setup.support_a, setup.support_b, g.simplex, setup.scale, es);
-    polish(e, setup.support_a, setup.support_b);
+    polish(e, setup.support_a, setup.support_b, !polytopes);
     if (e.status == epa::Status::MaxIterations) {
       // Rounding stopped the expansion early: a second polytope, grown on the slightly
       // inflated cores, meets other slivers; keep the answer with the smaller error bound.
