@@ -9,6 +9,7 @@ packages=(
   build-essential cmake ninja-build pkg-config git
   libglm-dev libqhull-dev            # the library: math, convex hulls
   libcli11-dev nlohmann-json3-dev    # the proxima tool
+  libassimp-dev                      # the proxima tool: mesh files (OBJ, STL, PLY, glTF)
   libgtest-dev libgmock-dev          # tests
   libcgal-dev                        # exact reference computations in tests
   clang-format                       # the formatting test

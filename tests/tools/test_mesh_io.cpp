@@ -1,0 +1,152 @@
+// Tests of load_mesh (assimp): the same tetrahedron as OBJ, ASCII STL and ASCII PLY gives the
+// same closed, outward mesh with the file's winding; an OBJ with two objects and quads is
+// merged and triangulated; the shared noisy icosphere matches the test's own line-by-line
+// OBJ parse triangle by triangle; unreadable files are errors naming "file".
+#include <gtest/gtest.h>
+
+#include <proxima/shapes/indexed_mesh.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "mesh_io.hpp"
+#include "support/random.hpp"
+
+namespace proxima {
+namespace {
+
+std::string data_file(const std::string& name) { return std::string(PROXIMA_TOOLS_TEST_DATA) + "/" + name; }
+
+using Corner = std::array<Real, 3>;
+using DirectedTriangle = std::array<Corner, 3>;
+
+/// Triangles as position triples rotated to start at the smallest corner (winding kept).
+std::multiset<DirectedTriangle> directed_triangles(const IndexedMesh& m) {
+  std::multiset<DirectedTriangle> out;
+  for (const auto& t : m.triangles) {
+    DirectedTriangle p;
+    for (std::size_t i = 0; i < 3; ++i) {
+      const Vec3& v = m.vertices[t[i]];
+      p[i] = {v.x, v.y, v.z};
+    }
+    std::rotate(p.begin(), std::min_element(p.begin(), p.end()), p.end());
+    out.insert(p);
+  }
+  return out;
+}
+
+/// The test's own reader of "v x y z" and "f i j k" lines (1-based, triangles only).
+IndexedMesh parse_simple_obj(const std::string& path) {
+  IndexedMesh m;
+  std::ifstream in(path);
+  std::string line;
+  while (std::getline(in, line)) {
+    std::istringstream s(line);
+    std::string tag;
+    s >> tag;
+    if (tag == "v") {
+      double x = 0, y = 0, z = 0;
+      s >> x >> y >> z;
+      m.vertices.emplace_back(static_cast<float>(x), static_cast<float>(y), static_cast<float>(z));
+    } else if (tag == "f") {
+      TriangleIndices t{};
+      for (auto& k : t) {
+        s >> k;
+        --k;
+      }
+      m.triangles.push_back(t);
+    }
+  }
+  return m;
+}
+
+RepairedMesh load_and_repair(const std::string& path) {
+  auto loaded = tool::load_mesh(path);
+  EXPECT_TRUE(loaded.ok()) << (loaded.ok() ? "" : loaded.error().what());
+  auto repaired = repair_mesh(loaded.value());
+  EXPECT_TRUE(repaired.ok());
+  return repaired.value();
+}
+
+TEST(MeshIo, TetrahedronInEveryFormat) {
+  IndexedMesh expected;
+  expected.vertices = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1)};
+  expected.triangles = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+  for (const char* name : {"tetrahedron.obj", "tetrahedron.stl", "tetrahedron.ply"}) {
+    SCOPED_TRACE(name);
+    const RepairedMesh r = load_and_repair(data_file(name));
+    EXPECT_EQ(r.mesh.vertices.size(), 4u);
+    EXPECT_EQ(r.mesh.triangles.size(), 4u);
+    EXPECT_TRUE(r.report.closed);
+    EXPECT_TRUE(r.report.oriented);
+    EXPECT_EQ(r.report.flipped_triangles, 0u);  // the file's winding is kept (and is outward)
+    EXPECT_NEAR(double(r.report.volume), 1.0 / 6.0, 1e-6);
+    EXPECT_NEAR(double(r.report.surface_area), 1.5 + std::sqrt(3.0) / 2.0, 1e-5);
+    EXPECT_EQ(directed_triangles(r.mesh), directed_triangles(expected));
+  }
+}
+
+TEST(MeshIo, ObjectsAreMergedAndQuadsTriangulated) {
+  const RepairedMesh r = load_and_repair(data_file("cube_and_tetrahedron.obj"));
+  EXPECT_EQ(r.report.input_triangles, 16u);
+  EXPECT_EQ(r.mesh.vertices.size(), 12u);
+  EXPECT_EQ(r.mesh.triangles.size(), 16u);
+  EXPECT_EQ(r.report.components, 2u);
+  EXPECT_TRUE(r.report.closed);
+  EXPECT_TRUE(r.report.oriented);
+  EXPECT_EQ(r.report.flipped_triangles, 0u);
+  EXPECT_NEAR(double(r.report.volume), 1.0 + 1.0 / 6.0, 1e-5);
+}
+
+TEST(MeshIo, SharedIcosphere) {
+  std::string dir = PROXIMA_DEFAULT_WORKLOAD_DIR;
+  if (const char* env = std::getenv("PROXIMA_WORKLOADS"); env != nullptr && env[0] != '\0') dir = env;
+  const std::string path = dir + "/mesh_icosphere.obj";
+  if (!std::filesystem::exists(path)) GTEST_SKIP() << path << " not found";
+  auto loaded = tool::load_mesh(path);
+  ASSERT_TRUE(loaded.ok()) << loaded.error().what();
+  EXPECT_EQ(loaded->triangles.size(), 20480u);
+  const RepairedMesh r = load_and_repair(path);
+  EXPECT_EQ(r.mesh.vertices.size(), 10242u);
+  EXPECT_EQ(r.mesh.triangles.size(), 20480u);
+  EXPECT_TRUE(r.report.closed);
+  EXPECT_TRUE(r.report.oriented);
+  EXPECT_EQ(r.report.components, 1u);
+  EXPECT_EQ(r.report.flipped_triangles, 0u);
+  EXPECT_EQ(r.report.degenerate_triangles_removed + r.report.duplicate_triangles_removed, 0u);
+  // Radius 1 +- 0.03: the volume lies between the balls of radius 0.97 cos(edge) and 1.03.
+  const double pi = 3.14159265358979323846;
+  EXPECT_GT(double(r.report.volume), 4.0 / 3.0 * pi * std::pow(0.96, 3));
+  EXPECT_LT(double(r.report.volume), 4.0 / 3.0 * pi * std::pow(1.03, 3));
+  // Triangle by triangle, the same as the test's own parse of the file.
+  const IndexedMesh reference = parse_simple_obj(path);
+  ASSERT_EQ(reference.triangles.size(), 20480u);
+  EXPECT_EQ(directed_triangles(r.mesh), directed_triangles(reference));
+}
+
+TEST(MeshIo, Errors) {
+  auto missing = tool::load_mesh(data_file("no_such_file.obj"));
+  ASSERT_FALSE(missing.ok());
+  EXPECT_EQ(missing.error().code, ErrorCode::InvalidArgument);
+  EXPECT_EQ(missing.error().field, "file");
+  auto empty = tool::load_mesh(data_file("not_a_mesh.obj"));
+  ASSERT_FALSE(empty.ok());
+  EXPECT_EQ(empty.error().field, "file");
+  auto garbage = tool::load_mesh(data_file("good.jsonl"));
+  ASSERT_FALSE(garbage.ok());
+  EXPECT_EQ(garbage.error().field, "file");
+  EXPECT_NE(tool::mesh_file_extensions().find("obj"), std::string::npos);
+  EXPECT_NE(tool::mesh_file_extensions().find("stl"), std::string::npos);
+  EXPECT_NE(tool::mesh_file_extensions().find("ply"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace proxima
