@@ -291,5 +291,22 @@ TEST(TriangleMeshPointQueries, AgreesWithBruteForce) {
   expect_mass_near(l_mesh.mass_properties(Real(3)), union_of_cubes(ell, 0.5), Real(3));
 }
 
+TEST(TriangleMeshPointQueries, PrunedDescentEqualsLinearScan) {
+  // A 9216-triangle torus: the BVH descent must find exactly the linear scan's answer (same
+  // per-triangle routine, ties to the lower index), also for points far away and inside.
+  const Prepared m = prepare("torus", test::torus_mesh(Real(1), Real(0.35), 96, 48));
+  const TriangleMesh mesh = TriangleMesh::create(m.mesh).value();
+  ASSERT_EQ(mesh.triangle_count(), m.mesh.triangles.size());
+  const detail::MeshView view = m.view(true);
+  test::Random rng(5150);
+  for (int i = 0; i < 400; ++i) {
+    const Vec3 p = i % 4 == 0 ? rng.vec3(Real(-20), Real(20)) : random_point_near(rng, m.box);
+    const SurfacePoint a = mesh.closest_point(p);
+    const SurfacePoint b = detail::mesh_closest_point(view, Bvh{}, p);
+    EXPECT_EQ(a.signed_distance, b.signed_distance);
+    EXPECT_EQ(mesh.contains(p), detail::mesh_contains(view, Bvh{}, p));
+  }
+}
+
 }  // namespace
 }  // namespace proxima
