@@ -68,7 +68,7 @@ void check_shape(const S& shape, std::span<const Vec3> vertices, test::Random& r
     const Aabb box = motion_aabb(shape, motion);
     const BoundingSphere ball = motion_sphere(shape, motion);
     const Obb obb = motion_obb(shape, motion);
-    const Real tol = Real(16) * kRelativeTolerance * Real(10);
+    const Real tol = Real(64) * kEpsilon * Real(20);  // a few ulps at coordinates up to ~20
     std::vector<Vec3> pts;
     const int samples = 64;
     for (int k = 0; k <= samples; ++k) {

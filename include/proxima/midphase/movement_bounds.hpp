@@ -68,11 +68,12 @@ Real shape_radius_about_origin(const S& shape) {
 /// +-kRealMax. O(1).
 Aabb motion_aabb(const Aabb& local_box, const Motion& motion, Real radius = Real(-1));
 
-/// motion_aabb for a shape: translation uses the shape's exact world boxes (tight: the box
-/// of the swept shape), rotation its radius about the origin.
+/// motion_aabb for a shape: translation uses the shape's exact world boxes (fit_shape_aabb,
+/// padded by a few ulps; tight: the box of the swept shape), rotation its radius about the
+/// origin.
 template <class S>
 Aabb motion_aabb(const S& shape, const Motion& motion) {
-  if (motion.is_translation()) return merge(shape.world_aabb(motion.start), shape.world_aabb(motion.end));
+  if (motion.is_translation()) return merge(fit_shape_aabb(shape, motion.start), fit_shape_aabb(shape, motion.end));
   return motion_aabb(shape.local_aabb(), motion, shape_radius_about_origin(shape));
 }
 
