@@ -120,6 +120,7 @@ class TriangleMesh {
     Bvh bvh;                                              ///< hierarchy over the triangles
     std::vector<std::array<std::uint32_t, 3>> neighbors;  ///< triangle across each edge
     std::vector<std::uint8_t> active_edges;               ///< 3 bits per triangle
+    Real flat_edge_angle = Real(0.01);  ///< MeshCreateOptions::flat_edge_angle used (deformed() reuses it)
   };
 
  private:

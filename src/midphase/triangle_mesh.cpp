@@ -1,0 +1,381 @@
+/// @file triangle_mesh.cpp
+/// TriangleMesh: creation (repair or analysis, BVH, adjacency, active edges), deformation,
+/// bounds and ray casts. Point queries (contains, closest_point, mass_properties) are in
+/// triangle_mesh_point_queries.cpp.
+///
+/// Steps of create: repair_mesh (or analyse_mesh) the input; build the binned-SAH Bvh over
+/// the triangle boxes (centres = box centres); find the triangle across each edge by
+/// sorting the 3n edges on their (smaller, larger) vertex pair (exactly two uses = manifold
+/// neighbours, else kNoIndex); flag each edge active unless its two triangles meet within
+/// flat_edge_angle of flat or concavely (the internal-edge idea of Bullet's
+/// btInternalEdgeUtility and of Jolt's active edges).
+///
+/// Ray casts traverse the BVH front to back (the nearer child by slab entry first, subtrees
+/// beyond the best hit so far skipped) with the robust slab test of Ize ("Robust BVH Ray
+/// Traversal", JCGT 2013: the exit distance widened by 1 + 2 gamma(3) so that rounding
+/// never culls a box the ray touches) and the watertight triangle test of Woop, Benthin and
+/// Wald (JCGT 2013) on a TriangleRay prepared once per ray.
+
+#include <proxima/core/tolerance.hpp>
+#include <proxima/geometry/raycast.hpp>
+#include <proxima/midphase/triangle_mesh.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+#include <utility>
+
+namespace proxima {
+namespace {
+
+/// Box of triangle t.
+inline Aabb triangle_box(const IndexedMesh& m, const TriangleIndices& t) {
+  const Vec3& a = m.vertices[t[0]];
+  const Vec3& b = m.vertices[t[1]];
+  const Vec3& c = m.vertices[t[2]];
+  return {glm::min(a, glm::min(b, c)), glm::max(a, glm::max(b, c))};
+}
+
+/// Triangle boxes and their centres.
+void triangle_boxes(const IndexedMesh& m, std::vector<Aabb>& boxes, std::vector<Vec3>* centers) {
+  const std::size_t n = m.triangles.size();
+  boxes.resize(n);
+  if (centers) centers->resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    boxes[i] = triangle_box(m, m.triangles[i]);
+    if (centers) (*centers)[i] = boxes[i].center();
+  }
+}
+
+/// Triangle across each edge (kNoIndex for boundary and non-manifold edges).
+void compute_neighbors(const IndexedMesh& m, std::vector<std::array<std::uint32_t, 3>>& neighbors) {
+  const std::size_t n = m.triangles.size();
+  neighbors.assign(n, {kNoIndex, kNoIndex, kNoIndex});
+  struct EdgeUse {
+    std::uint64_t key;   // (smaller vertex << 32) | larger vertex
+    std::uint32_t slot;  // 3 * triangle + edge
+  };
+  std::vector<EdgeUse> uses(3 * n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const TriangleIndices& t = m.triangles[i];
+    for (std::size_t e = 0; e < 3; ++e) {
+      const std::uint64_t u = t[e];
+      const std::uint64_t v = t[(e + 1) % 3];
+      uses[3 * i + e] = {u < v ? (u << 32) | v : (v << 32) | u, static_cast<std::uint32_t>(3 * i + e)};
+    }
+  }
+  std::sort(uses.begin(), uses.end(),
+            [](const EdgeUse& a, const EdgeUse& b) { return a.key < b.key || (a.key == b.key && a.slot < b.slot); });
+  for (std::size_t i = 0; i < uses.size();) {
+    std::size_t j = i + 1;
+    while (j < uses.size() && uses[j].key == uses[i].key) ++j;
+    if (j - i == 2) {
+      const std::uint32_t s0 = uses[i].slot;
+      const std::uint32_t s1 = uses[i + 1].slot;
+      neighbors[s0 / 3][s0 % 3] = s1 / 3;
+      neighbors[s1 / 3][s1 % 3] = s0 / 3;
+    }
+    i = j;
+  }
+}
+
+/// Active-edge bits from the neighbours and the dihedral angles.
+void compute_active_edges(const IndexedMesh& m, const std::vector<std::array<std::uint32_t, 3>>& neighbors,
+                          Real flat_edge_angle, std::vector<std::uint8_t>& active) {
+  const std::size_t n = m.triangles.size();
+  active.assign(n, 0);
+  const Real cos_flat = std::cos(std::clamp(flat_edge_angle, Real(0), Real(3.14159265358979)));
+  for (std::size_t i = 0; i < n; ++i) {
+    const TriangleIndices& t = m.triangles[i];
+    const Vec3& a = m.vertices[t[0]];
+    const Vec3 nt = glm::cross(m.vertices[t[1]] - a, m.vertices[t[2]] - a);
+    const Real lt = glm::length(nt);
+    std::uint8_t bits = 0;
+    for (std::size_t e = 0; e < 3; ++e) {
+      const std::uint32_t other = neighbors[i][e];
+      if (other == kNoIndex) {
+        bits = static_cast<std::uint8_t>(bits | (1u << e));
+        continue;
+      }
+      const TriangleIndices& u = m.triangles[other];
+      const std::uint32_t v0 = t[e];
+      const std::uint32_t v1 = t[(e + 1) % 3];
+      // The neighbour's vertex off the shared edge, and whether it runs the edge the other way.
+      std::size_t apex = 0;
+      bool opposite = false;
+      for (std::size_t k = 0; k < 3; ++k) {
+        if (u[k] != v0 && u[k] != v1) apex = k;
+        if (u[k] == v1 && u[(k + 1) % 3] == v0) opposite = true;
+      }
+      const Vec3& ua = m.vertices[u[0]];
+      const Vec3 nu = glm::cross(m.vertices[u[1]] - ua, m.vertices[u[2]] - ua);
+      const Real lu = glm::length(nu);
+      if (!opposite || !(lt > Real(0)) || !(lu > Real(0))) {  // inconsistent or degenerate: keep
+        bits = static_cast<std::uint8_t>(bits | (1u << e));
+        continue;
+      }
+      const Real cos_angle = glm::dot(nt, nu) / (lt * lu);
+      if (cos_angle >= cos_flat) continue;  // flat: inactive
+      // Convex when the neighbour's apex lies below this triangle's plane.
+      const Real height = glm::dot(nt, m.vertices[u[apex]] - a);
+      if (height < Real(0)) bits = static_cast<std::uint8_t>(bits | (1u << e));
+    }
+    active[i] = bits;
+  }
+}
+
+/// The ray prepared for box tests: origin and inverse direction. A zero (or subnormal)
+/// direction component gets inverse 1 and is flagged: the slab of that axis is then all of t
+/// when the origin lies in it and none otherwise (no 0 * inf, so no NaN).
+struct BoxRay {
+  Vec3 origin;
+  Vec3 inv;
+  bool zero[3] = {false, false, false};
+  bool any_zero = false;
+};
+
+inline BoxRay prepare_box_ray(const Ray& ray) {
+  BoxRay r{ray.origin, Vec3(1)};
+  for (int a = 0; a < 3; ++a) {
+    const Real d = ray.direction[a];
+    if (std::abs(d) >= std::numeric_limits<Real>::min()) {
+      r.inv[a] = Real(1) / d;
+    } else {
+      r.zero[a] = true;
+      r.any_zero = true;
+    }
+  }
+  return r;
+}
+
+/// 1 + 2 gamma(3) of Ize 2013 (gamma(n) = n eps / (1 - n eps), eps = half an ulp of 1).
+constexpr Real kSlabWiden =
+    Real(1) + Real(2) * (Real(3) * kEpsilon * Real(0.5)) / (Real(1) - Real(3) * kEpsilon * Real(0.5));
+
+/// Slab test: true when the ray's [0, t_max] meets the node box; `t_near` gets the entry.
+inline bool slab(const BvhNode& node, const BoxRay& r, Real t_max, Real& t_near) {
+  const Vec3 t0 = (node.min - r.origin) * r.inv;
+  const Vec3 t1 = (node.max - r.origin) * r.inv;
+  Vec3 lo = glm::min(t0, t1);
+  Vec3 hi = glm::max(t0, t1);
+  if (r.any_zero) {  // rare: axis-parallel rays
+    for (int a = 0; a < 3; ++a) {
+      if (!r.zero[a]) continue;
+      if (r.origin[a] < node.min[a] || r.origin[a] > node.max[a]) return false;
+      lo[a] = -kRealMax;
+      hi[a] = kRealMax;
+    }
+  }
+  const Real tn = std::max(std::max(lo.x, lo.y), std::max(lo.z, Real(0)));
+  const Real tf = std::min(std::min(hi.x, hi.y), std::min(hi.z, t_max)) * kSlabWiden;
+  t_near = tn;
+  return tn <= tf;
+}
+
+/// True when the hit on triangle (a, b, c) passes `culling`.
+inline bool passes_culling(FaceCulling culling, const RayHit& hit, const Vec3& a, const Vec3& b, const Vec3& c) {
+  if (culling == FaceCulling::None) return true;
+  const Real side = glm::dot(hit.normal, glm::cross(b - a, c - a));  // > 0: hit from the front
+  return culling == FaceCulling::Back ? side > Real(0) : side < Real(0);
+}
+
+/// Stack entry of the ordered traversal.
+struct StackEntry {
+  std::uint32_t node;
+  Real t_near = Real(0);
+};
+
+}  // namespace
+
+Result<TriangleMesh> TriangleMesh::create(IndexedMesh mesh, const MeshCreateOptions& options) {
+  auto data = std::make_shared<Data>();
+  if (options.repair) {
+    Result<RepairedMesh> repaired = repair_mesh(mesh, options.repair_options);
+    if (!repaired) return repaired.error();
+    data->mesh = std::move(repaired.value().mesh);
+    data->report = repaired.value().report;
+  } else {
+    Result<MeshReport> report = analyse_mesh(mesh);
+    if (!report) return report.error();
+    data->report = report.value();
+    data->mesh = std::move(mesh);
+  }
+  if (data->mesh.triangles.empty()) return make_error(ErrorCode::TooFew, "triangles", "no triangle left after repair");
+  if (data->mesh.triangles.size() >= std::size_t(kNoIndex) / 3)
+    return make_error(ErrorCode::OutOfRange, "triangles", "too many triangles");
+  std::vector<Aabb> boxes;
+  std::vector<Vec3> centers;
+  triangle_boxes(data->mesh, boxes, &centers);
+  data->bvh = Bvh::build(boxes, centers, options.bvh);
+  compute_neighbors(data->mesh, data->neighbors);
+  compute_active_edges(data->mesh, data->neighbors, options.flat_edge_angle, data->active_edges);
+  data->flat_edge_angle = options.flat_edge_angle;
+  return TriangleMesh(std::move(data));
+}
+
+Result<TriangleMesh> TriangleMesh::deformed(std::span<const Vec3> vertices) const {
+  if (vertices.size() != data_->mesh.vertices.size())
+    return make_error(ErrorCode::InvalidArgument, "vertices",
+                      "expected " + std::to_string(data_->mesh.vertices.size()) + " vertices, got " +
+                          std::to_string(vertices.size()));
+  static constexpr const char* kAxis[3] = {".x", ".y", ".z"};
+  for (std::size_t i = 0; i < vertices.size(); ++i) {
+    for (int a = 0; a < 3; ++a) {
+      const Real x = vertices[i][a];
+      const std::string field = "vertices[" + std::to_string(i) + "]";
+      if (!std::isfinite(x)) return make_error(ErrorCode::NotFinite, field + kAxis[a], "not finite");
+      if (std::abs(x) > kMaxCoordinate)
+        return make_error(ErrorCode::OutOfRange, field + kAxis[a], "beyond kMaxCoordinate");
+    }
+  }
+  auto data = std::make_shared<Data>(*data_);
+  data->mesh.vertices.assign(vertices.begin(), vertices.end());
+  std::vector<Aabb> boxes;
+  triangle_boxes(data->mesh, boxes, nullptr);
+  data->bvh.refit(boxes);
+  compute_active_edges(data->mesh, data->neighbors, data->flat_edge_angle, data->active_edges);
+  // Volume and area follow the vertices (divergence theorem, as in the analysis).
+  Real volume = Real(0);
+  Real area = Real(0);
+  for (const TriangleIndices& t : data->mesh.triangles) {
+    const Vec3& a = data->mesh.vertices[t[0]];
+    const Vec3& b = data->mesh.vertices[t[1]];
+    const Vec3& c = data->mesh.vertices[t[2]];
+    volume += glm::dot(a, glm::cross(b, c)) / Real(6);
+    area += glm::length(glm::cross(b - a, c - a)) * Real(0.5);
+  }
+  data->report.volume = volume;
+  data->report.surface_area = area;
+  return TriangleMesh(std::move(data));
+}
+
+Aabb TriangleMesh::world_aabb(const Transform& pose) const {
+  const Mat3 r = pose.rotation_matrix();
+  Aabb box = Aabb::empty();
+  for (const Vec3& v : data_->mesh.vertices) box.grow(r * v);
+  if (!box.is_valid()) return box;
+  return {box.min + pose.position, box.max + pose.position};
+}
+
+std::optional<MeshRayHit> TriangleMesh::raycast(const Ray& ray, Real max_t, FaceCulling culling) const {
+  const Bvh& bvh = data_->bvh;
+  if (bvh.empty() || !(max_t >= Real(0))) return std::nullopt;
+  const geometry::TriangleRay tri_ray = geometry::TriangleRay::prepare(ray);
+  if (!tri_ray.valid) return std::nullopt;
+  const BoxRay box_ray = prepare_box_ray(ray);
+  const std::span<const BvhNode> nodes = bvh.nodes();
+  const std::span<const std::uint32_t> prims = bvh.primitives();
+  const std::vector<Vec3>& verts = data_->mesh.vertices;
+  const std::vector<TriangleIndices>& tris = data_->mesh.triangles;
+
+  std::optional<MeshRayHit> best;
+  Real best_t = max_t;
+  StackEntry stack[Bvh::kMaxDepth + 1];
+  std::uint32_t top = 0;
+  Real t_root = Real(0);
+  if (!slab(nodes[0], box_ray, best_t, t_root)) return std::nullopt;
+  std::uint32_t current = 0;
+  while (true) {
+    const BvhNode& node = nodes[current];
+    if (node.is_leaf()) {
+      // One ulp beyond the best: the triangle test compares its unrounded t with the limit,
+      // and a hit that rounds to the same t must still reach the tie rule.
+      const Real limit = best ? std::min(max_t, std::nextafter(best_t, kRealMax)) : max_t;
+      for (std::uint32_t i = node.first; i != node.first + node.count; ++i) {
+        const std::uint32_t tri = prims[i];
+        const TriangleIndices& t = tris[tri];
+        const Vec3& a = verts[t[0]];
+        const Vec3& b = verts[t[1]];
+        const Vec3& c = verts[t[2]];
+        const std::optional<RayHit> hit = geometry::ray_triangle(tri_ray, limit, a, b, c);
+        if (!hit || !passes_culling(culling, *hit, a, b, c)) continue;
+        if (best && (hit->t > best->hit.t || (hit->t == best->hit.t && tri > best->triangle))) continue;
+        best = MeshRayHit{*hit, tri};
+        best_t = hit->t;
+      }
+    } else {
+      Real t_left = Real(0), t_right = Real(0);
+      const bool hit_left = slab(nodes[node.first], box_ray, best_t, t_left);
+      const bool hit_right = slab(nodes[node.first + 1], box_ray, best_t, t_right);
+      if (hit_left && hit_right) {
+        if (t_right < t_left) {
+          stack[top++] = {node.first, t_left};
+          current = node.first + 1;
+        } else {
+          stack[top++] = {node.first + 1, t_right};
+          current = node.first;
+        }
+        continue;
+      }
+      if (hit_left) {
+        current = node.first;
+        continue;
+      }
+      if (hit_right) {
+        current = node.first + 1;
+        continue;
+      }
+    }
+    // Pop the next subtree that may still hold a hit no farther than the best.
+    bool found = false;
+    while (top != 0) {
+      const StackEntry& e = stack[--top];
+      if (e.t_near <= best_t * kSlabWiden) {
+        current = e.node;
+        found = true;
+        break;
+      }
+    }
+    if (!found) break;
+  }
+  return best;
+}
+
+bool TriangleMesh::raycast_any(const Ray& ray, Real max_t, FaceCulling culling) const {
+  const Bvh& bvh = data_->bvh;
+  if (bvh.empty() || !(max_t >= Real(0))) return false;
+  const geometry::TriangleRay tri_ray = geometry::TriangleRay::prepare(ray);
+  if (!tri_ray.valid) return false;
+  const BoxRay box_ray = prepare_box_ray(ray);
+  const std::vector<Vec3>& verts = data_->mesh.vertices;
+  const std::vector<TriangleIndices>& tris = data_->mesh.triangles;
+  Real t_near = Real(0);
+  return !bvh.traverse([&](const BvhNode& node) { return slab(node, box_ray, max_t, t_near); },
+                       [&](std::uint32_t tri) {
+                         const TriangleIndices& t = tris[tri];
+                         const Vec3& a = verts[t[0]];
+                         const Vec3& b = verts[t[1]];
+                         const Vec3& c = verts[t[2]];
+                         const std::optional<RayHit> hit = geometry::ray_triangle(tri_ray, max_t, a, b, c);
+                         return !(hit && passes_culling(culling, *hit, a, b, c));
+                       });
+}
+
+void TriangleMesh::raycast_all(const Ray& ray, Real max_t, std::vector<MeshRayHit>& hits, FaceCulling culling) const {
+  const Bvh& bvh = data_->bvh;
+  if (bvh.empty() || !(max_t >= Real(0))) return;
+  const geometry::TriangleRay tri_ray = geometry::TriangleRay::prepare(ray);
+  if (!tri_ray.valid) return;
+  const BoxRay box_ray = prepare_box_ray(ray);
+  const std::vector<Vec3>& verts = data_->mesh.vertices;
+  const std::vector<TriangleIndices>& tris = data_->mesh.triangles;
+  const std::size_t start = hits.size();
+  Real t_near = Real(0);
+  bvh.traverse([&](const BvhNode& node) { return slab(node, box_ray, max_t, t_near); },
+               [&](std::uint32_t tri) {
+                 const TriangleIndices& t = tris[tri];
+                 const Vec3& a = verts[t[0]];
+                 const Vec3& b = verts[t[1]];
+                 const Vec3& c = verts[t[2]];
+                 const std::optional<RayHit> hit = geometry::ray_triangle(tri_ray, max_t, a, b, c);
+                 if (hit && passes_culling(culling, *hit, a, b, c)) hits.push_back({*hit, tri});
+                 return true;
+               });
+  std::sort(hits.begin() + static_cast<std::ptrdiff_t>(start), hits.end(),
+            [](const MeshRayHit& x, const MeshRayHit& y) {
+              return x.hit.t < y.hit.t || (x.hit.t == y.hit.t && x.triangle < y.triangle);
+            });
+}
+
+}  // namespace proxima
