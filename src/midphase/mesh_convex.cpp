@@ -15,8 +15,14 @@
 ///     Each contact point on the triangle is classified (barycentric coordinates) as face,
 ///     edge or vertex. On an active (convex or boundary) edge, or a vertex with an active
 ///     edge anywhere in its fan, the contact is real and kept. On an inactive (flat or concave) edge or vertex,
-///     the normal is replaced by the face normal and the depth recomputed along it (the
-///     depth of the shape's support point below the triangle's plane); the corrected contact
+///     the normal is replaced by the face normal and the signed distance recomputed along
+///     it against the triangle itself (not its plane, which would count parts of the shape
+///     hanging beyond the triangle's other edges): the translation along the face normal
+///     that separates the shape from the triangle, found as the exit of the ray along the
+///     normal from the Minkowski difference by conservative advancement (the signed
+///     distance is 1-Lipschitz in the translation) and bisection, bracketed above by the
+///     plane depth and by depth / cos(angle to the narrow phase's normal), one value per
+///     triangle (a few narrow-phase distance calls, only on inactive features); the corrected contact
 ///     is dropped when a neighbouring triangle sharing its feature's vertices already gave a
 ///     face contact (that triangle holds the same support), or when the corrected gap
 ///     exceeds the contact distance.
@@ -123,6 +129,51 @@ bool vertex_active(const TriangleMesh& mesh, std::uint32_t t, std::uint32_t vert
     cur = next;
   }
   return true;
+}
+
+/// Signed distance of `convex` from triangle `tri` (mesh frame, placed at `pose_mesh`) along
+/// the unit world direction `n`: for an overlapping pair, minus the smallest t >= 0 such that
+/// the shape moved by t*n no longer overlaps the triangle; for a separated pair, the smallest
+/// t >= 0 such that the shape moved by -t*n touches it (returns a value above `cutoff` when
+/// none does within `cutoff`). `sd0` is the pair's signed distance, `m` the narrow phase's
+/// normal, `plane_sd` the signed distance of the shape's support point from the triangle's
+/// plane along n (a lower bound of the answer for an overlap). At most 48 distance calls.
+Real directional_signed_distance(const Triangle& tri, const Transform& pose_mesh, ShapeRef convex,
+                                 const Transform& pose_convex, const PairRequest& request, const Vec3& n, Real sd0,
+                                 const Vec3& m, Real plane_sd, Real cutoff) {
+  const Real scale = std::max(
+      {std::abs(pose_convex.position.x), std::abs(pose_convex.position.y), std::abs(pose_convex.position.z), Real(1)});
+  const Real tol = request.tolerance > Real(0) ? request.tolerance : linear_tolerance(scale);
+  const auto f = [&](Real t) {
+    Transform moved = pose_convex;
+    moved.position += t * n;
+    return distance(ShapeRef(tri), pose_mesh, convex, moved, request).signed_distance;
+  };
+  if (sd0 > tol) {  // approach along -n from above (conservative advancement)
+    Real t = Real(0), d = sd0;
+    for (int k = 0; k < 48 && d > tol; ++k) {
+      t += d;
+      if (t > cutoff) return t;
+      d = f(-t);
+    }
+    return t;
+  }
+  // Overlap or touch: the end t1 of the interval {t : f(t) <= tol} along +n (f is convex in
+  // t, so that set is an interval holding 0). f is 1-Lipschitz, so f(mid) <= 0 puts t1 at
+  // or past mid - f(mid); bisection otherwise.
+  Real lo = std::max(Real(0), -sd0);
+  Real hi = -plane_sd;
+  const Real c = glm::dot(n, m);  // m may point either way; only a positive c bounds t1
+  if (c > Real(0.05)) hi = std::min(hi, -sd0 / c + tol);
+  for (int k = 0; k < 48 && hi - lo > tol; ++k) {
+    const Real mid = Real(0.5) * (lo + hi);
+    const Real dm = f(mid);
+    if (dm > tol)
+      hi = mid;
+    else
+      lo = std::min(hi, mid + std::max(Real(0), -dm));
+  }
+  return -Real(0.5) * (lo + hi);
 }
 
 /// Per-thread scratch for collide_all (grows to the largest query, then allocation-free).
@@ -333,6 +384,9 @@ void mesh_convex_collide_all(const TriangleMesh& mesh, const Transform& pose_mes
         const bool face = glm::dot(n_local, f) >= face_cos;
         const std::uint8_t active = mesh.active_edges(t);
         const TriangleIndices& idx = tris[t];
+        bool corrected = false;  // ghost signed distance along the face normal computed yet
+        Real ghost_sd = Real(0);
+        Vec3 ghost_n(Real(0));
         for (int i = 0; i < m.count; ++i) {
           GeometryContact c;
           c.contact = m.points[i];
@@ -357,10 +411,27 @@ void mesh_convex_collide_all(const TriangleMesh& mesh, const Transform& pose_mes
             contacts.push_back(c);
             continue;
           }
-          // Ghost candidate: normal -> face normal, depth of the shape below the plane.
-          const Vec3 fw = pose_mesh.apply_vector(f);
-          const Vec3 deepest = world_support(convex, pose_convex, -fw);
-          const Real sd = glm::dot(deepest - pose_mesh.apply(v[0]), fw);
+          // Ghost candidate: normal -> face normal, signed distance along it to the triangle.
+          // The side is the one the shape needs the shorter push to clear the plane towards
+          // (a narrow-phase normal near the plane does not say which side the shape is on).
+          if (!corrected) {
+            corrected = true;
+            ghost_n = pose_mesh.apply_vector(f);
+            const Vec3 p0 = pose_mesh.apply(v[0]);
+            Real plane_sd = glm::dot(world_support(convex, pose_convex, -ghost_n) - p0, ghost_n);
+            const Real other_sd = -glm::dot(world_support(convex, pose_convex, ghost_n) - p0, ghost_n);
+            if (other_sd > plane_sd) {
+              ghost_n = -ghost_n;
+              plane_sd = other_sd;
+            }
+            Real sd0 = kInf;
+            for (int j = 0; j < m.count; ++j) sd0 = std::min(sd0, -m.points[j].depth);
+            ghost_sd = plane_sd > cd ? plane_sd
+                                     : directional_signed_distance(*tri, pose_mesh, convex, pose_convex, request,
+                                                                   ghost_n, sd0, m.normal, plane_sd, cd);
+          }
+          const Vec3 fw = ghost_n;
+          const Real sd = ghost_sd;
           if (sd > cd) continue;
           c.contact.normal = fw;
           c.contact.depth = -sd;
