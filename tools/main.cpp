@@ -3,6 +3,7 @@
 //   proxima demo [options]     the billiard-break demo (statistics + SVG picture)
 //   proxima query [FILE|-]     the JSON query protocol, one request per line
 //   proxima bench broadphase   one broad-phase structure on a W1 workload file
+//   proxima mesh-info FILE     validation/repair report, bounds, volume, BVH of a mesh file
 #include <proxima/core/config.hpp>
 
 #include <CLI/CLI.hpp>
@@ -16,6 +17,7 @@
 #include "bench_command.hpp"
 #include "demo_billiards.hpp"
 #include "json_shapes.hpp"
+#include "mesh_info.hpp"
 #include "query.hpp"
 #include "query_operations.hpp"
 
@@ -94,6 +96,20 @@ int run(int argc, char** argv) {
   bool bench_no_check = false;
   bench_broadphase_cmd->add_flag("--no-check", bench_no_check, "Skip the reference checksum");
 
+  proxima::tool::MeshInfoOptions mesh_info;
+  bool mesh_info_no_repair = false;
+  CLI::App* mesh_info_cmd = app.add_subcommand(
+      "mesh-info", "Validation and repair report, bounds, volume, surface area and BVH statistics of a mesh file");
+  mesh_info_cmd->add_option("file", mesh_info.path, "Mesh file: OBJ, STL, PLY, glTF (anything assimp reads)")
+      ->required();
+  mesh_info_cmd->add_flag("--no-repair", mesh_info_no_repair, "Only analyse; build the mesh shape as given");
+  mesh_info_cmd
+      ->add_option("--weld", mesh_info.weld_distance,
+                   "Weld vertices closer than this (length units; negative: 1e-5 (float) or 2e-14 (double) of the "
+                   "box diagonal)")
+      ->capture_default_str();
+  mesh_info_cmd->add_flag("--json", mesh_info.json, "Print one JSON object instead of text");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -103,6 +119,10 @@ int run(int argc, char** argv) {
   try {
     if (demo_cmd->parsed()) return proxima::tool::run_billiards_demo(demo, std::cout, std::cerr);
     if (query_cmd->parsed()) return run_query(query_input);
+    if (mesh_info_cmd->parsed()) {
+      mesh_info.repair = !mesh_info_no_repair;
+      return proxima::tool::run_mesh_info(mesh_info, std::cout, std::cerr);
+    }
     if (bench_broadphase_cmd->parsed()) {
       bench_broadphase.check = !bench_no_check;
       bench_broadphase.progress = isatty(STDERR_FILENO) != 0;
