@@ -2,7 +2,13 @@
 
 #include <proxima/shapes/shape_type.hpp>
 
+#include <filesystem>
+#include <limits>
+#include <map>
 #include <string_view>
+#include <utility>
+
+#include "mesh_io.hpp"
 
 namespace proxima::tool {
 
@@ -35,7 +41,126 @@ Vec3 member_vec3(const Json& value, const std::string& path, std::string_view ke
   return read_vec3(require_member(value, path, key), join_path(path, key));
 }
 
+Shape read_convex_shape(const Json& value, const std::string& path, bool geometry_allowed);
+
+/// Triangles [[i, j, k], ...]: non-negative integers below 2^32 (range against the vertex
+/// count is checked by the library, which names "triangles[t][k]" too).
+std::vector<TriangleIndices> read_triangles(const Json& value, const std::string& path) {
+  if (!value.is_array()) throw FieldError(path, "wrong_type", "must be an array of triangles [[i, j, k], ...]");
+  std::vector<TriangleIndices> triangles;
+  triangles.reserve(value.size());
+  for (std::size_t t = 0; t < value.size(); ++t) {
+    const std::string tp = index_path(path, t);
+    const Json& tri = value[t];
+    if (!tri.is_array() || tri.size() != 3) {
+      throw FieldError(tp, "wrong_type", "must be an array of three vertex indices [i, j, k]");
+    }
+    TriangleIndices indices{};
+    for (std::size_t k = 0; k < 3; ++k) {
+      const Json& index = tri[k];
+      if (!index.is_number_integer() || index.get<long long>() < 0 ||
+          index.get<long long>() > static_cast<long long>(std::numeric_limits<std::uint32_t>::max())) {
+        throw FieldError(index_path(tp, k), "wrong_type", "must be a non-negative integer vertex index");
+      }
+      indices[k] = static_cast<std::uint32_t>(index.get<long long>());
+    }
+    triangles.push_back(indices);
+  }
+  return triangles;
+}
+
+/// Meshes read from files, by path and repair flag, reloaded when the file changes.
+struct CachedMesh {
+  std::filesystem::file_time_type time;
+  TriangleMesh mesh;
+};
+
+TriangleMesh mesh_from_file(const std::string& file, bool repair, const std::string& path) {
+  static std::map<std::pair<std::string, bool>, CachedMesh> cache;
+  std::error_code ec;
+  const auto time = std::filesystem::last_write_time(file, ec);
+  const auto key = std::make_pair(file, repair);
+  if (!ec) {
+    if (auto it = cache.find(key); it != cache.end() && it->second.time == time) return it->second.mesh;
+  }
+  Result<IndexedMesh> loaded = load_mesh(file);
+  if (!loaded.ok()) throw_library_error(path, loaded.error());
+  MeshCreateOptions options;
+  options.repair = repair;
+  // The library's errors name "vertices[i].x" / "triangles[t][k]" of the file's mesh.
+  Result<TriangleMesh> mesh = TriangleMesh::create(std::move(loaded).value(), options);
+  if (!mesh.ok()) {
+    Error e = mesh.error();
+    e.message = "in \"" + file + "\" (" + e.field + "): " + e.message;
+    e.field = "file";
+    throw_library_error(path, e);
+  }
+  if (!ec) {
+    if (cache.size() >= 64) cache.clear();
+    cache.insert_or_assign(key, CachedMesh{time, mesh.value()});
+  }
+  return std::move(mesh).value();
+}
+
+TriangleMesh read_mesh(const Json& value, const std::string& path) {
+  reject_unknown_fields(value, path, {"type", "file", "vertices", "triangles", "repair"});
+  bool repair = true;
+  if (const Json* r = find_member(value, "repair")) {
+    if (!r->is_boolean()) throw FieldError(join_path(path, "repair"), "wrong_type", "must be true or false");
+    repair = r->get<bool>();
+  }
+  if (const Json* file = find_member(value, "file")) {
+    if (find_member(value, "vertices") != nullptr || find_member(value, "triangles") != nullptr) {
+      throw FieldError(join_path(path, "file"), "invalid_argument",
+                       "give either \"file\" or \"vertices\" and \"triangles\", not both");
+    }
+    return mesh_from_file(read_string(*file, join_path(path, "file")), repair, path);
+  }
+  IndexedMesh mesh;
+  mesh.vertices = read_points(require_member(value, path, "vertices"), join_path(path, "vertices"));
+  mesh.triangles = read_triangles(require_member(value, path, "triangles"), join_path(path, "triangles"));
+  MeshCreateOptions options;
+  options.repair = repair;
+  return unwrap(TriangleMesh::create(std::move(mesh), options), path);
+}
+
+Compound read_compound(const Json& value, const std::string& path) {
+  reject_unknown_fields(value, path, {"type", "children"});
+  const std::string children_path = join_path(path, "children");
+  const Json& list = require_member(value, path, "children");
+  if (!list.is_array()) throw FieldError(children_path, "wrong_type", "must be an array of {\"shape\":…,\"pose\":…}");
+  std::vector<CompoundChild> children;
+  children.reserve(list.size());
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    PlacedGeometry child = read_placed_geometry(list[i], index_path(children_path, i));
+    children.push_back(CompoundChild{std::move(child.geometry), child.pose});
+  }
+  return unwrap(Compound::create(std::move(children)), path);
+}
+
 }  // namespace
+
+std::string geometry_type_names() { return shape_type_names() + ", mesh, compound"; }
+
+const Shape* convex_shape(const Geometry& geometry) { return std::get_if<Shape>(&geometry); }
+
+Geometry read_geometry(const Json& value, const std::string& path) {
+  require_object(value, path);
+  const std::string type = read_string(require_member(value, path, "type"), join_path(path, "type"));
+  if (type == "mesh") return read_mesh(value, path);
+  if (type == "compound") return read_compound(value, path);
+  return read_convex_shape(value, path, true);
+}
+
+PlacedGeometry read_placed_geometry(const Json& value, const std::string& path) {
+  require_object(value, path);
+  if (find_member(value, "type") != nullptr) return PlacedGeometry{read_geometry(value, path), Transform::identity()};
+  reject_unknown_fields(value, path, {"shape", "pose"});
+  PlacedGeometry placed{read_geometry(require_member(value, path, "shape"), join_path(path, "shape")),
+                        Transform::identity()};
+  if (const Json* pose = find_member(value, "pose")) placed.pose = read_pose(*pose, join_path(path, "pose"));
+  return placed;
+}
 
 std::string shape_type_names() {
   std::string names;
@@ -46,10 +171,19 @@ std::string shape_type_names() {
   return names;
 }
 
-Shape read_shape(const Json& value, const std::string& path) {
+Shape read_shape(const Json& value, const std::string& path) { return read_convex_shape(value, path, false); }
+
+namespace {
+
+Shape read_convex_shape(const Json& value, const std::string& path, bool geometry_allowed) {
   require_object(value, path);
   const std::string type_path = join_path(path, "type");
   const std::string type = read_string(require_member(value, path, "type"), type_path);
+  if (type == "mesh" || type == "compound") {
+    throw FieldError(
+        type_path, "unsupported_geometry",
+        "a " + type + " is not accepted by this operation (it takes convex shapes: " + shape_type_names() + ")");
+  }
 
   if (type == "point") {
     reject_unknown_fields(value, path, {"type"});
@@ -97,8 +231,11 @@ Shape read_shape(const Json& value, const std::string& path) {
     return unwrap(HalfSpace::create(normal, offset), path);
   }
   throw FieldError(type_path, "unknown_shape",
-                   "unknown shape type \"" + type + "\" (expected one of " + shape_type_names() + ")");
+                   "unknown shape type \"" + type + "\" (expected one of " +
+                       (geometry_allowed ? geometry_type_names() : shape_type_names()) + ")");
 }
+
+}  // namespace
 
 Transform read_pose(const Json& value, const std::string& path) {
   require_object(value, path);

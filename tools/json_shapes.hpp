@@ -1,7 +1,11 @@
 #pragma once
 // Shapes and poses of the query protocol: {"type":"sphere","radius":1}, a pose
-// {"position":[x,y,z],"rotation":[x,y,z,w]} and a placed shape {"shape":S,"pose":P}.
+// {"position":[x,y,z],"rotation":[x,y,z,w]} and a placed shape {"shape":S,"pose":P}; and the
+// geometries beyond convex shapes: {"type":"mesh","file":F} or {"type":"mesh","vertices":
+// [[x,y,z],...],"triangles":[[i,j,k],...]}, and {"type":"compound","children":[{"shape":G,
+// "pose":P},...]} (children any geometry, nested compounds allowed).
 #include <proxima/core/transform.hpp>
+#include <proxima/midphase/compound.hpp>
 #include <proxima/shapes/shape.hpp>
 
 #include <string>
@@ -16,9 +20,29 @@ struct PlacedShape {
   Transform pose = Transform::identity();  ///< local-to-world placement
 };
 
+/// A geometry (convex shape, triangle mesh or compound) with its placement in the world frame.
+struct PlacedGeometry {
+  Geometry geometry;                       ///< the geometry, in its local frame
+  Transform pose = Transform::identity();  ///< local-to-world placement
+};
+
 /// Parses a shape object ("type" plus the fields of that type, validated by the shape's
-/// create()). Errors name the field under `path` ("target.shape.radius").
+/// create()). Errors name the field under `path` ("target.shape.radius"); a mesh or compound
+/// is rejected ("unsupported_geometry": this operation takes convex shapes only).
 Shape read_shape(const Json& value, const std::string& path);
+
+/// Parses any geometry: a shape object as read_shape, a mesh (from "file", read through
+/// assimp relative to the current directory and cached by path, or from "vertices" and
+/// "triangles"; "repair" (default true) runs repair_mesh first) or a compound ("children":
+/// [{"shape":G,"pose":P},...]). Errors name the field ("target.shape.triangles[4][2]",
+/// "a.shape.children[1].shape.radius", "target.shape.file").
+Geometry read_geometry(const Json& value, const std::string& path);
+
+/// Parses a placed geometry {"shape":G,"pose":P} (or a bare geometry object at identity).
+PlacedGeometry read_placed_geometry(const Json& value, const std::string& path);
+
+/// The convex shape held by `geometry`, or nullptr for a mesh or compound.
+const Shape* convex_shape(const Geometry& geometry);
 
 /// Parses a pose object {"position":[x,y,z],"rotation":[x,y,z,w]} (both optional; identity
 /// when absent), validated by Transform::create (errors "path.position.y", "path.rotation").
@@ -30,5 +54,8 @@ PlacedShape read_placed_shape(const Json& value, const std::string& path);
 
 /// The protocol name of every shape type, in ShapeType order ("point", ..., "halfspace").
 std::string shape_type_names();
+
+/// shape_type_names() followed by "mesh, compound".
+std::string geometry_type_names();
 
 }  // namespace proxima::tool

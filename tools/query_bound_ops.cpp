@@ -8,6 +8,7 @@
 #include <proxima/bounds/fit_shape.hpp>
 #include <proxima/bounds/fit_shape_capsule.hpp>
 #include <proxima/bounds/fit_sphere.hpp>
+#include <proxima/midphase/geometry.hpp>
 
 #include <string_view>
 #include <variant>
@@ -53,10 +54,42 @@ Json fitted(const std::string& name, Result<V> result) {
 
 }  // namespace
 
+namespace {
+
+// Bounds of a mesh from its world vertices (the hull of the vertices is the hull of the mesh);
+// a compound has its box only.
+Json geometry_bound(const PlacedGeometry& target, const std::string& name) {
+  Json answer = Json::object();
+  answer["volume"] = name;
+  if (name == "aabb") {
+    put_volume(answer, world_aabb(GeometryRef(target.geometry), target.pose));
+    return answer;
+  }
+  const TriangleMesh* mesh = std::get_if<TriangleMesh>(&target.geometry);
+  if (mesh == nullptr) {
+    throw FieldError("volume", "unsupported_geometry", "a compound has only the aabb bound");
+  }
+  std::vector<Vec3> points;
+  points.reserve(mesh->vertices().size());
+  for (const Vec3& v : mesh->vertices()) points.push_back(target.pose.apply(v));
+  if (name == "sphere") put_volume(answer, unwrap(fit_sphere_minimal(points), "target"));
+  if (name == "obb") put_volume(answer, unwrap(fit_obb(points, ObbFit::MinVolume), "target"));
+  if (name == "capsule") put_volume(answer, unwrap(fit_capsule(points), "target"));
+  if (name == "kdop6") put_volume(answer, unwrap(fit_kdop<6>(points), "target"));
+  if (name == "kdop14") put_volume(answer, unwrap(fit_kdop<14>(points), "target"));
+  if (name == "kdop18") put_volume(answer, unwrap(fit_kdop<18>(points), "target"));
+  if (name == "kdop26") put_volume(answer, unwrap(fit_kdop<26>(points), "target"));
+  return answer;
+}
+
+}  // namespace
+
 Json op_bound(const Json& request) {
   reject_unknown_fields(request, "", {"id", "op", "target", "volume"});
-  const PlacedShape target = read_placed_shape(require_member(request, "", "target"), "target");
+  const PlacedGeometry placed = read_placed_geometry(require_member(request, "", "target"), "target");
   const std::string name = read_volume_name(request, kBoundVolumes);
+  if (convex_shape(placed.geometry) == nullptr) return geometry_bound(placed, name);
+  const PlacedShape target{*convex_shape(placed.geometry), placed.pose};
   Json answer = Json::object();
   answer["volume"] = name;
   const Transform& pose = target.pose;

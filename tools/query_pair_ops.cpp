@@ -1,5 +1,6 @@
 #include "query_pair_ops.hpp"
 
+#include <proxima/midphase/geometry_queries.hpp>
 #include <proxima/narrowphase/narrowphase.hpp>
 
 #include <cmath>
@@ -10,8 +11,22 @@ namespace proxima::tool {
 
 namespace {
 
-PlacedShape member_shape(const Json& request, std::string_view key) {
-  return read_placed_shape(require_member(request, "", key), std::string(key));
+PlacedGeometry member_shape(const Json& request, std::string_view key) {
+  return read_placed_geometry(require_member(request, "", key), std::string(key));
+}
+
+// Both sides convex: the narrow phase's routines, as before meshes existed.
+bool both_convex(const PlacedGeometry& a, const PlacedGeometry& b) {
+  return convex_shape(a.geometry) != nullptr && convex_shape(b.geometry) != nullptr;
+}
+
+// {"child":…, "triangle":…} of a mesh or compound side (null for a convex side).
+Json sub_json(const PlacedGeometry& side, const SubShapeId& sub) {
+  if (convex_shape(side.geometry) != nullptr) return nullptr;
+  Json j = Json::object();
+  if (sub.child != kNoIndex) j["child"] = sub.child;
+  if (sub.triangle != kNoIndex) j["triangle"] = sub.triangle;
+  return j;
 }
 
 const char* status_name(PairStatus status) {
@@ -41,18 +56,32 @@ const char* method_name(PairMethod method) {
 
 Json op_intersect(const Json& request) {
   reject_unknown_fields(request, "", {"id", "op", "a", "b"});
-  const PlacedShape a = member_shape(request, "a");
-  const PlacedShape b = member_shape(request, "b");
+  const PlacedGeometry a = member_shape(request, "a");
+  const PlacedGeometry b = member_shape(request, "b");
   Json answer = Json::object();
-  answer["hit"] = intersect(a.shape, a.pose, b.shape, b.pose);
+  if (both_convex(a, b)) {
+    answer["hit"] = intersect(*convex_shape(a.geometry), a.pose, *convex_shape(b.geometry), b.pose);
+  } else {
+    answer["hit"] = intersect(GeometryRef(a.geometry), a.pose, GeometryRef(b.geometry), b.pose);
+  }
   return answer;
 }
 
 Json op_distance(const Json& request) {
   reject_unknown_fields(request, "", {"id", "op", "a", "b"});
-  const PlacedShape a = member_shape(request, "a");
-  const PlacedShape b = member_shape(request, "b");
-  const DistanceResult d = distance(a.shape, a.pose, b.shape, b.pose);
+  const PlacedGeometry a = member_shape(request, "a");
+  const PlacedGeometry b = member_shape(request, "b");
+  DistanceResult d;
+  SubShapeId sub_a;
+  SubShapeId sub_b;
+  if (both_convex(a, b)) {
+    d = distance(*convex_shape(a.geometry), a.pose, *convex_shape(b.geometry), b.pose);
+  } else {
+    const GeometryDistance g = distance(GeometryRef(a.geometry), a.pose, GeometryRef(b.geometry), b.pose);
+    d = g.result;
+    sub_a = g.a;
+    sub_b = g.b;
+  }
   Json answer = Json::object();
   answer["distance"] = to_json(d.signed_distance);
   answer["point_a"] = to_json(d.point_a);
@@ -60,13 +89,17 @@ Json op_distance(const Json& request) {
   answer["normal"] = to_json(d.normal);
   answer["status"] = status_name(d.status);
   answer["method"] = method_name(d.method);
+  if (!both_convex(a, b)) {
+    if (Json s = sub_json(a, sub_a); !s.is_null()) answer["part_a"] = std::move(s);
+    if (Json s = sub_json(b, sub_b); !s.is_null()) answer["part_b"] = std::move(s);
+  }
   return answer;
 }
 
 Json op_collide(const Json& request) {
   reject_unknown_fields(request, "", {"id", "op", "a", "b", "max_contacts", "contact_distance"});
-  const PlacedShape a = member_shape(request, "a");
-  const PlacedShape b = member_shape(request, "b");
+  const PlacedGeometry a = member_shape(request, "a");
+  const PlacedGeometry b = member_shape(request, "b");
   PairRequest options;
   if (const Json* m = find_member(request, "max_contacts")) {
     if (!m->is_number_integer()) throw FieldError("max_contacts", "wrong_type", "must be an integer");
@@ -78,7 +111,9 @@ Json op_collide(const Json& request) {
     options.contact_distance = read_real(*c, "contact_distance");
     if (options.contact_distance < Real(0)) throw FieldError("contact_distance", "negative", "must not be negative");
   }
-  const ContactManifold m = collide(a.shape, a.pose, b.shape, b.pose, options);
+  const ContactManifold m = both_convex(a, b)
+                                ? collide(*convex_shape(a.geometry), a.pose, *convex_shape(b.geometry), b.pose, options)
+                                : collide(GeometryRef(a.geometry), a.pose, GeometryRef(b.geometry), b.pose, options);
   Json answer = Json::object();
   answer["hit"] = m.count > 0;
   answer["normal"] = to_json(m.normal);
