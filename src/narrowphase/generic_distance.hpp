@@ -184,7 +184,10 @@ LocalAnswer solve(const A& a, const B& b, PairSetup<A, B>& setup, const PairRequ
     const gjk::Result gi = gjk::distance(ia, ib, setup.axis, setup.gjk_settings(request));
     ans.iterations += gi.iterations;
     epa::Result ei = epa::penetration(ia, ib, gi.simplex, setup.scale, es);
-    polish(ei, ia, ib, true);  // inflated cores are curved
+    // Inflated cores are curved; for polytopes only when the cores merely touch (deeper
+    // polytope pairs have the exact SAT fall-back, while a refinement stops at a local
+    // minimum of a starved EPA's normal).
+    polish(ei, ia, ib, !polytopes || touching);
     if (ei.status != epa::Status::Degenerate) {
       ei.depth -= Real(2) * delta;
       ei.point_a -= delta * ei.normal;

@@ -66,23 +66,40 @@ struct Result {
 
 namespace detail {
 
+// The storage below is left uninitialised on purpose (no default member initialisers): a
+// face slot is written whole by add_face before any read (slots < nf), its links by link()
+// or the fan step, a vertex before nv counts it, a free slot before nfree counts it. Zeroing
+// these arrays (about 40 KB) used to cost as much as the expansion itself.
 struct Face {
-  std::array<std::uint16_t, 3> v{};
-  std::array<std::uint16_t, 3> adj{};      // face across edge e (v[e] -> v[e+1])
-  std::array<std::uint8_t, 3> adj_edge{};  // that edge's index in the neighbour
-  Vec3 n{Real(0)};
-  Real d = Real(0);
-  bool alive = false;
+  std::array<std::uint16_t, 3> v;
+  std::array<std::uint16_t, 3> adj;      // face across edge e (v[e] -> v[e+1])
+  std::array<std::uint8_t, 3> adj_edge;  // that edge's index in the neighbour
+  Vec3 n;
+  Real d;
+  bool alive;
+};
+
+// A vertex of D with its support points, like gjk::Vertex but trivially constructible.
+struct PolyVertex {
+  Vec3 w;
+  Vec3 a;
+  Vec3 b;
+  PolyVertex& operator=(const gjk::Vertex& x) {
+    w = x.w;
+    a = x.a;
+    b = x.b;
+    return *this;
+  }
 };
 
 struct Polytope {
-  std::array<gjk::Vertex, kMaxVertices> verts;
+  std::array<PolyVertex, kMaxVertices> verts;
   std::array<Face, kMaxFaces> faces;
   int nv = 0;
   int nf = 0;      // slots used (alive or dead)
   int alive = 0;   // faces alive
   int budget = 0;  // most faces alive at once
-  std::array<std::uint16_t, kMaxFaces> free_slots{};
+  std::array<std::uint16_t, kMaxFaces> free_slots;
   int nfree = 0;
   Vec3 inner{Real(0)};  // a point inside (orients new faces)
 
@@ -300,9 +317,9 @@ Result penetration(SupportA& support_a, SupportB& support_b, const gjk::Simplex&
     Real la = std::clamp(lam.x, Real(0), Real(1));
     Real lb = std::clamp(lam.y, Real(0), Real(1));
     Real lc = std::clamp(lam.z, Real(0), Real(1));
-    const gjk::Vertex& a = p.verts[f.v[0]];
-    const gjk::Vertex& b = p.verts[f.v[1]];
-    const gjk::Vertex& c = p.verts[f.v[2]];
+    const detail::PolyVertex& a = p.verts[f.v[0]];
+    const detail::PolyVertex& b = p.verts[f.v[1]];
+    const detail::PolyVertex& c = p.verts[f.v[2]];
     const Real sum = la + lb + lc;
     if (sum > Real(0)) {
       la /= sum;
@@ -322,7 +339,10 @@ Result penetration(SupportA& support_a, SupportB& support_b, const gjk::Simplex&
     return r;
   };
 
-  std::array<std::array<std::uint16_t, 2>, kMaxFaces> horizon{};
+  // Work arrays, written before read (entries below nh / top): left uninitialised.
+  std::array<std::array<std::uint16_t, 2>, kMaxFaces> horizon;
+  std::array<std::array<std::uint16_t, 2>, kMaxFaces> stack;
+  std::array<int, kMaxFaces> fan;
   for (int it = 0;; ++it) {
     int best = -1;
     Real best_d = std::numeric_limits<Real>::infinity();
@@ -358,7 +378,6 @@ Result penetration(SupportA& support_a, SupportB& support_b, const gjk::Simplex&
     bool overflow = false;
     const auto sees = [&](const detail::Face& face) { return glm::dot(face.n, w.w - p.verts[face.v[0]].w) > Real(0); };
     // Explicit stack of (face, edge entered by).
-    std::array<std::array<std::uint16_t, 2>, kMaxFaces> stack{};
     int top = 0;
     p.kill(best);
     for (int e = 2; e >= 0; --e) {
@@ -394,7 +413,6 @@ Result penetration(SupportA& support_a, SupportB& support_b, const gjk::Simplex&
                     upper - closest.d);
     };
     if (overflow || nh < 3) return stuck();
-    std::array<int, kMaxFaces> fan{};
     for (int h = 0; h < nh; ++h) {
       const auto& item = horizon[static_cast<std::size_t>(h)];
       const detail::Face& g = p.faces[item[0]];
