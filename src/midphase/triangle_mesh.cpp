@@ -48,6 +48,16 @@ void triangle_boxes(const IndexedMesh& m, std::vector<Aabb>& boxes, std::vector<
   }
 }
 
+/// Corners of the triangles in BVH leaf order.
+void gather_leaf_triangles(const IndexedMesh& m, const Bvh& bvh, std::vector<std::array<Vec3, 3>>& out) {
+  const std::span<const std::uint32_t> prims = bvh.primitives();
+  out.resize(prims.size());
+  for (std::size_t i = 0; i < prims.size(); ++i) {
+    const TriangleIndices& t = m.triangles[prims[i]];
+    out[i] = {m.vertices[t[0]], m.vertices[t[1]], m.vertices[t[2]]};
+  }
+}
+
 /// Triangle across each edge (kNoIndex for boundary and non-manifold edges).
 void compute_neighbors(const IndexedMesh& m, std::vector<std::array<std::uint32_t, 3>>& neighbors) {
   const std::size_t n = m.triangles.size();
@@ -173,6 +183,42 @@ inline bool slab(const BvhNode& node, const BoxRay& r, Real t_max, Real& t_near)
   return tn <= tf;
 }
 
+/// Conservative inline rejection before the exact watertight test: the edge functions of
+/// Woop et al. in Real on the sheared vertices, with a bound on their rounding error (vs
+/// the exact values, and so vs the exact test's own) of 16 eps (|b_x c_y| + |b_y c_x|) in
+/// magnitudes. False only when two edge functions have opposite signs beyond that bound,
+/// i.e. when ray_triangle surely misses; true sends the triangle to ray_triangle.
+inline bool may_hit(const geometry::TriangleRay& r, const Vec3& a, const Vec3& b, const Vec3& c) {
+  const Vec3 ra = a - r.ray.origin;
+  const Vec3 rb = b - r.ray.origin;
+  const Vec3 rc = c - r.ray.origin;
+  const int kx = r.kx, ky = r.ky, kz = r.kz;
+  const Real sx = r.shear.x, sy = r.shear.y;
+  const Real ax = ra[kx] - sx * ra[kz], ay = ra[ky] - sy * ra[kz];
+  const Real bx = rb[kx] - sx * rb[kz], by = rb[ky] - sy * rb[kz];
+  const Real cx = rc[kx] - sx * rc[kz], cy = rc[ky] - sy * rc[kz];
+  const Real max_ax = std::abs(ra[kx]) + std::abs(sx * ra[kz]), max_ay = std::abs(ra[ky]) + std::abs(sy * ra[kz]);
+  const Real max_bx = std::abs(rb[kx]) + std::abs(sx * rb[kz]), max_by = std::abs(rb[ky]) + std::abs(sy * rb[kz]);
+  const Real max_cx = std::abs(rc[kx]) + std::abs(sx * rc[kz]), max_cy = std::abs(rc[ky]) + std::abs(sy * rc[kz]);
+  const Real u = bx * cy - by * cx;
+  const Real v = cx * ay - cy * ax;
+  const Real w = ax * by - ay * bx;
+  constexpr Real k = Real(16) * kEpsilon;
+  const Real eu = k * (max_bx * max_cy + max_by * max_cx);
+  const Real ev = k * (max_cx * max_ay + max_cy * max_ax);
+  const Real ew = k * (max_ax * max_by + max_ay * max_bx);
+  const bool some_negative = u < -eu || v < -ev || w < -ew;
+  const bool some_positive = u > eu || v > ev || w > ew;
+  return !(some_negative && some_positive);
+}
+
+/// may_hit's products cannot overflow when the origin, like every vertex, is within
+/// kMaxCoordinate (the shear factors are at most 1 in magnitude).
+inline bool filter_applies(const Ray& ray) {
+  return std::abs(ray.origin.x) <= kMaxCoordinate && std::abs(ray.origin.y) <= kMaxCoordinate &&
+         std::abs(ray.origin.z) <= kMaxCoordinate;
+}
+
 /// True when the hit on triangle (a, b, c) passes `culling`.
 inline bool passes_culling(FaceCulling culling, const RayHit& hit, const Vec3& a, const Vec3& b, const Vec3& c) {
   if (culling == FaceCulling::None) return true;
@@ -208,6 +254,7 @@ Result<TriangleMesh> TriangleMesh::create(IndexedMesh mesh, const MeshCreateOpti
   std::vector<Vec3> centers;
   triangle_boxes(data->mesh, boxes, &centers);
   data->bvh = Bvh::build(boxes, centers, options.bvh);
+  gather_leaf_triangles(data->mesh, data->bvh, data->leaf_triangles);
   compute_neighbors(data->mesh, data->neighbors);
   compute_active_edges(data->mesh, data->neighbors, options.flat_edge_angle, data->active_edges);
   data->flat_edge_angle = options.flat_edge_angle;
@@ -234,6 +281,7 @@ Result<TriangleMesh> TriangleMesh::deformed(std::span<const Vec3> vertices) cons
   std::vector<Aabb> boxes;
   triangle_boxes(data->mesh, boxes, nullptr);
   data->bvh.refit(boxes);
+  gather_leaf_triangles(data->mesh, data->bvh, data->leaf_triangles);
   compute_active_edges(data->mesh, data->neighbors, data->flat_edge_angle, data->active_edges);
   // Volume and area follow the vertices (divergence theorem, as in the analysis).
   Real volume = Real(0);
@@ -264,10 +312,10 @@ std::optional<MeshRayHit> TriangleMesh::raycast(const Ray& ray, Real max_t, Face
   const geometry::TriangleRay tri_ray = geometry::TriangleRay::prepare(ray);
   if (!tri_ray.valid) return std::nullopt;
   const BoxRay box_ray = prepare_box_ray(ray);
+  const bool filter = filter_applies(ray);
   const std::span<const BvhNode> nodes = bvh.nodes();
   const std::span<const std::uint32_t> prims = bvh.primitives();
-  const std::vector<Vec3>& verts = data_->mesh.vertices;
-  const std::vector<TriangleIndices>& tris = data_->mesh.triangles;
+  const std::vector<std::array<Vec3, 3>>& corners = data_->leaf_triangles;
 
   std::optional<MeshRayHit> best;
   Real best_t = max_t;
@@ -283,14 +331,15 @@ std::optional<MeshRayHit> TriangleMesh::raycast(const Ray& ray, Real max_t, Face
       // and a hit that rounds to the same t must still reach the tie rule.
       const Real limit = best ? std::min(max_t, std::nextafter(best_t, kRealMax)) : max_t;
       for (std::uint32_t i = node.first; i != node.first + node.count; ++i) {
-        const std::uint32_t tri = prims[i];
-        const TriangleIndices& t = tris[tri];
-        const Vec3& a = verts[t[0]];
-        const Vec3& b = verts[t[1]];
-        const Vec3& c = verts[t[2]];
+        const Vec3& a = corners[i][0];
+        const Vec3& b = corners[i][1];
+        const Vec3& c = corners[i][2];
+        if (filter && !may_hit(tri_ray, a, b, c)) continue;
         const std::optional<RayHit> hit = geometry::ray_triangle(tri_ray, limit, a, b, c);
         if (!hit || !passes_culling(culling, *hit, a, b, c)) continue;
-        if (best && (hit->t > best->hit.t || (hit->t == best->hit.t && tri > best->triangle))) continue;
+        if (best && hit->t > best->hit.t) continue;
+        const std::uint32_t tri = prims[i];
+        if (best && hit->t == best->hit.t && tri > best->triangle) continue;
         best = MeshRayHit{*hit, tri};
         best_t = hit->t;
       }
@@ -338,6 +387,7 @@ bool TriangleMesh::raycast_any(const Ray& ray, Real max_t, FaceCulling culling) 
   const geometry::TriangleRay tri_ray = geometry::TriangleRay::prepare(ray);
   if (!tri_ray.valid) return false;
   const BoxRay box_ray = prepare_box_ray(ray);
+  const bool filter = filter_applies(ray);
   const std::vector<Vec3>& verts = data_->mesh.vertices;
   const std::vector<TriangleIndices>& tris = data_->mesh.triangles;
   Real t_near = Real(0);
@@ -347,6 +397,7 @@ bool TriangleMesh::raycast_any(const Ray& ray, Real max_t, FaceCulling culling) 
                          const Vec3& a = verts[t[0]];
                          const Vec3& b = verts[t[1]];
                          const Vec3& c = verts[t[2]];
+                         if (filter && !may_hit(tri_ray, a, b, c)) return true;
                          const std::optional<RayHit> hit = geometry::ray_triangle(tri_ray, max_t, a, b, c);
                          return !(hit && passes_culling(culling, *hit, a, b, c));
                        });
@@ -358,6 +409,7 @@ void TriangleMesh::raycast_all(const Ray& ray, Real max_t, std::vector<MeshRayHi
   const geometry::TriangleRay tri_ray = geometry::TriangleRay::prepare(ray);
   if (!tri_ray.valid) return;
   const BoxRay box_ray = prepare_box_ray(ray);
+  const bool filter = filter_applies(ray);
   const std::vector<Vec3>& verts = data_->mesh.vertices;
   const std::vector<TriangleIndices>& tris = data_->mesh.triangles;
   const std::size_t start = hits.size();
@@ -368,6 +420,7 @@ void TriangleMesh::raycast_all(const Ray& ray, Real max_t, std::vector<MeshRayHi
                  const Vec3& a = verts[t[0]];
                  const Vec3& b = verts[t[1]];
                  const Vec3& c = verts[t[2]];
+                 if (filter && !may_hit(tri_ray, a, b, c)) return true;
                  const std::optional<RayHit> hit = geometry::ray_triangle(tri_ray, max_t, a, b, c);
                  if (hit && passes_culling(culling, *hit, a, b, c)) hits.push_back({*hit, tri});
                  return true;

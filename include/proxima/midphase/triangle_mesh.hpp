@@ -121,6 +121,9 @@ class TriangleMesh {
     std::vector<std::array<std::uint32_t, 3>> neighbors;  ///< triangle across each edge
     std::vector<std::uint8_t> active_edges;               ///< 3 bits per triangle
     Real flat_edge_angle = Real(0.01);  ///< MeshCreateOptions::flat_edge_angle used (deformed() reuses it)
+    /// Corners of triangle bvh.primitives()[i] at index i (BVH leaf order, so a leaf's
+    /// triangles are contiguous for the ray casts).
+    std::vector<std::array<Vec3, 3>> leaf_triangles;
   };
 
  private:
