@@ -1,0 +1,410 @@
+// Mesh against mesh (src/midphase/mesh_mesh.cpp) checked against brute force over every
+// triangle pair in the world frame, and against analytic answers for boxes.
+//
+// Meshes: tessellated spheres (subdivided icosahedra), subdivided boxes and tori of 80 to
+// 320 triangles, at seeded random poses placed so that about half of the cases overlap.
+// Checked per case: the boolean equals "some pair intersects" (brute force with
+// geometry::triangles_intersect on world-frame triangles); the distance equals the minimum of
+// geometry::closest_points_triangle_triangle over all pairs, its witnesses lie on the
+// triangles it names; collide_all reports exactly the intersecting triangle pairs.
+// Disagreements are allowed only for pairs whose exact distance is within rounding of zero.
+#include <gtest/gtest.h>
+
+#include <proxima/core/tolerance.hpp>
+#include <proxima/geometry/closest_points.hpp>
+#include <proxima/midphase/triangle_mesh.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <map>
+#include <set>
+#include <utility>
+#include <vector>
+
+#include "../../src/midphase/mesh_mesh.hpp"
+#include "support/random.hpp"
+
+namespace proxima {
+namespace {
+
+constexpr Real kPi = Real(3.14159265358979323846);
+
+// ---- test meshes ------------------------------------------------------------------------
+
+IndexedMesh icosphere(int levels, Real radius) {
+  const Real p = Real(1.6180339887498949);
+  IndexedMesh m;
+  m.vertices = {{-1, p, 0},  {1, p, 0},  {-1, -p, 0}, {1, -p, 0}, {0, -1, p},  {0, 1, p},
+                {0, -1, -p}, {0, 1, -p}, {p, 0, -1},  {p, 0, 1},  {-p, 0, -1}, {-p, 0, 1}};
+  m.triangles = {{0, 11, 5},  {0, 5, 1},  {0, 1, 7},  {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
+                 {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
+                 {3, 8, 9},   {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
+  for (int l = 0; l < levels; ++l) {
+    std::map<std::pair<std::uint32_t, std::uint32_t>, std::uint32_t> mid;
+    auto midpoint = [&](std::uint32_t i, std::uint32_t j) {
+      const auto key = std::minmax(i, j);
+      const auto it = mid.find(key);
+      if (it != mid.end()) return it->second;
+      m.vertices.push_back((m.vertices[i] + m.vertices[j]) * Real(0.5));
+      const auto id = static_cast<std::uint32_t>(m.vertices.size() - 1);
+      mid.emplace(key, id);
+      return id;
+    };
+    std::vector<TriangleIndices> next;
+    for (const TriangleIndices& t : m.triangles) {
+      const std::uint32_t a = midpoint(t[0], t[1]);
+      const std::uint32_t b = midpoint(t[1], t[2]);
+      const std::uint32_t c = midpoint(t[2], t[0]);
+      next.push_back({t[0], a, c});
+      next.push_back({t[1], b, a});
+      next.push_back({t[2], c, b});
+      next.push_back({a, b, c});
+    }
+    m.triangles = std::move(next);
+  }
+  for (Vec3& v : m.vertices) v = glm::normalize(v) * radius;
+  return m;
+}
+
+/// Box [-h, h] with every face split into n x n quads (two triangles each), outward.
+IndexedMesh box_mesh(const Vec3& h, int n) {
+  IndexedMesh m;
+  for (int axis = 0; axis < 3; ++axis) {
+    for (int side = -1; side <= 1; side += 2) {
+      const int u = (axis + 1) % 3;
+      const int v = (axis + 2) % 3;
+      const auto base = static_cast<std::uint32_t>(m.vertices.size());
+      for (int i = 0; i <= n; ++i) {
+        for (int j = 0; j <= n; ++j) {
+          Vec3 p(0);
+          p[axis] = Real(side) * h[axis];
+          p[u] = h[u] * (Real(2 * i) / Real(n) - Real(1));
+          p[v] = h[v] * (Real(2 * j) / Real(n) - Real(1));
+          m.vertices.push_back(p);
+        }
+      }
+      for (int i = 0; i < n; ++i) {
+        for (int j = 0; j < n; ++j) {
+          const auto id = [&](int a, int b) { return base + static_cast<std::uint32_t>(a * (n + 1) + b); };
+          const std::uint32_t p00 = id(i, j), p10 = id(i + 1, j), p01 = id(i, j + 1), p11 = id(i + 1, j + 1);
+          if (side > 0) {
+            m.triangles.push_back({p00, p10, p11});
+            m.triangles.push_back({p00, p11, p01});
+          } else {
+            m.triangles.push_back({p00, p11, p10});
+            m.triangles.push_back({p00, p01, p11});
+          }
+        }
+      }
+    }
+  }
+  return m;
+}
+
+IndexedMesh torus(Real major, Real minor, int segments, int sides) {
+  IndexedMesh m;
+  for (int i = 0; i < segments; ++i) {
+    const Real a = Real(2) * kPi * Real(i) / Real(segments);
+    for (int j = 0; j < sides; ++j) {
+      const Real b = Real(2) * kPi * Real(j) / Real(sides);
+      const Real r = major + minor * std::cos(b);
+      m.vertices.push_back({r * std::cos(a), r * std::sin(a), minor * std::sin(b)});
+    }
+  }
+  const auto id = [&](int i, int j) { return static_cast<std::uint32_t>((i % segments) * sides + (j % sides)); };
+  for (int i = 0; i < segments; ++i) {
+    for (int j = 0; j < sides; ++j) {
+      m.triangles.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+      m.triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+    }
+  }
+  return m;
+}
+
+TriangleMesh make(IndexedMesh m) {
+  Result<TriangleMesh> r = TriangleMesh::create(std::move(m));
+  EXPECT_TRUE(r.ok());
+  return std::move(r).value();
+}
+
+// ---- brute force ------------------------------------------------------------------------
+
+using Tri = std::array<Vec3, 3>;
+
+std::vector<Tri> world_triangles(const TriangleMesh& mesh, const Transform& pose) {
+  std::vector<Tri> out;
+  for (std::uint32_t i = 0; i < mesh.triangle_count(); ++i) {
+    const Tri t = mesh.triangle(i);
+    out.push_back({pose.apply(t[0]), pose.apply(t[1]), pose.apply(t[2])});
+  }
+  return out;
+}
+
+struct Brute {
+  std::set<std::pair<std::uint32_t, std::uint32_t>> intersecting;  ///< triangles_intersect
+  std::vector<Real> distances;                                     ///< exact distance of pair (i, j) at i * count_b + j
+  std::uint32_t count_b = 0;
+  Real min_distance = std::numeric_limits<Real>::infinity();
+  Real scale = Real(0);  ///< largest |world coordinate|
+  Real distance(const std::pair<std::uint32_t, std::uint32_t>& p) const {
+    return distances[p.first * count_b + p.second];
+  }
+  /// Distance below which a pair may be called touching or not (the triangle test's own
+  /// tolerance in world coordinates, doubled).
+  Real touch() const { return Real(2) * kRelativeTolerance * std::max(Real(1), scale); }
+};
+
+Brute brute_force(const std::vector<Tri>& ta, const std::vector<Tri>& tb) {
+  Brute b;
+  b.count_b = static_cast<std::uint32_t>(tb.size());
+  b.distances.resize(ta.size() * tb.size());
+  for (const Tri& t : ta) {
+    for (const Vec3& v : t) b.scale = std::max(b.scale, geometry::detail::max_abs(v));
+  }
+  for (const Tri& t : tb) {
+    for (const Vec3& v : t) b.scale = std::max(b.scale, geometry::detail::max_abs(v));
+  }
+  for (std::uint32_t i = 0; i < ta.size(); ++i) {
+    for (std::uint32_t j = 0; j < tb.size(); ++j) {
+      const Tri& x = ta[i];
+      const Tri& y = tb[j];
+      if (geometry::triangles_intersect(x[0], x[1], x[2], y[0], y[1], y[2])) b.intersecting.insert({i, j});
+      const Real d =
+          std::sqrt(geometry::closest_points_triangle_triangle(x[0], x[1], x[2], y[0], y[1], y[2]).distance_squared);
+      b.distances[i * b.count_b + j] = d;
+      b.min_distance = std::min(b.min_distance, d);
+    }
+  }
+  return b;
+}
+
+Real point_triangle_distance(const Vec3& p, const Tri& t) {
+  return glm::length(p - geometry::closest_point_triangle(p, t[0], t[1], t[2]).point);
+}
+
+/// Tolerance on distances (length units, scene of size ~3).
+Real distance_tolerance() { return sizeof(Real) == 4 ? Real(5e-5) : Real(1e-11); }
+
+struct Stats {
+  int cases = 0;
+  int hits = 0;
+  int ambiguous_pairs = 0;
+};
+
+void check_case(const TriangleMesh& a, const Transform& pose_a, const TriangleMesh& b, const Transform& pose_b,
+                Stats& stats) {
+  const std::vector<Tri> ta = world_triangles(a, pose_a);
+  const std::vector<Tri> tb = world_triangles(b, pose_b);
+  const Brute ref = brute_force(ta, tb);
+  const PairRequest request;
+  ++stats.cases;
+
+  // Boolean.
+  const bool hit = midphase::mesh_mesh_intersect(a, pose_a, b, pose_b, request);
+  const bool ref_hit = !ref.intersecting.empty();
+  if (hit != ref_hit) {
+    EXPECT_LE(ref.min_distance, ref.touch()) << "boolean " << hit << " vs brute force " << ref_hit;
+  }
+  stats.hits += ref_hit ? 1 : 0;
+
+  // Distance.
+  const GeometryDistance d = midphase::mesh_mesh_distance(a, pose_a, b, pose_b, request);
+  ASSERT_TRUE(std::isfinite(d.result.signed_distance));
+  EXPECT_NEAR(d.result.signed_distance, ref.min_distance, distance_tolerance());
+  if (ref_hit) {
+    EXPECT_LE(d.result.signed_distance, ref.touch());
+  }
+  ASSERT_LT(d.a.triangle, a.triangle_count());
+  ASSERT_LT(d.b.triangle, b.triangle_count());
+  EXPECT_LE(point_triangle_distance(d.result.point_a, ta[d.a.triangle]), distance_tolerance());
+  EXPECT_LE(point_triangle_distance(d.result.point_b, tb[d.b.triangle]), distance_tolerance());
+  EXPECT_NEAR(glm::length(d.result.point_b - d.result.point_a), d.result.signed_distance, distance_tolerance());
+  EXPECT_NEAR(glm::length(d.result.normal), Real(1), Real(1e-4));
+  EXPECT_NEAR(ref.distance({d.a.triangle, d.b.triangle}), d.result.signed_distance, distance_tolerance());
+  if (d.result.signed_distance > Real(1e-3)) {
+    // point_b = point_a + signed_distance * normal.
+    const Vec3 expected = d.result.point_a + d.result.signed_distance * d.result.normal;
+    EXPECT_LE(glm::length(expected - d.result.point_b), distance_tolerance());
+  }
+
+  // All contacts: the set of triangle pairs.
+  std::vector<GeometryContact> contacts;
+  midphase::mesh_mesh_collide_all(a, pose_a, b, pose_b, request, contacts);
+  std::set<std::pair<std::uint32_t, std::uint32_t>> pairs;
+  for (const GeometryContact& c : contacts) {
+    ASSERT_LT(c.a.triangle, a.triangle_count());
+    ASSERT_LT(c.b.triangle, b.triangle_count());
+    pairs.insert({c.a.triangle, c.b.triangle});
+    EXPECT_TRUE(is_finite(c.contact.point_a) && is_finite(c.contact.point_b) && is_finite(c.contact.normal));
+    EXPECT_NEAR(glm::length(c.contact.normal), Real(1), Real(1e-3));
+    // The contact lies near both triangles it names.
+    EXPECT_LE(point_triangle_distance(c.contact.point_a, ta[c.a.triangle]), Real(1e-3));
+    EXPECT_LE(point_triangle_distance(c.contact.point_b, tb[c.b.triangle]), Real(1e-3));
+  }
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> only_mine;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> only_ref;
+  std::set_difference(pairs.begin(), pairs.end(), ref.intersecting.begin(), ref.intersecting.end(),
+                      std::back_inserter(only_mine));
+  std::set_difference(ref.intersecting.begin(), ref.intersecting.end(), pairs.begin(), pairs.end(),
+                      std::back_inserter(only_ref));
+  for (const auto& p : only_mine) {
+    ++stats.ambiguous_pairs;
+    EXPECT_LE(ref.distance(p), ref.touch()) << "extra pair " << p.first << "," << p.second;
+  }
+  for (const auto& p : only_ref) {
+    ++stats.ambiguous_pairs;
+    EXPECT_LE(ref.distance(p), ref.touch()) << "missed pair " << p.first << "," << p.second;
+  }
+}
+
+// ---- tests ------------------------------------------------------------------------------
+
+struct Scene {
+  TriangleMesh a;
+  TriangleMesh b;
+  Real reach;  ///< B's centre is placed within this distance of A's
+};
+
+void sweep(const Scene& s, std::uint64_t seed, int cases) {
+  test::Random rng(seed);
+  Stats stats;
+  for (int k = 0; k < cases; ++k) {
+    const Transform pose_a = rng.pose(Real(2));
+    const Transform pose_b{pose_a.position + rng.in_ball(s.reach), rng.rotation()};
+    SCOPED_TRACE(k);
+    check_case(s.a, pose_a, s.b, pose_b, stats);
+    if (::testing::Test::HasFatalFailure()) return;
+  }
+  // The sweep covers both outcomes.
+  EXPECT_GT(stats.hits, cases / 10);
+  EXPECT_LT(stats.hits, cases - cases / 10);
+  EXPECT_LE(stats.ambiguous_pairs, cases / 20 + 2);
+}
+
+TEST(MeshMesh, SphereTorusBruteForce) {
+  sweep({make(icosphere(1, Real(0.6))), make(torus(Real(0.8), Real(0.25), 12, 6)), Real(1.6)}, 11, 80);
+}
+
+TEST(MeshMesh, BoxSphereBruteForce) {
+  sweep({make(box_mesh(Vec3(0.5, 0.3, 0.7), 2)), make(icosphere(2, Real(0.5))), Real(1.2)}, 12, 40);
+}
+
+TEST(MeshMesh, TorusTorusBruteForce) {
+  sweep({make(torus(Real(0.7), Real(0.2), 16, 8)), make(torus(Real(0.6), Real(0.25), 12, 8)), Real(1.5)}, 13, 20);
+}
+
+TEST(MeshMesh, BoxBoxBruteForce) {
+  sweep({make(box_mesh(Vec3(0.4, 0.4, 0.4), 3)), make(box_mesh(Vec3(0.6, 0.2, 0.3), 2)), Real(1.4)}, 14, 100);
+}
+
+// Axis-aligned boxes (common rotation) apart by a gap g along x: distance g exactly, witnesses
+// on the facing faces, no contact; touching (g = 0): boolean true, distance 0.
+TEST(MeshMesh, BoxGapAnalytic) {
+  const TriangleMesh a = make(box_mesh(Vec3(0.5, 0.5, 0.5), 3));
+  const TriangleMesh b = make(box_mesh(Vec3(0.3, 0.2, 0.4), 2));
+  test::Random rng(15);
+  for (int k = 0; k < 200; ++k) {
+    const Quat q = rng.rotation();
+    const Vec3 origin = rng.vec3(Real(-3), Real(3));
+    const Real gap = k < 20 ? Real(0) : rng.uniform(Real(1e-3), Real(1));
+    const Vec3 offset(Real(0.8) + gap, rng.uniform(Real(-0.5), Real(0.5)), rng.uniform(Real(-0.5), Real(0.5)));
+    const Transform pa{origin, q};
+    const Transform pb{origin + q * offset, q};
+    const GeometryDistance d = midphase::mesh_mesh_distance(a, pa, b, pb, {});
+    EXPECT_NEAR(d.result.signed_distance, gap, Real(20) * distance_tolerance()) << k;
+    const Vec3 n_local = glm::conjugate(q) * d.result.normal;
+    if (gap > Real(1e-2)) {
+      EXPECT_NEAR(n_local.x, Real(1), Real(1e-3)) << k;
+    }
+    EXPECT_EQ(midphase::mesh_mesh_intersect(a, pa, b, pb, {}), gap == Real(0)) << k;
+    std::vector<GeometryContact> contacts;
+    midphase::mesh_mesh_collide_all(a, pa, b, pb, {}, contacts);
+    EXPECT_EQ(contacts.empty(), gap != Real(0)) << k;
+    // Within a contact distance above the gap: boolean true, contacts with depth -gap.
+    PairRequest speculative;
+    speculative.contact_distance = gap + Real(1e-2);
+    EXPECT_TRUE(midphase::mesh_mesh_intersect(a, pa, b, pb, speculative)) << k;
+    contacts.clear();
+    midphase::mesh_mesh_collide_all(a, pa, b, pb, speculative, contacts);
+    ASSERT_FALSE(contacts.empty()) << k;
+    Real deepest = -std::numeric_limits<Real>::infinity();
+    for (const GeometryContact& c : contacts) deepest = std::max(deepest, c.contact.depth);
+    EXPECT_NEAR(deepest, -gap, Real(20) * distance_tolerance()) << k;
+  }
+}
+
+// The contact distance: boolean true exactly when the brute-force distance is within it.
+TEST(MeshMesh, ContactDistanceBruteForce) {
+  const TriangleMesh a = make(icosphere(1, Real(0.5)));
+  const TriangleMesh b = make(torus(Real(0.6), Real(0.2), 12, 6));
+  test::Random rng(16);
+  int within = 0;
+  for (int k = 0; k < 60; ++k) {
+    const Transform pa = rng.pose(Real(2));
+    const Transform pb{pa.position + rng.in_ball(Real(2)), rng.rotation()};
+    const Brute ref = brute_force(world_triangles(a, pa), world_triangles(b, pb));
+    PairRequest request;
+    request.contact_distance = Real(0.1);
+    if (std::abs(ref.min_distance - request.contact_distance) < Real(1e-4)) continue;
+    const bool expected = ref.min_distance <= request.contact_distance;
+    within += expected ? 1 : 0;
+    EXPECT_EQ(midphase::mesh_mesh_intersect(a, pa, b, pb, request), expected) << k;
+    std::vector<GeometryContact> contacts;
+    midphase::mesh_mesh_collide_all(a, pa, b, pb, request, contacts);
+    std::set<std::pair<std::uint32_t, std::uint32_t>> pairs;
+    for (const GeometryContact& c : contacts) pairs.insert({c.a.triangle, c.b.triangle});
+    std::size_t expected_pairs = 0;
+    for (std::uint32_t i = 0; i < a.triangle_count(); ++i) {
+      for (std::uint32_t j = 0; j < b.triangle_count(); ++j) {
+        const std::pair<std::uint32_t, std::uint32_t> p{i, j};
+        const Real dist = ref.distance(p);
+        if (std::abs(dist - request.contact_distance) < Real(1e-4)) continue;
+        if (dist <= request.contact_distance) {
+          ++expected_pairs;
+          EXPECT_TRUE(pairs.count(p)) << k << " missed " << p.first << "," << p.second;
+        } else {
+          EXPECT_FALSE(pairs.count(p)) << k << " extra " << p.first << "," << p.second;
+        }
+      }
+    }
+    EXPECT_GE(pairs.size(), expected_pairs);
+  }
+  EXPECT_GT(within, 6);
+}
+
+// The same mesh at the same pose: every triangle touches its neighbours and itself.
+TEST(MeshMesh, IdenticalPlacement) {
+  const TriangleMesh a = make(box_mesh(Vec3(0.5, 0.5, 0.5), 2));
+  const Transform pose{Vec3(1, 2, 3), glm::normalize(Quat(Real(0.9), Real(0.1), Real(0.3), Real(-0.2)))};
+  EXPECT_TRUE(midphase::mesh_mesh_intersect(a, pose, a, pose, {}));
+  const GeometryDistance d = midphase::mesh_mesh_distance(a, pose, a, pose, {});
+  EXPECT_EQ(d.result.signed_distance, Real(0));
+  std::vector<GeometryContact> contacts;
+  midphase::mesh_mesh_collide_all(a, pose, a, pose, {}, contacts);
+  std::set<std::pair<std::uint32_t, std::uint32_t>> pairs;
+  for (const GeometryContact& c : contacts) pairs.insert({c.a.triangle, c.b.triangle});
+  for (std::uint32_t i = 0; i < a.triangle_count(); ++i) EXPECT_TRUE(pairs.count({i, i})) << i;
+}
+
+// Far apart: spheres of radius r1, r2 whose centres are D apart; the tessellated spheres are
+// inscribed, so the distance lies in [D - r1 - r2, D - r1 cos - r2 cos] for the level's
+// largest face-centre depth.
+TEST(MeshMesh, FarSpheresBracket) {
+  const TriangleMesh a = make(icosphere(2, Real(1)));
+  const TriangleMesh b = make(icosphere(2, Real(0.5)));
+  test::Random rng(17);
+  for (int k = 0; k < 100; ++k) {
+    const Transform pa{rng.vec3(Real(-10), Real(10)), rng.rotation()};
+    const Real dist = rng.uniform(Real(2), Real(20));
+    const Transform pb{pa.position + rng.unit_vector() * dist, rng.rotation()};
+    const GeometryDistance d = midphase::mesh_mesh_distance(a, pa, b, pb, {});
+    EXPECT_LE(d.result.signed_distance, dist - Real(1.5) * Real(0.95) + Real(1e-4)) << k;
+    EXPECT_GE(d.result.signed_distance, dist - Real(1.5) - Real(1e-4)) << k;
+    EXPECT_FALSE(midphase::mesh_mesh_intersect(a, pa, b, pb, {}));
+  }
+}
+
+}  // namespace
+}  // namespace proxima
