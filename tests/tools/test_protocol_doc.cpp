@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <array>
+#include <filesystem>
 #include <fstream>
 #include <string>
 #include <vector>
@@ -87,6 +88,10 @@ tool::Json canonical_obb(tool::Json answer) {
 TEST(ProtocolDoc, ExamplesAreTheProgramsAnswers) {
   const auto examples = read_examples(PROXIMA_QUERY_PROTOCOL_DOC);
   ASSERT_GE(examples.size(), 25u);
+  // Mesh files in the examples are named from the repository root, where the document's
+  // commands are run.
+  const std::filesystem::path saved = std::filesystem::current_path();
+  std::filesystem::current_path(std::filesystem::path(PROXIMA_TOOLS_TEST_DATA) / ".." / ".." / "..");
   int rejected_count = 0;
   for (const Example& e : examples) {
     bool rejected = false;
@@ -99,6 +104,7 @@ TEST(ProtocolDoc, ExamplesAreTheProgramsAnswers) {
                            std::max(test::kJsonTolerance, 2e-5));
   }
   EXPECT_GE(rejected_count, 8);
+  std::filesystem::current_path(saved);
 }
 
 }  // namespace
