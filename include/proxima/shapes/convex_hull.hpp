@@ -60,9 +60,13 @@ class ConvexHull {
   /// Dispatch tag.
   static constexpr ShapeType kType = ShapeType::ConvexHull;
 
-  /// Hulls with at most this many vertices answer support_index by a linear scan; larger
-  /// ones hill-climb from the start vertex.
-  static constexpr std::uint32_t kLinearScanMaxVertices = 16;
+  /// Hulls with at most this many vertices answer support_index by a linear scan (four
+  /// vertices per step with SSE2 in float); larger ones hill-climb from the start vertex.
+  /// Measured (callgrind, random directions, warm-started climb): at 32 vertices the scan
+  /// takes about 330 instructions against 460 for the climb, at 64 about 600 against 620,
+  /// and the scan's straight-line code runs at a much higher rate than the climb's
+  /// data-dependent branches and loads.
+  static constexpr std::uint32_t kLinearScanMaxVertices = 64;
 
   /// Validated construction from a point cloud (local frame).
   ///
@@ -98,7 +102,9 @@ class ConvexHull {
   }
 
   /// Index of a vertex farthest in `direction` (local frame; any vector, zero gives a
-  /// valid vertex). Above kLinearScanMaxVertices it hill-climbs from `start_vertex`
+  /// valid vertex). Up to kLinearScanMaxVertices it scans every vertex and returns the
+  /// first (lowest index) of largest dot product, 0 when none compares larger than
+  /// -infinity (a NaN direction). Above kLinearScanMaxVertices it hill-climbs from `start_vertex`
   /// (clamped to a valid index; pass the previous answer to warm-start), moving to a
   /// vertex sharing a face with a strictly larger dot product until none exists. That
   /// cannot cycle, and it is exact on a convex polyhedron; moving across faces rather
