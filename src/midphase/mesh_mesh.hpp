@@ -15,8 +15,9 @@ namespace proxima::midphase {
 bool mesh_mesh_intersect(const TriangleMesh& a, const Transform& pose_a, const TriangleMesh& b, const Transform& pose_b,
                          const PairRequest& request);
 
-/// Minimum signed distance over all triangle pairs with its witnesses (sub.triangle set on
-/// both sides; sub.child left at kNoIndex for the caller to fill).
+/// Minimum distance over all triangle pairs with its witnesses (sub.triangle set on both
+/// sides; sub.child left at kNoIndex for the caller to fill); 0 (status Touching) when the
+/// surfaces cross: meshes are surfaces here, no penetration depth is computed.
 GeometryDistance mesh_mesh_distance(const TriangleMesh& a, const Transform& pose_a, const TriangleMesh& b,
                                     const Transform& pose_b, const PairRequest& request);
 

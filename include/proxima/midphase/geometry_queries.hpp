@@ -33,7 +33,10 @@ bool intersect(GeometryRef a, const Transform& pose_a, GeometryRef b, const Tran
                const PairRequest& request = {});
 
 /// Signed distance and witnesses between A and B: the minimum over all pairs of parts
-/// (pruned by the BVHs). Penetration depth for meshes is that of the deepest part pair.
+/// (pruned by the BVHs). A mesh against a convex shape or a compound part: the deepest
+/// triangle pair gives the penetration. Mesh against mesh: the meshes are surfaces, so
+/// crossing surfaces give signed distance 0 (status Touching, witnesses at a common point);
+/// no penetration depth is computed between two meshes.
 GeometryDistance distance(GeometryRef a, const Transform& pose_a, GeometryRef b, const Transform& pose_b,
                           const PairRequest& request = {});
 
