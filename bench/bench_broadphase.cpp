@@ -63,6 +63,7 @@
 #include <vector>
 
 #include "support/bench_main.hpp"
+#include "support/w1_grid_pairs.hpp"
 #include "support/workloads.hpp"
 
 #if defined(PROXIMA_HAVE_FCL)
@@ -430,73 +431,21 @@ struct Loaded {
 };
 
 /// Every overlapping pair of the boxes (closed, double; rounded to Real first when `round`,
-/// which is what a float build stores) into `sum`, by a uniform grid of cells at least as
-/// large as the largest box: each box tests the boxes whose min corner lies in one of the
-/// 27 cells around its own min corner's cell, larger indices only. O(n + cells + tests),
-/// linear at constant density (a sweep on one axis is O(n^(5/3)) there: 10^10 tests per
-/// frame at 1M boxes, which is why the first 1M runs never finished their reference).
+/// which is what a float build stores) into `sum`, by w1_grid_pairs (linear at constant
+/// density; a sweep on one axis is O(n^(5/3)) there: 10^10 tests per frame at 1M boxes,
+/// which is why the first 1M runs never finished their reference).
 void add_rounded_pairs(const std::vector<BroadphaseBox>& state, PairChecksum& sum, bool round = true) {
   std::vector<BoxD> boxes;
   boxes_of(state, boxes);
-  const std::size_t n = boxes.size();
-  if (n < 2) return;
-  double mn[3] = {1e300, 1e300, 1e300};
-  double mx[3] = {-1e300, -1e300, -1e300};
-  double extent = 0;
-  for (BoxD& b : boxes) {
-    for (int k = 0; k < 3; ++k) {
-      if (round) {
+  if (round) {
+    for (BoxD& b : boxes) {
+      for (int k = 0; k < 3; ++k) {
         b.lo[k] = double(Real(b.lo[k]));
         b.hi[k] = double(Real(b.hi[k]));
       }
-      mn[k] = std::min(mn[k], b.lo[k]);
-      mx[k] = std::max(mx[k], b.lo[k]);
-      extent = std::max(extent, b.hi[k] - b.lo[k]);
     }
   }
-  // 1 % margin: a pair's min corners are then cells apart by at most 1 despite rounding.
-  double cell = std::max(extent * 1.01, 1e-300);
-  std::int64_t dims[3];
-  for (;;) {
-    std::int64_t total = 1;
-    for (int k = 0; k < 3; ++k) {
-      dims[k] = std::int64_t(std::min((mx[k] - mn[k]) / cell, 1e9)) + 1;
-      total = total > (std::int64_t(1) << 40) / dims[k] ? (std::int64_t(1) << 40) : total * dims[k];
-    }
-    if (total <= std::int64_t(4 * n + 64)) break;
-    cell *= 1.5;
-  }
-  auto coord = [&](const BoxD& b, int k) {
-    return std::clamp(std::int64_t((b.lo[k] - mn[k]) / cell), std::int64_t(0), dims[k] - 1);
-  };
-  const std::size_t cells = std::size_t(dims[0] * dims[1] * dims[2]);
-  std::vector<std::uint32_t> start(cells + 1, 0);
-  std::vector<std::uint32_t> key(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    key[i] = std::uint32_t((coord(boxes[i], 0) * dims[1] + coord(boxes[i], 1)) * dims[2] + coord(boxes[i], 2));
-    ++start[key[i] + 1];
-  }
-  for (std::size_t c = 0; c < cells; ++c) start[c + 1] += start[c];
-  std::vector<std::uint32_t> items(n);
-  {
-    std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
-    for (std::size_t i = 0; i < n; ++i) items[fill[key[i]]++] = std::uint32_t(i);
-  }
-  for (std::size_t i = 0; i < n; ++i) {
-    const BoxD& a = boxes[i];
-    const std::int64_t c0 = coord(a, 0), c1 = coord(a, 1), c2 = coord(a, 2);
-    for (std::int64_t x = std::max<std::int64_t>(c0 - 1, 0); x <= std::min(c0 + 1, dims[0] - 1); ++x) {
-      for (std::int64_t y = std::max<std::int64_t>(c1 - 1, 0); y <= std::min(c1 + 1, dims[1] - 1); ++y) {
-        for (std::int64_t z = std::max<std::int64_t>(c2 - 1, 0); z <= std::min(c2 + 1, dims[2] - 1); ++z) {
-          const std::size_t c = std::size_t((x * dims[1] + y) * dims[2] + z);
-          for (std::uint32_t k = start[c]; k < start[c + 1]; ++k) {
-            const std::uint32_t j = items[k];
-            if (j > i && overlap_d(a, boxes[j])) sum.add(i, j, n);
-          }
-        }
-      }
-    }
-  }
+  proxima::bench::w1_grid_pairs(boxes, sum);
 }
 
 /// Moves the boxes of one frame (all, or every 10th) and returns the moved indices.
@@ -745,7 +694,8 @@ void large_child(int fd, Loaded& w, const Contestant& who, int threads, int fram
 /// Runs every contestant on one large file (see large_child) and appends one JSON object per
 /// run, in Google Benchmark's layout plus `frames_done` and `over_budget` (1: stopped by the
 /// budget; cpu_time is then a lower bound when no frame finished).
-void run_large(Loaded& w, int frames, double budget_s, const std::string& only, std::vector<std::string>& json) {
+void run_large(Loaded& w, int frames, double budget_s, int max_threads, const std::string& only,
+               std::vector<std::string>& json) {
   frames = std::min(frames, w.frames);
   // Cumulative references after 0..frames frames (a stopped run is checked on its frames).
   std::vector<PairChecksum> exact(1), rounded(1);
@@ -783,7 +733,7 @@ void run_large(Loaded& w, int frames, double budget_s, const std::string& only, 
     bool one_thread_over = false;
     for (const int threads : {1, 2}) {
       // Two threads only where one thread finished within the budget.
-      if (threads == 2 && (!c.threaded || one_thread_over)) continue;
+      if (threads == 2 && (!c.threaded || one_thread_over || max_threads < 2)) continue;
       int fds[2];
       if (pipe(fds) != 0) throw std::runtime_error("pipe");
       std::cout.flush();
@@ -926,12 +876,14 @@ bool register_all(const std::string& dir) {
 int main(int argc, char** argv) {
   // --large=FILE (repeatable): W1 files of any size (e.g. 1M boxes from
   // proxima_make_workload), every structure and peer run in a child process under a budget
-  // (run_large); --large-frames=N (default 5), --large-budget=S seconds per run (default 60),
+  // (run_large); --large-frames=N (default 5), --large-budget=S CPU seconds per run (default
+  // 60), --large-threads=1 (no two-thread runs),
   // --large-only=a,b (those contestants only), --large-out=FILE (JSON, default
   // bench_broadphase_large.json); with any --large the Google Benchmark runs on the shared
   // files are skipped unless --standard is given too.
   std::vector<std::string> large;
   int large_frames = 5;
+  int large_threads = 2;
   double budget = 60;
   std::string only;
   std::string large_out = "bench_broadphase_large.json";
@@ -943,6 +895,8 @@ int main(int argc, char** argv) {
       large.push_back(arg.substr(8));
     } else if (arg.rfind("--large-frames=", 0) == 0) {
       large_frames = std::stoi(arg.substr(15));
+    } else if (arg.rfind("--large-threads=", 0) == 0) {
+      large_threads = std::stoi(arg.substr(16));
     } else if (arg.rfind("--large-budget=", 0) == 0) {
       budget = std::stod(arg.substr(15));
     } else if (arg.rfind("--large-only=", 0) == 0) {
@@ -965,7 +919,7 @@ int main(int argc, char** argv) {
       w.workload = std::move(*read);
       w.name = short_name(w.workload.name);
       w.frames = w.workload.frames;
-      run_large(w, large_frames, budget, only, json);
+      run_large(w, large_frames, budget, large_threads, only, json);
     }
     std::ofstream out(large_out);
     out << "{\"context\": {\"large_frames\": " << large_frames << ", \"budget_s\": " << budget

@@ -2,7 +2,7 @@
 """Turns proxima_bench_broadphase JSON output into the tables of bench/RESULTS.md and the
 data file of bench/plot_broadphase.gp (time per frame against N, uniform workloads).
 
-usage: broadphase_results.py RESULTS.json|CONSOLE.txt [MORE.json ...] OUT_DIR
+usage: broadphase_results.py RESULTS.json|CONSOLE.txt|LARGE.log [MORE ...] OUT_DIR
 (several inputs are merged, e.g. the Google Benchmark JSON of the shared files and the
 --large-out JSON of the 1M runs; a later input replaces an earlier row of the same name)
 writes OUT_DIR/broadphase_tables.md and OUT_DIR/broadphase_vs_n.dat
@@ -42,8 +42,18 @@ def read_console(path):
 
 
 data = {"benchmarks": []}
+def read_lines(path):
+    """The stdout of a --large run (one JSON object a line; usable while it is running)."""
+    return {"benchmarks": [json.loads(l) for l in open(path) if l.startswith("{")]}
+
+
 for path in sys.argv[1:-1]:
-    part = read_console(path) if path.endswith(".txt") else json.load(open(path))
+    if path.endswith(".txt"):
+        part = read_console(path)
+    elif path.endswith(".log"):
+        part = read_lines(path)
+    else:
+        part = json.load(open(path))
     data["benchmarks"] += part["benchmarks"]
 out_dir = sys.argv[-1]
 rows = {}
@@ -82,7 +92,8 @@ def cell(b):
     if b.get("over_budget"):
         # Stopped by the per-run budget of the --large runs.
         if not b.get("build_done", 1):
-            return "build > %.0f s (stopped)" % (b.get("build_cpu_ms", b["build_ms"]) / 1e3)
+            return "build not done, stopped at %.3g s CPU (%.0f s wall)" % (
+                b.get("build_cpu_ms", b["build_ms"]) / 1e3, b["build_ms"] / 1e3)
         if b.get("frames_done", 0) == 0:
             return "> %.3g s/frame (stopped)" % (ms(b) / 1e3)
         return "%.3g (%d frames in budget)" % (ms(b), b["frames_done"])
@@ -146,7 +157,8 @@ for s in structures:
             continue
         c = int(b.get("check", -1))
         if not b.get("build_done", 1):
-            cells.append("build > %.0f s (stopped)" % (b.get("build_cpu_ms", b["build_ms"]) / 1e3))
+            cells.append("build not done, stopped at %.3g s CPU (%.0f s wall)" % (
+                b.get("build_cpu_ms", b["build_ms"]) / 1e3, b["build_ms"] / 1e3))
             continue
         text = "%.0f, %s, %.3g, %.3g" % (b.get("pairs", 0), check_text.get(c, "?"), b.get("build_cpu_ms", b.get("build_ms", 0)), b.get("mem_MB", 0))
         if b.get("over_budget"):

@@ -1,7 +1,7 @@
 // `proxima bench broadphase`: one structure on one W1 workload (see bench_command.hpp).
 // Steps: 1. read the W1 file; 2. insert every box of frame 0 (timed: build); 3. per frame:
 // W1 motion (double), boxes rounded to Real, update(span) + find_pairs (timed), checksum;
-// 4. reference checksums by a double-precision sort-and-sweep of the same frames (exact
+// 4. reference checksums by a double-precision grid search of the same frames (exact
 // boxes, and boxes rounded to Real as the structure stores them); 5. report.
 #include "bench_command.hpp"
 
@@ -15,6 +15,8 @@
 #include <ostream>
 #include <sstream>
 #include <string_view>
+
+#include "../bench/support/w1_grid_pairs.hpp"
 
 namespace proxima::tool {
 
@@ -57,24 +59,6 @@ void boxes_of(const std::vector<W1Box>& boxes, bool rounded, std::vector<BoxD>& 
       if (rounded) {
         out[i].lo[k] = double(Real(out[i].lo[k]));
         out[i].hi[k] = double(Real(out[i].hi[k]));
-      }
-    }
-  }
-}
-
-// Sort-and-sweep on x in double: every overlapping pair of closed boxes.
-void sweep_pairs(const std::vector<BoxD>& boxes, W1Checksum& sum, std::vector<std::uint32_t>& order) {
-  order.resize(boxes.size());
-  for (std::size_t i = 0; i < order.size(); ++i) order[i] = std::uint32_t(i);
-  std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
-    return boxes[a].lo[0] < boxes[b].lo[0] || (boxes[a].lo[0] == boxes[b].lo[0] && a < b);
-  });
-  for (std::size_t i = 0; i < order.size(); ++i) {
-    const BoxD& a = boxes[order[i]];
-    for (std::size_t j = i + 1; j < order.size() && boxes[order[j]].lo[0] <= a.hi[0]; ++j) {
-      const BoxD& b = boxes[order[j]];
-      if (a.lo[1] <= b.hi[1] && b.lo[1] <= a.hi[1] && a.lo[2] <= b.hi[2] && b.lo[2] <= a.hi[2]) {
-        sum.add(order[i], order[j], boxes.size());
       }
     }
   }
@@ -247,13 +231,12 @@ int run_bench_broadphase(const BenchBroadphaseOptions& options, std::ostream& ou
     std::vector<W1Box> ref_state = w.boxes;
     std::vector<BoxD> exact;
     std::vector<BoxD> rounded;
-    std::vector<std::uint32_t> order;
     for (int f = 0; f < frames; ++f) {
       advance(ref_state, w.dt, w.lo, w.hi);
       boxes_of(ref_state, false, exact);
       boxes_of(ref_state, true, rounded);
-      sweep_pairs(exact, r.reference, order);
-      sweep_pairs(rounded, r.reference_rounded, order);
+      bench::w1_grid_pairs(exact, r.reference);
+      bench::w1_grid_pairs(rounded, r.reference_rounded);
     }
     if (r.checksum == r.reference) {
       verdict = "agrees with the exact (double) reference";

@@ -342,22 +342,12 @@ void BspTree::visit_box(const Aabb& box, BroadPhaseStats& st, Visit&& visit) con
 }
 
 void BspTree::query_aabb(const Aabb& box, const OverlapQueryCallback& on_overlap) const {
-  BroadPhaseStats st;
-  if (detail::query_box_ok(box)) {
-    visit_box(box, st, [&](ProxyId id) {
-      ++st.pairs_found;
-      return on_overlap(id);
-    });
-  }
-  stats_ = st;
+  stats_ = detail::run_box_query(box, on_overlap,
+                                 [this](const Aabb& b, BroadPhaseStats& st, auto&& visit) { visit_box(b, st, visit); });
 }
 
 void BspTree::query_point(const Vec3& point, const OverlapQueryCallback& on_overlap) const {
-  if (!detail::point_ok(point)) {
-    stats_ = {};
-    return;
-  }
-  query_aabb(Aabb::from_point(point), on_overlap);
+  detail::run_point_query(point, stats_, [&](const Aabb& b) { query_aabb(b, on_overlap); });
 }
 
 void BspTree::query_ray(const Ray& ray, Real max_t, const RayQueryCallback& on_ray) const {

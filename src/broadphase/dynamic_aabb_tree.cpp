@@ -761,11 +761,7 @@ void DynamicAabbTree::query_aabb(const Aabb& box, const OverlapQueryCallback& on
 }
 
 void DynamicAabbTree::query_point(const Vec3& point, const OverlapQueryCallback& on_overlap) const {
-  if (!detail::point_ok(point)) {
-    stats_ = {};
-    return;
-  }
-  query_aabb(Aabb::from_point(point), on_overlap);
+  detail::run_point_query(point, stats_, [&](const Aabb& b) { query_aabb(b, on_overlap); });
 }
 
 void DynamicAabbTree::query_ray(const Ray& ray, Real max_t, const RayQueryCallback& on_ray) const {

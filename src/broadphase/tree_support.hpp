@@ -2,7 +2,8 @@
 /// @file tree_support.hpp
 /// Internal helpers shared by the tree structures of the broad phase (dynamic AABB tree,
 /// kd-tree, BSP tree): a traversal stack with fixed inline storage, the ray-box slab test
-/// with the conventions of broadphase.hpp, and the ray-input check. Not installed.
+/// with the conventions of broadphase.hpp, the ray-input check and the box and point query
+/// wrappers over a tree's box walk. Not installed.
 
 #include <proxima/broadphase/broadphase.hpp>
 
@@ -97,6 +98,31 @@ inline bool point_ok(const Vec3& p) { return std::isfinite(p.x) && std::isfinite
 
 /// True when the box has finite, ordered coordinates (queries with other boxes report nothing).
 inline bool query_box_ok(const Aabb& box) { return check_box(box) == BroadPhaseStatus::Ok; }
+
+/// Box query of a tree over its `visit_box(box, stats, visit)` walk: counts the reports,
+/// reports nothing for an invalid box, and returns the counters.
+template <class VisitBox>
+BroadPhaseStats run_box_query(const Aabb& box, const OverlapQueryCallback& on_overlap, VisitBox&& visit_box) {
+  BroadPhaseStats st;
+  if (query_box_ok(box)) {
+    visit_box(box, st, [&](ProxyId id) {
+      ++st.pairs_found;
+      return on_overlap(id);
+    });
+  }
+  return st;
+}
+
+/// Point query as the box query of the point: `query_aabb(point_box)`; a non-finite point
+/// reports nothing and clears `stats`.
+template <class QueryAabb>
+void run_point_query(const Vec3& point, BroadPhaseStats& stats, QueryAabb&& query_aabb) {
+  if (!point_ok(point)) {
+    stats = {};
+    return;
+  }
+  query_aabb(Aabb::from_point(point));
+}
 
 /// Applies the ray-callback protocol: returns false when the query must stop; updates max_t.
 inline bool apply_ray_result(Real result, Real& max_t) {

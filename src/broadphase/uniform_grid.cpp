@@ -13,12 +13,15 @@
 ///    my lower cell on axis k": the rule is bits_a | bits_b == 0b111);
 /// 5. hgrid: probe coarser levels per box; oversized boxes (> 64 cells) test everyone;
 /// 6. radix-sort the pairs.
+/// Ray queries on the built dense grid march the cells along the segment (march_ray, a
+/// conservative 3D DDA after Amanatides and Woo, "A fast voxel traversal algorithm", 1987).
 
 #include <proxima/broadphase/uniform_grid.hpp>
 
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <limits>
 #include <thread>
 
 namespace proxima::detail {
@@ -500,6 +503,7 @@ void CellEngine::query_point(const Vec3& point, const OverlapQueryCallback& on_o
 
 void CellEngine::query_ray(const Ray& ray, Real max_t, const RayQueryCallback& on_ray) const {
   stats_ = {};
+  if (mode_ == CellMode::Dense && !dirty_ && proxies_.size() != 0 && march_ray(ray, max_t, on_ray)) return;
   Real limit = max_t;
   for (const ProxyId id : proxies_.ids()) {
     ++stats_.pairs_tested;
@@ -510,6 +514,134 @@ void CellEngine::query_ray(const Ray& ray, Real max_t, const RayQueryCallback& o
     if (next == 0) return;
     limit = std::min(limit, next);
   }
+}
+
+bool CellEngine::march_ray(const Ray& ray, Real max_t, const RayQueryCallback& on_ray) const {
+  // Dense grid, built: march the cells the segment crosses, slab by slab along the axis of
+  // the largest direction component (a 3D DDA made conservative: each slab's stretch of the
+  // segment is widened by `eps` and every cell its box touches is visited, so rounding cannot
+  // skip a cell). A box is reported in the first visited cell of its range only, found by
+  // recomputing the earlier slabs' cell rectangles (no marks). Returns false, having called
+  // nothing, for input it leaves to the scan (zero or non-finite direction, NaN).
+  double o[3];
+  double d[3];
+  int a = 0;
+  for (int k = 0; k < 3; ++k) {
+    o[k] = double(ray.origin[k]);
+    d[k] = double(ray.direction[k]);
+    if (!std::isfinite(o[k]) || !std::isfinite(d[k])) return false;
+    if (std::abs(d[k]) > std::abs(d[a])) a = k;
+  }
+  if (d[a] == 0 || !(max_t >= Real(0))) return false;
+  const double cell = double(cell_);
+  double reach = 0;
+  for (int k = 0; k < 3; ++k) reach = std::max(reach, std::abs(double(origin_[k])) + double(dims_[k]) * cell);
+  const double eps = 1e-3 * cell + 64.0 * double(std::numeric_limits<Real>::epsilon()) * reach;
+  // Clip the segment to the grid's cells, widened by eps.
+  double t_in = 0;
+  double t_out = double(max_t);
+  for (int k = 0; k < 3; ++k) {
+    const double lo = double(origin_[k]) - eps;
+    const double hi = double(origin_[k]) + double(dims_[k]) * cell + eps;
+    if (d[k] == 0) {
+      if (o[k] < lo || o[k] > hi) t_out = -1;
+      continue;
+    }
+    double ta = (lo - o[k]) / d[k];
+    double tb = (hi - o[k]) / d[k];
+    if (ta > tb) std::swap(ta, tb);
+    t_in = std::max(t_in, ta);
+    t_out = std::min(t_out, tb);
+  }
+  Real limit = max_t;
+  const int b = (a + 1) % 3;
+  const int c = (a + 2) % 3;
+  auto slab_of = [&](double t) {
+    const double x = std::floor((o[a] + t * d[a] - double(origin_[a])) / cell);
+    return std::int32_t(std::clamp(x, 0.0, double(dims_[a] - 1)));
+  };
+  // Cell rectangle (axes b, c) of slab s; false when the segment misses the widened slab.
+  struct Rect {
+    std::int32_t lo[2];
+    std::int32_t hi[2];
+    double t0;
+  };
+  auto rect_of = [&](std::int32_t s, Rect& r) {
+    const double x0 = double(origin_[a]) + double(s) * cell - eps;
+    const double x1 = double(origin_[a]) + double(s + 1) * cell + eps;
+    double ta = (x0 - o[a]) / d[a];
+    double tb = (x1 - o[a]) / d[a];
+    if (ta > tb) std::swap(ta, tb);
+    ta = std::max(ta, t_in);
+    tb = std::min(tb, t_out);
+    if (ta > tb) return false;
+    r.t0 = ta;
+    const int axes[2] = {b, c};
+    for (int j = 0; j < 2; ++j) {
+      const int k = axes[j];
+      const double pa = o[k] + ta * d[k];
+      const double pb = o[k] + tb * d[k];
+      const double lo = std::floor((std::min(pa, pb) - eps - double(origin_[k])) / cell);
+      const double hi = std::floor((std::max(pa, pb) + eps - double(origin_[k])) / cell);
+      r.lo[j] = std::int32_t(std::clamp(lo, 0.0, double(dims_[k] - 1)));
+      r.hi[j] = std::int32_t(std::clamp(hi, 0.0, double(dims_[k] - 1)));
+    }
+    return true;
+  };
+  if (t_in <= t_out) {
+    const std::int32_t first = slab_of(t_in);
+    const std::int32_t last = slab_of(t_out);
+    const std::int32_t step = d[a] > 0 ? 1 : -1;
+    for (std::int32_t s = first;; s += step) {
+      Rect r{};
+      if (rect_of(s, r)) {
+        if (r.t0 > double(limit) + eps / std::abs(d[a])) break;  // later slabs start later still
+        std::int32_t xyz[3];
+        xyz[a] = s;
+        for (std::int32_t u = r.lo[0]; u <= r.hi[0]; ++u) {
+          for (std::int32_t v = r.lo[1]; v <= r.hi[1]; ++v) {
+            xyz[b] = u;
+            xyz[c] = v;
+            const std::uint32_t cell_index = find_cell(0, xyz[0], xyz[1], xyz[2]);
+            ++stats_.nodes_visited;
+            for (std::uint32_t i = cell_start_[cell_index]; i < cell_start_[cell_index + 1]; ++i) {
+              const Entry& e = entries_[i];
+              const Range g = range_of(Aabb{e.min, e.max}, 0);
+              // First visited cell of the box's range: first of this slab's rectangle, and
+              // no earlier slab of its range met it.
+              if (u != std::max(r.lo[0], g.lo[b]) || v != std::max(r.lo[1], g.lo[c])) continue;
+              bool seen = false;
+              for (std::int32_t q = s - step; !seen && q >= g.lo[a] && q <= g.hi[a] && q - first != -step; q -= step) {
+                Rect earlier{};
+                seen = rect_of(q, earlier) && earlier.lo[0] <= g.hi[b] && g.lo[b] <= earlier.hi[0] &&
+                       earlier.lo[1] <= g.hi[c] && g.lo[c] <= earlier.hi[1];
+              }
+              if (seen) continue;
+              ++stats_.pairs_tested;
+              Real t = 0;
+              if (!ray_enters_box(ray, limit, Aabb{e.min, e.max}, t)) continue;
+              const Real next = on_ray(e.id, t);
+              if (next < 0) continue;
+              if (next == 0) return true;
+              limit = std::min(limit, next);
+            }
+          }
+        }
+      }
+      if (s == last) break;
+    }
+  }
+  const auto ids = proxies_.ids();
+  for (const std::uint32_t slot : oversized_) {
+    ++stats_.pairs_tested;
+    Real t = 0;
+    if (!ray_enters_box(ray, limit, proxies_[ids[slot]].box, t)) continue;
+    const Real next = on_ray(ids[slot], t);
+    if (next < 0) continue;
+    if (next == 0) return true;
+    limit = std::min(limit, next);
+  }
+  return true;
 }
 
 bool CellEngine::validate() const {

@@ -83,185 +83,80 @@ struct Scene {
 
 /// The scenes every structure must pass (names unique; small enough for the brute force).
 inline std::vector<Scene> standard_scenes() {
-  std::vector<Scene> s;
-  auto add = [&](Scene scene) { s.push_back(std::move(scene)); };
-  {
-    Scene c;
-    c.name = "uniform";
-    c.seed = 101;
-    add(c);
-  }
-  {
-    Scene c;
-    c.name = "uniform_dense";
-    c.seed = 102;
-    c.count = 250;
-    c.extent = Real(20);
-    c.step = Real(0.5);
-    c.rebuild_every = 4;
-    add(c);
-  }
-  {
-    Scene c;
-    c.name = "clustered";
-    c.seed = 103;
-    c.layout = SceneLayout::Clustered;
-    c.count = 400;
-    add(c);
-  }
-  {
-    Scene c;
-    c.name = "line_x";
-    c.seed = 104;
-    c.layout = SceneLayout::LineX;
-    c.count = 300;
-    c.extent = Real(400);
-    add(c);
-  }
-  {
-    Scene c;
-    c.name = "line_y_static_mix";
-    c.seed = 105;
-    c.layout = SceneLayout::LineY;
-    c.count = 300;
-    c.extent = Real(400);
-    c.static_fraction = 0.5;
-    add(c);
-  }
-  {
-    Scene c;
-    c.name = "huge_and_tiny";
-    c.seed = 106;
-    c.layout = SceneLayout::HugeAndTiny;
-    c.count = 250;
-    c.min_size = Real(0.001);
-    c.max_size = Real(200);
-    add(c);
-  }
-  {
-    Scene c;
-    c.name = "zero_size";
-    c.seed = 107;
-    c.layout = SceneLayout::ZeroSize;
-    c.count = 300;
-    c.extent = Real(10);
-    c.quantum = Real(1);
-    c.step = Real(1);
-    add(c);
-  }
-  {
-    Scene c;
-    c.name = "lattice_touching";
-    c.seed = 108;
-    c.count = 300;
-    c.extent = Real(16);
-    c.min_size = Real(0.5);
-    c.max_size = Real(3);
-    c.quantum = Real(0.5);
-    c.step = Real(0.5);
-    add(c);
-  }
-  {
-    Scene c;
-    c.name = "far_1e4";
-    c.seed = 109;
-    c.origin = Vec3(Real(1e4), Real(-2e4), Real(1.5e4));
-    c.count = 300;
-    c.extent = Real(50);
-    add(c);
-  }
-  {
-    Scene c;
-    c.name = "far_1e5_lattice";
-    c.seed = 110;
-    c.origin = Vec3(Real(-1e5), Real(3e5), Real(1e5));
-    c.count = 300;
-    c.extent = Real(40);
-    c.quantum = Real(0.5);
-    c.min_size = Real(0.5);
-    c.max_size = Real(6);
-    add(c);
-  }
-  {
-    Scene c;
-    c.name = "far_1e6";
-    c.seed = 111;
-    c.origin = Vec3(Real(1e6), Real(1e6), Real(-1e6));
-    c.count = 250;
-    c.extent = Real(400);
-    c.min_size = Real(2);
-    c.max_size = Real(40);
-    c.step = Real(4);
-    add(c);
-  }
-  {
-    Scene c;
-    c.name = "churn";
-    c.seed = 112;
-    c.count = 300;
-    c.churn = 0.3;
-    c.sparse_ids = true;
-    add(c);
-  }
-  {
-    Scene c;
-    c.name = "layers";
-    c.seed = 113;
-    c.count = 300;
-    c.extent = Real(40);
-    c.filters = true;
-    add(c);
-  }
-  {
-    Scene c;
-    c.name = "static_mix";
-    c.seed = 114;
-    c.count = 400;
-    c.extent = Real(50);
-    c.static_fraction = 0.6;
-    c.filters = true;
-    c.rebuild_every = 5;
-    add(c);
-  }
-  {
-    Scene c;
-    c.name = "mostly_static_few_moving";
-    c.seed = 115;
-    c.layout = SceneLayout::Clustered;
-    c.count = 400;
-    c.static_fraction = 0.95;
-    c.move_fraction = 0.5;
-    add(c);
-  }
-  {
-    Scene c;
-    c.name = "tiny_counts";
-    c.seed = 116;
-    c.count = 2;
-    c.extent = Real(3);
-    c.churn = 0.5;
-    add(c);
-  }
-  {
-    Scene c;
-    c.name = "from_empty_churn";
-    c.seed = 117;
-    c.count = 0;
-    c.extent = Real(10);
-    c.churn = 0.0;  // inserts still happen: see run_differential (at least one per frame)
-    add(c);
-  }
-  {
-    Scene c;
-    c.name = "fast_movers";
-    c.seed = 118;
-    c.count = 300;
-    c.extent = Real(60);
-    c.step = Real(30);
-    c.resize_fraction = 0.5;
-    add(c);
-  }
-  return s;
+  // Designated initializers: fields in declaration order; unnamed fields keep their defaults.
+  return {
+      {.name = "uniform", .seed = 101},
+      {.name = "uniform_dense", .seed = 102, .count = 250, .extent = Real(20), .step = Real(0.5), .rebuild_every = 4},
+      {.name = "clustered", .seed = 103, .layout = SceneLayout::Clustered, .count = 400},
+      {.name = "line_x", .seed = 104, .layout = SceneLayout::LineX, .count = 300, .extent = Real(400)},
+      {.name = "line_y_static_mix",
+       .seed = 105,
+       .layout = SceneLayout::LineY,
+       .count = 300,
+       .extent = Real(400),
+       .static_fraction = 0.5},
+      {.name = "huge_and_tiny",
+       .seed = 106,
+       .layout = SceneLayout::HugeAndTiny,
+       .count = 250,
+       .min_size = Real(0.001),
+       .max_size = Real(200)},
+      {.name = "zero_size",
+       .seed = 107,
+       .layout = SceneLayout::ZeroSize,
+       .count = 300,
+       .extent = Real(10),
+       .quantum = Real(1),
+       .step = Real(1)},
+      {.name = "lattice_touching",
+       .seed = 108,
+       .count = 300,
+       .extent = Real(16),
+       .min_size = Real(0.5),
+       .max_size = Real(3),
+       .quantum = Real(0.5),
+       .step = Real(0.5)},
+      {.name = "far_1e4",
+       .seed = 109,
+       .count = 300,
+       .origin = Vec3(Real(1e4), Real(-2e4), Real(1.5e4)),
+       .extent = Real(50)},
+      {.name = "far_1e5_lattice",
+       .seed = 110,
+       .count = 300,
+       .origin = Vec3(Real(-1e5), Real(3e5), Real(1e5)),
+       .extent = Real(40),
+       .min_size = Real(0.5),
+       .max_size = Real(6),
+       .quantum = Real(0.5)},
+      {.name = "far_1e6",
+       .seed = 111,
+       .count = 250,
+       .origin = Vec3(Real(1e6), Real(1e6), Real(-1e6)),
+       .extent = Real(400),
+       .min_size = Real(2),
+       .max_size = Real(40),
+       .step = Real(4)},
+      {.name = "churn", .seed = 112, .count = 300, .sparse_ids = true, .churn = 0.3},
+      {.name = "layers", .seed = 113, .count = 300, .extent = Real(40), .filters = true},
+      {.name = "static_mix",
+       .seed = 114,
+       .count = 400,
+       .extent = Real(50),
+       .static_fraction = 0.6,
+       .filters = true,
+       .rebuild_every = 5},
+      {.name = "mostly_static_few_moving",
+       .seed = 115,
+       .layout = SceneLayout::Clustered,
+       .count = 400,
+       .static_fraction = 0.95,
+       .move_fraction = 0.5},
+      {.name = "tiny_counts", .seed = 116, .count = 2, .extent = Real(3), .churn = 0.5},
+      // inserts still happen: see run_differential (at least one per frame)
+      {.name = "from_empty_churn", .seed = 117, .count = 0, .extent = Real(10), .churn = 0.0},
+      {.name = "fast_movers", .seed = 118, .count = 300, .extent = Real(60), .step = Real(30), .resize_fraction = 0.5},
+  };
 }
 
 /// Draws boxes, moves, kinds and filters for a scene from its seed.

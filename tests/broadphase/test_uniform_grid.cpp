@@ -4,6 +4,9 @@
 #include <gtest/gtest.h>
 
 #include <proxima/broadphase/uniform_grid.hpp>
+#include <proxima/geometry/raycast.hpp>
+
+#include <map>
 
 #include "broadphase/broadphase_scenes.hpp"
 #include "broadphase/structure_checks.hpp"
@@ -193,6 +196,59 @@ TEST(SpatialHash, SteadyStateKeepsCapacity) {
     s.find_pairs(pairs);
   }
   EXPECT_EQ(s.memory_bytes(), bytes);
+}
+
+TEST(UniformGrid, RayMarchMatchesEveryBoxItEnters) {
+  // Built grid: rays march the cells. Every box geometry::ray_aabb says the segment enters,
+  // each once with its t, against an O(n) loop; rays along cell borders and axes, from inside
+  // and outside, finite and infinite; the closest-hit protocol; far fewer boxes tested than n.
+  using test::SceneKind;
+  for (const SceneKind kind : {SceneKind::Similar, SceneKind::Varying, SceneKind::Touching, SceneKind::Huge}) {
+    UniformGrid s;
+    test::Random rng(std::uint64_t(kind) + 7);
+    std::vector<Aabb> boxes;
+    for (ProxyId id = 0; id < 4000; ++id) {
+      boxes.push_back(test::random_box(rng, kind, Real(80)));
+      ASSERT_EQ(s.insert(id, boxes.back(), ProxyKind::Moving, {}), BroadPhaseStatus::Ok);
+    }
+    std::vector<ProxyPair> pairs;
+    s.find_pairs(pairs);
+    std::uint64_t tested = 0;
+    for (int q = 0; q < 300; ++q) {
+      Vec3 origin = rng.vec3(Real(-20), Real(100));
+      Vec3 direction = rng.unit_vector() * Real(rng.integer(0, 1) == 0 ? 30 : 200);
+      if (q % 5 == 1) {  // along an axis
+        direction = Vec3(0);
+        direction[q % 3] = Real(q % 2 == 0 ? 150 : -150);
+      }
+      if (q % 5 == 2) origin = glm::floor(origin);                             // on cell borders
+      if (q % 5 == 3) origin = boxes[std::size_t(q) % boxes.size()].center();  // inside a box
+      const Real max_t = q % 7 == 0 ? kRealMax : Real(1);
+      const Ray ray{origin, direction};
+      std::map<ProxyId, Real> want;
+      for (ProxyId id = 0; id < boxes.size(); ++id) {
+        if (const auto hit = geometry::ray_aabb(ray, max_t, boxes[id])) want[id] = hit->t;
+      }
+      std::map<ProxyId, Real> got;
+      s.query_ray(ray, max_t, [&](ProxyId id, Real t) {
+        EXPECT_FALSE(got.count(id)) << "reported twice: " << id;
+        got[id] = t;
+        return Real(-1);
+      });
+      EXPECT_EQ(got, want) << "query " << q;
+      tested += s.stats().pairs_tested;
+      // Closest hit: the callback clips the ray to each hit.
+      Real best = max_t;
+      for (const auto& [id, t] : want) best = std::min(best, t);
+      Real closest = max_t;
+      s.query_ray(ray, max_t, [&](ProxyId, Real t) {
+        closest = std::min(closest, t);
+        return t;
+      });
+      EXPECT_EQ(closest, best) << "query " << q;
+    }
+    EXPECT_LT(tested, std::uint64_t(300) * boxes.size() / 4) << "the march should test few boxes";
+  }
 }
 
 }  // namespace

@@ -19,7 +19,9 @@
 /// 4. Sort the pairs by (lo, hi) (radix sort), so the output is deterministic.
 ///
 /// Box and point queries use the cells when the structure is built (after find_pairs or
-/// rebuild) and scan every proxy otherwise; ray queries scan every proxy (slab test, O(n)).
+/// rebuild) and scan every proxy otherwise. Ray queries on the built dense grid march the
+/// cells along the segment (O(cells crossed + boxes in them)); otherwise, and for the hashed
+/// modes, they scan every proxy (slab test, O(n)).
 /// Memory: O(largest id + entries + cells); after the first frames no allocation happens in
 /// steady state (buffers keep their capacity).
 
@@ -97,6 +99,7 @@ class CellEngine {
   void pairs_across_levels(std::size_t begin, std::size_t end, std::vector<ProxyPair>& out, BroadPhaseStats& st) const;
   void pairs_oversized(std::size_t begin, std::size_t end, std::vector<ProxyPair>& out, BroadPhaseStats& st) const;
   bool scan_query(const Aabb& box, const OverlapQueryCallback& on_overlap) const;
+  bool march_ray(const Ray& ray, Real max_t, const RayQueryCallback& on_ray) const;
 
   CellMode mode_;
   Real fixed_cell_;    // user cell size, <= 0 for automatic
@@ -126,15 +129,13 @@ class CellEngine {
 
 }  // namespace detail
 
-/// Dense uniform grid over the world bounds (which grow as boxes leave them; rebuild()
-/// refits them). Best for bounded worlds of boxes of similar size. Cell size: the given one,
-/// or 1.5 x the mean largest box extent; the grid has at most max(64, 2 n) cells (the cell
-/// size grows when the bounds would need more). find_pairs: O(n + cells + k) for boxes of
-/// similar size (k = candidate pairs in shared cells).
-class UniformGrid {
+/// The public face shared by the three cell structures: every operation goes to one
+/// detail::CellEngine in mode `Mode` (costs in the file comment and the classes below).
+template <detail::CellMode Mode>
+class CellBroadPhase {
  public:
-  /// `cell_size` <= 0: automatic (see the class comment).
-  explicit UniformGrid(Real cell_size = 0) : engine_(detail::CellMode::Dense, cell_size) {}
+  /// `cell_size` <= 0: automatic (see the structure's class comment).
+  explicit CellBroadPhase(Real cell_size = 0) : engine_(Mode, cell_size) {}
 
   /// Adds a proxy. O(1).
   BroadPhaseStatus insert(ProxyId id, const Aabb& box, ProxyKind kind = ProxyKind::Moving, ProxyFilter filter = {}) {
@@ -146,7 +147,7 @@ class UniformGrid {
   BroadPhaseStatus update(ProxyId id, const Aabb& box) { return engine_.update(id, box); }
   /// Moves many proxies, all or nothing. O(m).
   BroadPhaseStatus update(std::span<const ProxyUpdate> updates) { return engine_.update(updates); }
-  /// Refits the world bounds and cell size and bins every proxy. O(n + cells).
+  /// Re-chooses the cell size (and the dense grid's world bounds) and bins every proxy.
   void rebuild() { engine_.rebuild(); }
   /// Every pair, sorted (broadphase.hpp).
   void find_pairs(std::vector<ProxyPair>& out) { engine_.find_pairs(out); }
@@ -163,7 +164,8 @@ class UniformGrid {
   void query_point(const Vec3& point, const OverlapQueryCallback& on_overlap) const {
     engine_.query_point(point, on_overlap);
   }
-  /// Proxies whose box the ray enters at t <= the current max fraction. O(n).
+  /// Proxies whose box the ray enters at t <= the current max fraction, each once. Built
+  /// dense grid: O(cells crossed + their boxes); otherwise O(n).
   void query_ray(const Ray& ray, Real max_t, const RayQueryCallback& on_ray) const {
     engine_.query_ray(ray, max_t, on_ray);
   }
@@ -175,7 +177,7 @@ class UniformGrid {
   std::size_t size() const { return engine_.size(); }
   /// Worker threads used by find_pairs (1 = the calling thread only).
   void set_thread_count(int threads) { engine_.set_thread_count(threads); }
-  /// Cell size of the last build.
+  /// Cell size of the last build (level 0 for the hierarchical grid).
   Real cell_size() const { return engine_.cell_size(); }
   /// Bytes held by the structure's buffers (capacity).
   std::size_t memory_bytes() const { return engine_.memory_bytes(); }
@@ -184,119 +186,35 @@ class UniformGrid {
   detail::CellEngine engine_;
 };
 
+/// Dense uniform grid over the world bounds (which grow as boxes leave them; rebuild()
+/// refits them). Best for bounded worlds of boxes of similar size. Cell size: the given one,
+/// or 1.5 x the mean largest box extent; the grid has at most max(64, 2 n) cells (the cell
+/// size grows when the bounds would need more). find_pairs: O(n + cells + k) for boxes of
+/// similar size (k = candidate pairs in shared cells). Rays march the cells.
+class UniformGrid : public CellBroadPhase<detail::CellMode::Dense> {
+ public:
+  using CellBroadPhase::CellBroadPhase;
+};
+
 /// Spatial hash: cells of a fixed (or automatic, as UniformGrid) size addressed by their
 /// integer coordinates through an open-addressing hash table, so the world is unbounded and
 /// memory follows the occupied cells only. Coordinates are clamped to +-2^18 cells (far
-/// cells merge; results stay exact). Same costs as UniformGrid plus one hash probe per entry.
-class SpatialHash {
+/// cells merge; results stay exact). Same costs as UniformGrid plus one hash probe per entry;
+/// rays scan every proxy.
+class SpatialHash : public CellBroadPhase<detail::CellMode::Hashed> {
  public:
-  /// `cell_size` <= 0: automatic.
-  explicit SpatialHash(Real cell_size = 0) : engine_(detail::CellMode::Hashed, cell_size) {}
-
-  /// Adds a proxy. O(1).
-  BroadPhaseStatus insert(ProxyId id, const Aabb& box, ProxyKind kind = ProxyKind::Moving, ProxyFilter filter = {}) {
-    return engine_.insert(id, box, kind, filter);
-  }
-  /// Removes a proxy. O(1).
-  BroadPhaseStatus remove(ProxyId id) { return engine_.remove(id); }
-  /// Moves a proxy. O(1).
-  BroadPhaseStatus update(ProxyId id, const Aabb& box) { return engine_.update(id, box); }
-  /// Moves many proxies, all or nothing. O(m).
-  BroadPhaseStatus update(std::span<const ProxyUpdate> updates) { return engine_.update(updates); }
-  /// Re-chooses the cell size and bins every proxy. O(n).
-  void rebuild() { engine_.rebuild(); }
-  /// Every pair, sorted.
-  void find_pairs(std::vector<ProxyPair>& out) { engine_.find_pairs(out); }
-  /// Every pair, sorted, found by `threads` threads (same output as serial).
-  void find_pairs(std::vector<ProxyPair>& out, unsigned threads) {
-    engine_.set_thread_count(int(threads));
-    engine_.find_pairs(out);
-  }
-  /// Proxies whose box overlaps `box`, each once.
-  void query_aabb(const Aabb& box, const OverlapQueryCallback& on_overlap) const {
-    engine_.query_aabb(box, on_overlap);
-  }
-  /// Proxies whose box contains `point`, each once.
-  void query_point(const Vec3& point, const OverlapQueryCallback& on_overlap) const {
-    engine_.query_point(point, on_overlap);
-  }
-  /// Proxies whose box the ray enters at t <= the current max fraction. O(n).
-  void query_ray(const Ray& ray, Real max_t, const RayQueryCallback& on_ray) const {
-    engine_.query_ray(ray, max_t, on_ray);
-  }
-  /// Checks the proxy table and the cells.
-  bool validate() const { return engine_.validate(); }
-  /// Counters of the last find_pairs / query.
-  BroadPhaseStats stats() const { return engine_.stats(); }
-  /// Number of proxies.
-  std::size_t size() const { return engine_.size(); }
-  /// Worker threads used by find_pairs.
-  void set_thread_count(int threads) { engine_.set_thread_count(threads); }
-  /// Cell size of the last build.
-  Real cell_size() const { return engine_.cell_size(); }
-  /// Bytes held by the structure's buffers (capacity).
-  std::size_t memory_bytes() const { return engine_.memory_bytes(); }
-
- private:
-  detail::CellEngine engine_;
+  using CellBroadPhase::CellBroadPhase;
 };
 
 /// Hierarchical hash grid: level l has cells of size s 2^l (s: the given size, or the
 /// smallest largest-extent of the boxes); a box lives at the lowest level whose cell is at
 /// least its largest extent, so it covers at most 2 cells per axis there, and probes the
 /// coarser occupied levels for partners. Up to 32 levels. Best when box sizes vary by orders
-/// of magnitude (a few huge static boxes among many small ones). find_pairs: O(n L + k).
-class HierarchicalGrid {
+/// of magnitude (a few huge static boxes among many small ones). find_pairs: O(n L + k);
+/// rays scan every proxy.
+class HierarchicalGrid : public CellBroadPhase<detail::CellMode::Hierarchical> {
  public:
-  /// `cell_size` <= 0: automatic (level-0 cell size).
-  explicit HierarchicalGrid(Real cell_size = 0) : engine_(detail::CellMode::Hierarchical, cell_size) {}
-
-  /// Adds a proxy. O(1).
-  BroadPhaseStatus insert(ProxyId id, const Aabb& box, ProxyKind kind = ProxyKind::Moving, ProxyFilter filter = {}) {
-    return engine_.insert(id, box, kind, filter);
-  }
-  /// Removes a proxy. O(1).
-  BroadPhaseStatus remove(ProxyId id) { return engine_.remove(id); }
-  /// Moves a proxy. O(1).
-  BroadPhaseStatus update(ProxyId id, const Aabb& box) { return engine_.update(id, box); }
-  /// Moves many proxies, all or nothing. O(m).
-  BroadPhaseStatus update(std::span<const ProxyUpdate> updates) { return engine_.update(updates); }
-  /// Re-chooses the level-0 cell size and bins every proxy. O(n).
-  void rebuild() { engine_.rebuild(); }
-  /// Every pair, sorted.
-  void find_pairs(std::vector<ProxyPair>& out) { engine_.find_pairs(out); }
-  /// Every pair, sorted, found by `threads` threads (same output as serial).
-  void find_pairs(std::vector<ProxyPair>& out, unsigned threads) {
-    engine_.set_thread_count(int(threads));
-    engine_.find_pairs(out);
-  }
-  /// Proxies whose box overlaps `box`, each once.
-  void query_aabb(const Aabb& box, const OverlapQueryCallback& on_overlap) const {
-    engine_.query_aabb(box, on_overlap);
-  }
-  /// Proxies whose box contains `point`, each once.
-  void query_point(const Vec3& point, const OverlapQueryCallback& on_overlap) const {
-    engine_.query_point(point, on_overlap);
-  }
-  /// Proxies whose box the ray enters at t <= the current max fraction. O(n).
-  void query_ray(const Ray& ray, Real max_t, const RayQueryCallback& on_ray) const {
-    engine_.query_ray(ray, max_t, on_ray);
-  }
-  /// Checks the proxy table and the cells.
-  bool validate() const { return engine_.validate(); }
-  /// Counters of the last find_pairs / query.
-  BroadPhaseStats stats() const { return engine_.stats(); }
-  /// Number of proxies.
-  std::size_t size() const { return engine_.size(); }
-  /// Worker threads used by find_pairs.
-  void set_thread_count(int threads) { engine_.set_thread_count(threads); }
-  /// Level-0 cell size of the last build.
-  Real cell_size() const { return engine_.cell_size(); }
-  /// Bytes held by the structure's buffers (capacity).
-  std::size_t memory_bytes() const { return engine_.memory_bytes(); }
-
- private:
-  detail::CellEngine engine_;
+  using CellBroadPhase::CellBroadPhase;
 };
 
 static_assert(BroadPhaseStructure<UniformGrid>);
