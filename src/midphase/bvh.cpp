@@ -50,7 +50,7 @@ struct Bin {
 
 constexpr std::uint32_t kMaxBins = 64;
 /// Nodes of at most this many primitives are binned on all three axes.
-constexpr std::uint32_t kAllAxesBelow = 1024;
+constexpr std::uint32_t kAllAxesBelow = 32;
 
 /// Half the surface area of the box [lo, hi] (the SAH only compares ratios).
 inline Real half_area(const Vec3& lo, const Vec3& hi) {
