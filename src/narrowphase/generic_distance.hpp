@@ -170,6 +170,9 @@ LocalAnswer solve(const A& a, const B& b, PairSetup<A, B>& setup, const PairRequ
     ep.iterations += f.iterations;
     // Unconverged, EPA's own answer stands (at its cap: the nearest face, a lower bound).
     if (!f.converged || !(f.depth <= ep.depth + ep.gap + kSqrtEpsilon * setup.scale)) return;
+    // A converged EPA keeps its own answer where the refined witnesses could not be placed
+    // on both surfaces (an edge of D meeting a curved side off the tipped supports' reach).
+    if (ep.status == epa::Status::Converged && f.witness_gap > kSqrtEpsilon * setup.scale) return;
     ep.status = epa::Status::Converged;
     ep.gap = std::max(f.depth - ep.depth, Real(0));
     ep.depth = f.depth;

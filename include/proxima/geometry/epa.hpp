@@ -455,9 +455,10 @@ struct Refinement {
   Real depth = Real(0);                    ///< support distance of D along `normal`: an upper bound of the depth
   Vec3 normal{Real(0), Real(0), Real(1)};  ///< unit, from A to B
   Vec3 support_a{Real(0)};                 ///< witness on A: support points of A along normal (tipped), combined
-  Vec3 support_b{Real(0)};   ///< witness on B: the same for B along -normal; support_a - support_b = depth normal
-  Vec3 tangential{Real(0)};  ///< D's support along normal minus depth * normal: 0 at a smooth minimum
-  int iterations = 0;        ///< support-pair queries made
+  Vec3 support_b{Real(0)};     ///< witness on B: the same for B along -normal; support_a - support_b = depth normal
+  Vec3 tangential{Real(0)};    ///< D's support along normal minus depth * normal: 0 at a smooth minimum
+  Real witness_gap = Real(0);  ///< distance of the combined witnesses from the exact relation before it was enforced
+  int iterations = 0;          ///< support-pair queries made
 };
 
 /// Refines a penetration normal on the support function of D = A - B: the depth is the
@@ -703,6 +704,7 @@ Refinement refine(SupportA& support_a, SupportB& support_b, const Vec3& start_no
       wb += lam[c] * pb[c];
     }
     const Vec3 residual = (wa - wb) - h * n;
+    r.witness_gap = glm::length(residual);
     r.support_a = wa - Real(0.5) * residual;
     r.support_b = wb + Real(0.5) * residual;
   }
