@@ -7,10 +7,11 @@
 ///     allocation besides the output arrays, sized once: 2n - 1 nodes at most).
 ///  2. Per node (depth first, children stored adjacently at the end of the node array so a
 ///     child always has a larger index than its parent): a node of at most max_leaf_size
-///     primitives is a leaf. Otherwise bin the centres on all three axes at once into
-///     bin_count bins spanning the node's centroid bounds, sweep the bins to evaluate the
-///     SAH cost C = traversal + primitive (A_L N_L + A_R N_R) / A of every bin plane, and
-///     take the cheapest.
+///     primitives is a leaf; every larger node is split (so the SAH cost only ranks the
+///     planes, and the traversal/primitive cost options do not change the tree). Bin the
+///     centres into bin_count bins spanning the node's centroid bounds (on the widest
+///     centroid axis for nodes of more than 32 primitives, on all three below), sweep the
+///     bins to evaluate A_L N_L + A_R N_R of every bin plane, and take the cheapest.
 ///  3. Partition the working range in place in one pass (Hoare style), collecting the
 ///     children's centroid bounds on the way; the children's boxes are the unions of their
 ///     bins' boxes, so no further pass over the primitives is needed.

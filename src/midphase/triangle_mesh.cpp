@@ -14,7 +14,10 @@
 /// beyond the best hit so far skipped) with the robust slab test of Ize ("Robust BVH Ray
 /// Traversal", JCGT 2013: the exit distance widened by 1 + 2 gamma(3) so that rounding
 /// never culls a box the ray touches) and the watertight triangle test of Woop, Benthin and
-/// Wald (JCGT 2013) on a TriangleRay prepared once per ray.
+/// Wald (JCGT 2013) on a TriangleRay prepared once per ray, behind an inline conservative
+/// rejection (the same edge functions in Real with a rounding-error bound) that only skips
+/// triangles the exact test would miss. Leaves read the triangle corners from a copy stored
+/// in leaf order.
 
 #include <proxima/core/tolerance.hpp>
 #include <proxima/geometry/raycast.hpp>

@@ -268,6 +268,10 @@ TEST(TriangleMeshRaycast, DegenerateRays) {
   EXPECT_FALSE(sphere.raycast({Vec3(0), Vec3(1, 0, 0)}, Real(0.5)));  // stops short of the surface
   EXPECT_TRUE(sphere.raycast({Vec3(0), Vec3(1, 0, 0)}, Real(1.5)));
   EXPECT_FALSE(sphere.raycast_any({Vec3(0), Vec3(0)}, kRealMax));
+  // Origins beyond kMaxCoordinate (the inline rejection is skipped there) and tiny directions.
+  check_ray(sphere, {Vec3(Real(1e20), Real(0.1), 0), Vec3(-1, 0, 0)}, kRealMax);
+  check_ray(sphere, {Vec3(-3, Real(0.2), Real(0.1)), Vec3(Real(1e-30), 0, 0)}, kRealMax);
+  check_ray(sphere, {Vec3(-3, Real(0.2), Real(0.1)), Vec3(Real(1e-30), 0, 0)}, Real(1e30));
   // Tie: a ray through a shared edge hits both triangles at the same t; the lower index wins.
   const TriangleMesh grid = make(test::flat_grid(2, 2, Real(1), 0, 0));
   const Ray down{Vec3(Real(0.5), Real(0.5), 1), Vec3(0, 0, -1)};  // the diagonal of cell (0, 0)
