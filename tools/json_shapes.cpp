@@ -79,7 +79,8 @@ TriangleMesh mesh_from_file(const std::string& file, bool repair, const std::str
   static std::map<std::pair<std::string, bool>, CachedMesh> cache;
   std::error_code ec;
   const auto time = std::filesystem::last_write_time(file, ec);
-  const auto key = std::make_pair(file, repair);
+  std::error_code ignored;
+  const auto key = std::make_pair(std::filesystem::absolute(file, ignored).string(), repair);
   if (!ec) {
     if (auto it = cache.find(key); it != cache.end() && it->second.time == time) return it->second.mesh;
   }

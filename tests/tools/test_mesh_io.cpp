@@ -1,4 +1,4 @@
-// Tests of load_mesh (assimp): the same tetrahedron as OBJ, ASCII STL and ASCII PLY gives the
+// Tests of load_mesh (assimp): the same tetrahedron as OBJ, ASCII STL, ASCII PLY and glTF gives the
 // same closed, outward mesh with the file's winding; an OBJ with two objects and quads is
 // merged and triangulated; the shared noisy icosphere matches the test's own line-by-line
 // OBJ parse triangle by triangle; unreadable files are errors naming "file".
@@ -80,7 +80,7 @@ TEST(MeshIo, TetrahedronInEveryFormat) {
   IndexedMesh expected;
   expected.vertices = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1)};
   expected.triangles = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
-  for (const char* name : {"tetrahedron.obj", "tetrahedron.stl", "tetrahedron.ply"}) {
+  for (const char* name : {"tetrahedron.obj", "tetrahedron.stl", "tetrahedron.ply", "tetrahedron.gltf"}) {
     SCOPED_TRACE(name);
     const RepairedMesh r = load_and_repair(data_file(name));
     EXPECT_EQ(r.mesh.vertices.size(), 4u);
@@ -92,6 +92,19 @@ TEST(MeshIo, TetrahedronInEveryFormat) {
     EXPECT_NEAR(double(r.report.surface_area), 1.5 + std::sqrt(3.0) / 2.0, 1e-5);
     EXPECT_EQ(directed_triangles(r.mesh), directed_triangles(expected));
   }
+}
+
+TEST(MeshIo, NodeTransformsApplyAndMirroringKeepsOutwardWinding) {
+  // The glTF tetrahedron under a parent node translated by (5, 0, 0) and a child node scaled
+  // by (-1, 1, 1): the mirror image, still outward.
+  IndexedMesh expected;
+  expected.vertices = {Vec3(5, 0, 0), Vec3(4, 0, 0), Vec3(5, 1, 0), Vec3(5, 0, 1)};
+  expected.triangles = {{0, 1, 2}, {0, 3, 1}, {0, 2, 3}, {1, 3, 2}};
+  const RepairedMesh r = load_and_repair(data_file("tetrahedron_mirrored.gltf"));
+  EXPECT_TRUE(r.report.closed);
+  EXPECT_EQ(r.report.flipped_triangles, 0u);
+  EXPECT_NEAR(double(r.report.volume), 1.0 / 6.0, 1e-6);
+  EXPECT_EQ(directed_triangles(r.mesh), directed_triangles(expected));
 }
 
 TEST(MeshIo, ObjectsAreMergedAndQuadsTriangulated) {
@@ -146,6 +159,7 @@ TEST(MeshIo, Errors) {
   EXPECT_NE(tool::mesh_file_extensions().find("obj"), std::string::npos);
   EXPECT_NE(tool::mesh_file_extensions().find("stl"), std::string::npos);
   EXPECT_NE(tool::mesh_file_extensions().find("ply"), std::string::npos);
+  EXPECT_NE(tool::mesh_file_extensions().find("gltf"), std::string::npos);
 }
 
 }  // namespace
