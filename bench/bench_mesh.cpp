@@ -5,6 +5,7 @@
 ///                             (boxes and centres precomputed; counter tris_per_s)
 ///   BM_MeshCreate/<mesh>      TriangleMesh::create without repair (BVH, adjacency, edges)
 ///   BM_Rays/Proxima           TriangleMesh::raycast, every W5 ray (single thread)
+///   BM_Rays/ProximaLeaf/<n>   the same with a BVH of leaves of at most n triangles
 ///   BM_Rays/ProximaBatch      raycast_batch with every hardware thread
 ///   BM_Rays/Embree            rtcIntersect1, robust scene, high build quality, 1 thread
 ///   BM_Rays/Bullet            btBvhTriangleMeshShape::performRaycast with a
@@ -71,6 +72,8 @@ BuildInput triangle_boxes(const proxima::IndexedMesh& m) {
 std::vector<proxima::IndexedMesh> g_meshes;
 std::vector<std::string> g_mesh_names;
 std::unique_ptr<proxima::TriangleMesh> g_ray_mesh;
+proxima::IndexedMesh g_ray_indexed;
+const proxima::IndexedMesh& to_indexed_mesh_of_rays() { return g_ray_indexed; }
 std::vector<pb::RayQuery> g_rays;
 std::vector<proxima::BatchRay> g_batch;
 std::size_t g_proxima_hits = 0;
@@ -105,6 +108,21 @@ void BM_RaysProxima(benchmark::State& state) {
   for (auto _ : state) {
     hits = 0;
     for (const proxima::BatchRay& r : g_batch) hits += g_ray_mesh->raycast(r.ray, r.max_t).has_value() ? 1 : 0;
+    benchmark::DoNotOptimize(hits);
+  }
+  state.counters["hits"] = double(hits);
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()) * static_cast<std::int64_t>(g_batch.size()));
+}
+
+/// The same rays against the mesh built with another leaf size.
+void BM_RaysProximaLeaf(benchmark::State& state) {
+  proxima::MeshCreateOptions opt;
+  opt.bvh.max_leaf_size = static_cast<std::uint32_t>(state.range(0));
+  const proxima::TriangleMesh mesh = proxima::TriangleMesh::create(to_indexed_mesh_of_rays(), opt).value();
+  std::size_t hits = 0;
+  for (auto _ : state) {
+    hits = 0;
+    for (const proxima::BatchRay& r : g_batch) hits += mesh.raycast(r.ray, r.max_t).has_value() ? 1 : 0;
     benchmark::DoNotOptimize(hits);
   }
   state.counters["hits"] = double(hits);
@@ -244,7 +262,8 @@ bool register_mesh(const std::string& dir) {
   g_rays = rays.value().rays;
   auto obj = pb::read_obj(pb::workload_path(dir, rays.value().mesh));
   if (!obj) return pb::report_load_error(obj.error());
-  auto mesh = proxima::TriangleMesh::create(to_indexed(obj.value()));
+  g_ray_indexed = to_indexed(obj.value());
+  auto mesh = proxima::TriangleMesh::create(g_ray_indexed);
   if (!mesh) return pb::report_load_error(mesh.error());
   g_ray_mesh = std::make_unique<proxima::TriangleMesh>(std::move(mesh).value());
   for (const pb::RayQuery& q : g_rays)
@@ -260,6 +279,11 @@ bool register_mesh(const std::string& dir) {
         ->Unit(benchmark::kMillisecond);
   }
   benchmark::RegisterBenchmark("BM_Rays/Proxima", BM_RaysProxima)->Unit(benchmark::kMillisecond);
+  benchmark::RegisterBenchmark("BM_Rays/ProximaLeaf", BM_RaysProximaLeaf)
+      ->Arg(1)
+      ->Arg(2)
+      ->Arg(8)
+      ->Unit(benchmark::kMillisecond);
   benchmark::RegisterBenchmark("BM_Rays/ProximaBatch", BM_RaysProximaBatch)
       ->Unit(benchmark::kMillisecond)
       ->UseRealTime();
