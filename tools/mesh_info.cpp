@@ -85,7 +85,10 @@ Json mesh_info(const MeshInfoOptions& options) {
   if (options.repair) {
     MeshRepairOptions repair_options;
     repair_options.weld_distance = static_cast<Real>(options.weld_distance);
+    const auto repair_start = std::chrono::steady_clock::now();
     Result<RepairedMesh> repaired = repair_mesh(input, repair_options);
+    const double repair_ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - repair_start).count();
     if (!repaired.ok()) throw_library_error("", repaired.error());
     mesh = repaired->mesh;
     report = repaired->report;
@@ -93,7 +96,8 @@ Json mesh_info(const MeshInfoOptions& options) {
                       {"unused_vertices_removed", report.unused_vertices_removed},
                       {"degenerate_triangles_removed", report.degenerate_triangles_removed},
                       {"duplicate_triangles_removed", report.duplicate_triangles_removed},
-                      {"flipped_triangles", report.flipped_triangles}};
+                      {"flipped_triangles", report.flipped_triangles},
+                      {"repair_ms", repair_ms}};
   }
   Json after = Json::object();
   after["vertices"] = mesh.vertices.size();
@@ -119,7 +123,7 @@ Json mesh_info(const MeshInfoOptions& options) {
   const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   if (!shape.ok()) throw_library_error("", shape.error());
   const BvhStats stats = shape->bvh().stats();
-  info["bvh"] = {{"nodes", stats.node_count},  {"leaves", stats.leaf_count},    {"depth", stats.depth},
+  info["bvh"] = {{"nodes", stats.node_count},           {"leaves", stats.leaf_count},    {"depth", stats.depth},
                  {"sah_cost", to_json(stats.sah_cost)}, {"node_bytes", sizeof(BvhNode)}, {"create_ms", ms}};
   return info;
 }
@@ -145,7 +149,8 @@ int run_mesh_info(const MeshInfoOptions& options, std::ostream& out, std::ostrea
         << r["unused_vertices_removed"].get<std::size_t>() << " unused vertices removed, "
         << r["degenerate_triangles_removed"].get<std::size_t>() << " zero-area triangles removed, "
         << r["duplicate_triangles_removed"].get<std::size_t>() << " duplicate triangles removed, "
-        << r["flipped_triangles"].get<std::size_t>() << " triangles flipped\n";
+        << r["flipped_triangles"].get<std::size_t>() << " triangles flipped (in "
+        << number(r["repair_ms"].get<double>()) << " ms)\n";
     print_analysis(out, "repaired", info["mesh"], info["mesh"]["vertices"].get<std::size_t>(),
                    info["mesh"]["triangles"].get<std::size_t>());
   } else {
