@@ -33,11 +33,15 @@ struct MeshRepairOptions {
   /// Vertices closer than this (length units) are merged into one. Negative (default):
   /// kRelativeTolerance times the diagonal of the mesh's box. Zero: only exact duplicates.
   Real weld_distance = Real(-1);
-  bool remove_degenerate = true;    ///< drop triangles with zero area (after welding)
+  bool remove_degenerate = true;    ///< drop triangles with zero area (after welding): a repeated index,
+                                    ///< or twice the area <= kRelativeTolerance * longest edge^2
+                                    ///< (the test of Triangle::create)
   bool remove_duplicates = true;    ///< drop triangles using the same three vertices as another
   bool remove_unused = true;        ///< drop vertices no triangle uses (indices are remapped)
   bool orient_consistently = true;  ///< flip triangles so that each edge-connected manifold
                                     ///< component is consistently oriented, outward when closed
+                                    ///< (positive volume); an open one keeps the winding most of
+                                    ///< its triangles had
 };
 
 /// The analysis of a mesh (and what repair changed). Counts refer to the mesh after repair
@@ -46,7 +50,8 @@ struct MeshReport {
   std::size_t input_vertices = 0;                ///< vertices given
   std::size_t input_triangles = 0;               ///< triangles given
   std::size_t welded_vertices = 0;               ///< vertices merged into another
-  std::size_t unused_vertices_removed = 0;       ///< vertices dropped because unused
+  std::size_t unused_vertices_removed = 0;       ///< vertices dropped because unused (welded ones count
+                                                 ///< in welded_vertices only)
   std::size_t degenerate_triangles_removed = 0;  ///< zero-area triangles dropped
   std::size_t duplicate_triangles_removed = 0;   ///< repeated triangles dropped
   std::size_t flipped_triangles = 0;             ///< triangles whose winding was reversed
