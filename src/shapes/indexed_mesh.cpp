@@ -6,7 +6,7 @@
 //  2. Weld: vertices are binned in a uniform grid of cell size weld_distance (cells as
 //     sorted integer keys, so no hash table); each vertex, in index order, merges into the
 //     lowest-index earlier representative within weld_distance found in the 27 surrounding
-//     cells. Distance zero welds exact duplicates only (lexicographic sort).
+//     cells (9 key ranges). Distance zero welds exact duplicates only (lexicographic sort).
 //  3. Degenerate triangles: a repeated index, or twice the area below kRelativeTolerance
 //     times the longest edge squared (the same test as Triangle::create).
 //  4. Duplicate triangles: the same vertex set as an earlier triangle (either winding).
@@ -225,8 +225,12 @@ std::vector<std::uint32_t> weld(const std::vector<Vec3>& v, double distance) {
   auto key_of = [](const Cell& c) {
     return (std::uint64_t(c[0]) << 42) | (std::uint64_t(c[1]) << 21) | std::uint64_t(c[2]);
   };
+  std::vector<Cell> cells(n);
   std::vector<std::uint64_t> keys(n);
-  for (std::size_t i = 0; i < n; ++i) keys[i] = key_of(cell_of(v[i]));
+  for (std::size_t i = 0; i < n; ++i) {
+    cells[i] = cell_of(v[i]);
+    keys[i] = key_of(cells[i]);
+  }
   std::sort(order.begin(), order.end(),
             [&](std::uint32_t a, std::uint32_t b) { return keys[a] != keys[b] ? keys[a] < keys[b] : a < b; });
   std::vector<std::uint64_t> sorted_keys(n);
@@ -234,22 +238,21 @@ std::vector<std::uint32_t> weld(const std::vector<Vec3>& v, double distance) {
 
   const double d2 = distance * distance;
   for (std::uint32_t i = 0; i < n; ++i) {
-    const Cell c = cell_of(v[i]);
+    const Cell& c = cells[i];
     const D3 p = to_d3(v[i]);
     std::uint32_t best = i;
+    // Cells (x, y, z - 1..z + 1) are one contiguous key range (z is the low field).
     for (std::int64_t dx = -1; dx <= 1; ++dx) {
       for (std::int64_t dy = -1; dy <= 1; ++dy) {
-        for (std::int64_t dz = -1; dz <= 1; ++dz) {
-          const std::uint64_t k = key_of({c[0] + dx, c[1] + dy, c[2] + dz});
-          auto it = std::lower_bound(sorted_keys.begin(), sorted_keys.end(), k);
-          for (; it != sorted_keys.end() && *it == k; ++it) {
-            const std::uint32_t j = order[static_cast<std::size_t>(it - sorted_keys.begin())];
-            if (j >= best) break;  // sorted by index within a cell
-            if (rep[j] != j) continue;
-            const D3 q = to_d3(v[j]);
-            const D3 d = sub(p, q);
-            if (dot(d, d) <= d2) best = j;
-          }
+        const std::uint64_t k_lo = key_of({c[0] + dx, c[1] + dy, c[2] - 1});
+        const std::uint64_t k_hi = k_lo + 2;
+        auto it = std::lower_bound(sorted_keys.begin(), sorted_keys.end(), k_lo);
+        for (; it != sorted_keys.end() && *it <= k_hi; ++it) {
+          const std::uint32_t j = order[static_cast<std::size_t>(it - sorted_keys.begin())];
+          if (j >= best || rep[j] != j) continue;
+          const D3 q = to_d3(v[j]);
+          const D3 d = sub(p, q);
+          if (dot(d, d) <= d2) best = j;
         }
       }
     }
@@ -393,18 +396,17 @@ Result<RepairedMesh> repair_mesh(const IndexedMesh& input, const MeshRepairOptio
 
   // 4. Duplicates (same vertex set, either winding): keep the first occurrence.
   if (options.remove_duplicates && !mesh.triangles.empty()) {
-    std::vector<std::uint32_t> order(mesh.triangles.size());
-    std::iota(order.begin(), order.end(), 0u);
-    std::vector<TriangleIndices> sorted(mesh.triangles.size());
+    // (sorted vertex set, triangle index) pairs sorted together: equal sets end up adjacent,
+    // lowest index first.
+    std::vector<std::pair<TriangleIndices, std::uint32_t>> sorted(mesh.triangles.size());
     for (std::size_t t = 0; t < sorted.size(); ++t) {
-      sorted[t] = mesh.triangles[t];
-      std::sort(sorted[t].begin(), sorted[t].end());
+      sorted[t] = {mesh.triangles[t], static_cast<std::uint32_t>(t)};
+      std::sort(sorted[t].first.begin(), sorted[t].first.end());
     }
-    std::sort(order.begin(), order.end(),
-              [&](std::uint32_t a, std::uint32_t b) { return sorted[a] != sorted[b] ? sorted[a] < sorted[b] : a < b; });
+    std::sort(sorted.begin(), sorted.end());
     std::vector<bool> drop(mesh.triangles.size(), false);
-    for (std::size_t i = 1; i < order.size(); ++i) {
-      if (sorted[order[i]] == sorted[order[i - 1]]) drop[order[i]] = true;
+    for (std::size_t i = 1; i < sorted.size(); ++i) {
+      if (sorted[i].first == sorted[i - 1].first) drop[sorted[i].second] = true;
     }
     std::vector<TriangleIndices> kept;
     kept.reserve(mesh.triangles.size());
