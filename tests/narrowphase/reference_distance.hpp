@@ -95,6 +95,25 @@ inline ReferenceDistance reference_signed_distance(const Shape& a, const Transfo
           improved = true;
         }
       }
+      if (!improved) {
+        // Before shrinking, a ring of 32 tangent directions: on a ridge of the support
+        // function (an edge of the Minkowski difference) the ascent cone is narrow and 12
+        // random tries can all miss it.
+        const D3v helper = std::abs(u.x) < 0.6 ? D3v{1, 0, 0} : D3v{0, 1, 0};
+        const D3v t1 = unit(cross(u, helper));
+        const D3v t2 = cross(u, t1);
+        const double phase = next() * 3.141592653589793;
+        for (int k = 0; k < 32; ++k) {
+          const double angle = phase + 6.283185307179586 * k / 32.0;
+          const D3v w = unit(u + step * (std::cos(angle) * t1 + std::sin(angle) * t2));
+          const double v = support_gap(a, pa, b, pb, w);
+          if (v > value) {
+            value = v;
+            u = w;
+            improved = true;
+          }
+        }
+      }
       if (!improved) step *= 0.5;
     }
     if (value > best.signed_distance) best = {value, u};
