@@ -29,6 +29,8 @@
 #include <string>
 #include <utility>
 
+#include "midphase/ray_bvh.hpp"
+
 namespace proxima {
 namespace {
 
@@ -258,6 +260,7 @@ Result<TriangleMesh> TriangleMesh::create(IndexedMesh mesh, const MeshCreateOpti
   triangle_boxes(data->mesh, boxes, &centers);
   data->bvh = Bvh::build(boxes, centers, options.bvh);
   gather_leaf_triangles(data->mesh, data->bvh, data->leaf_triangles);
+  data->ray_bvh = std::make_shared<const detail::RayBvh>(detail::RayBvh::build(data->bvh));
   compute_neighbors(data->mesh, data->neighbors);
   compute_active_edges(data->mesh, data->neighbors, options.flat_edge_angle, data->active_edges);
   data->flat_edge_angle = options.flat_edge_angle;
@@ -285,6 +288,7 @@ Result<TriangleMesh> TriangleMesh::deformed(std::span<const Vec3> vertices) cons
   triangle_boxes(data->mesh, boxes, nullptr);
   data->bvh.refit(boxes);
   gather_leaf_triangles(data->mesh, data->bvh, data->leaf_triangles);
+  data->ray_bvh = std::make_shared<const detail::RayBvh>(detail::RayBvh::build(data->bvh));
   compute_active_edges(data->mesh, data->neighbors, data->flat_edge_angle, data->active_edges);
   // Volume and area follow the vertices (divergence theorem, as in the analysis).
   Real volume = Real(0);
@@ -309,47 +313,111 @@ Aabb TriangleMesh::world_aabb(const Transform& pose) const {
   return {box.min + pose.position, box.max + pose.position};
 }
 
-std::optional<MeshRayHit> TriangleMesh::raycast(const Ray& ray, Real max_t, FaceCulling culling) const {
-  const Bvh& bvh = data_->bvh;
-  if (bvh.empty() || !(max_t >= Real(0))) return std::nullopt;
-  const geometry::TriangleRay tri_ray = geometry::TriangleRay::prepare(ray);
-  if (!tri_ray.valid) return std::nullopt;
-  const BoxRay box_ray = prepare_box_ray(ray);
-  const bool filter = filter_applies(ray);
-  const std::span<const BvhNode> nodes = bvh.nodes();
-  const std::span<const std::uint32_t> prims = bvh.primitives();
-  const std::vector<std::array<Vec3, 3>>& corners = data_->leaf_triangles;
+namespace {
 
+/// A ray prepared once for the triangle tests of a mesh cast.
+struct MeshRay {
+  geometry::TriangleRay tri;  ///< watertight test's permutation and shear
+  bool filter = false;        ///< may_hit applies
+  FaceCulling culling = FaceCulling::None;
+};
+
+inline MeshRay prepare_mesh_ray(const Ray& ray, FaceCulling culling) {
+  return {geometry::TriangleRay::prepare(ray), filter_applies(ray), culling};
+}
+
+/// The exact test of one triangle in a mesh ray cast, shared by every cast and both
+/// traversals: the conservative rejection (when it applies), the watertight test within
+/// [0, limit], then the culling rule.
+inline std::optional<RayHit> cast_triangle(const MeshRay& r, Real limit, const std::array<Vec3, 3>& t) {
+  if (r.filter && !may_hit(r.tri, t[0], t[1], t[2])) return std::nullopt;
+  std::optional<RayHit> hit = geometry::ray_triangle(r.tri, limit, t[0], t[1], t[2]);
+  if (hit && !passes_culling(r.culling, *hit, t[0], t[1], t[2])) return std::nullopt;
+  return hit;
+}
+
+/// Closest hit so far, with the tie rule (equal t: lower triangle index).
+struct ClosestHit {
+  Real max_t;
   std::optional<MeshRayHit> best;
-  Real best_t = max_t;
+  Real best_t;
+
+  explicit ClosestHit(Real max) : max_t(max), best_t(max) {}
+
+  /// Limit of the triangle test for the next leaf: one ulp beyond the best, since the test
+  /// compares its unrounded t with the limit and a hit that rounds to the same t must still
+  /// reach the tie rule.
+  Real limit() const { return best ? std::min(max_t, std::nextafter(best_t, kRealMax)) : max_t; }
+
+  void visit(const MeshRay& r, Real limit, const std::array<Vec3, 3>& corners, std::uint32_t tri) {
+    const std::optional<RayHit> hit = cast_triangle(r, limit, corners);
+    if (!hit) return;
+    if (best && (hit->t > best->hit.t || (hit->t == best->hit.t && tri > best->triangle))) return;
+    best = MeshRayHit{*hit, tri};
+    best_t = hit->t;
+  }
+};
+
+/// The 4-wide hierarchy of `d` when `traversal` asks for it and it exists.
+inline const detail::RayBvh* wide_of(const TriangleMesh::Data& d, RayTraversal traversal) {
+  if (traversal != RayTraversal::Wide || !d.ray_bvh || d.ray_bvh->nodes.empty()) return nullptr;
+  return d.ray_bvh.get();
+}
+
+/// Calls `visit(corners, triangle) -> bool` (false stops) for every triangle of every leaf
+/// whose box the ray meets within [0, max_t], through the chosen hierarchy, in no
+/// particular order. Returns false when stopped.
+template <class Visit>
+bool for_each_candidate(const TriangleMesh::Data& d, const Ray& ray, Real max_t, RayTraversal traversal,
+                        Visit&& visit) {
+  if (const detail::RayBvh* wide = wide_of(d, traversal)) {
+    const detail::WideRay w = detail::prepare_wide_ray(ray);
+    if (w.valid) {
+      const std::span<const std::uint32_t> prims = d.bvh.primitives();
+      bool go_on = true;
+      detail::traverse_wide(*wide, w, detail::round_up_float(max_t),
+                            [&](std::uint32_t first, std::uint32_t count, float&) {
+                              for (std::uint32_t i = first; i != first + count; ++i) {
+                                if (!visit(d.leaf_triangles[i], prims[i])) {
+                                  go_on = false;
+                                  return false;
+                                }
+                              }
+                              return true;
+                            });
+      return go_on;
+    }
+  }
+  const BoxRay box_ray = prepare_box_ray(ray);
+  Real t_near = Real(0);
+  const std::vector<Vec3>& verts = d.mesh.vertices;
+  return d.bvh.traverse([&](const BvhNode& node) { return slab(node, box_ray, max_t, t_near); },
+                        [&](std::uint32_t tri) {
+                          const TriangleIndices& t = d.mesh.triangles[tri];
+                          return visit(std::array<Vec3, 3>{verts[t[0]], verts[t[1]], verts[t[2]]}, tri);
+                        });
+}
+
+/// Closest hit through the binary hierarchy, front to back (the reference traversal).
+void closest_binary(const TriangleMesh::Data& d, const Ray& ray, const MeshRay& r, ClosestHit& closest) {
+  const BoxRay box_ray = prepare_box_ray(ray);
+  const std::span<const BvhNode> nodes = d.bvh.nodes();
+  const std::span<const std::uint32_t> prims = d.bvh.primitives();
   StackEntry stack[Bvh::kMaxDepth + 1];
   std::uint32_t top = 0;
   Real t_root = Real(0);
-  if (!slab(nodes[0], box_ray, best_t, t_root)) return std::nullopt;
+  if (!slab(nodes[0], box_ray, closest.best_t, t_root)) return;
   std::uint32_t current = 0;
   while (true) {
     const BvhNode& node = nodes[current];
     if (node.is_leaf()) {
-      // One ulp beyond the best: the triangle test compares its unrounded t with the limit,
-      // and a hit that rounds to the same t must still reach the tie rule.
-      const Real limit = best ? std::min(max_t, std::nextafter(best_t, kRealMax)) : max_t;
-      for (std::uint32_t i = node.first; i != node.first + node.count; ++i) {
-        const Vec3& a = corners[i][0];
-        const Vec3& b = corners[i][1];
-        const Vec3& c = corners[i][2];
-        if (filter && !may_hit(tri_ray, a, b, c)) continue;
-        const std::optional<RayHit> hit = geometry::ray_triangle(tri_ray, limit, a, b, c);
-        if (!hit || !passes_culling(culling, *hit, a, b, c)) continue;
-        if (best && hit->t > best->hit.t) continue;
-        const std::uint32_t tri = prims[i];
-        if (best && hit->t == best->hit.t && tri > best->triangle) continue;
-        best = MeshRayHit{*hit, tri};
-        best_t = hit->t;
-      }
+      const Real limit = closest.limit();
+      for (std::uint32_t i = node.first; i != node.first + node.count; ++i)
+        closest.visit(r, limit, d.leaf_triangles[i], prims[i]);
     } else {
       Real t_left = Real(0), t_right = Real(0);
-      const bool hit_left = slab(nodes[node.first], box_ray, best_t, t_left);
-      const bool hit_right = slab(nodes[node.first + 1], box_ray, best_t, t_right);
+      const bool hit_left = slab(nodes[node.first], box_ray, closest.best_t, t_left);
+      const bool hit_right = slab(nodes[node.first + 1], box_ray, closest.best_t, t_right);
       if (hit_left && hit_right) {
         if (t_right < t_left) {
           stack[top++] = {node.first, t_left};
@@ -373,7 +441,7 @@ std::optional<MeshRayHit> TriangleMesh::raycast(const Ray& ray, Real max_t, Face
     bool found = false;
     while (top != 0) {
       const StackEntry& e = stack[--top];
-      if (e.t_near <= best_t * kSlabWiden) {
+      if (e.t_near <= closest.best_t * kSlabWiden) {
         current = e.node;
         found = true;
         break;
@@ -381,53 +449,57 @@ std::optional<MeshRayHit> TriangleMesh::raycast(const Ray& ray, Real max_t, Face
     }
     if (!found) break;
   }
-  return best;
 }
 
-bool TriangleMesh::raycast_any(const Ray& ray, Real max_t, FaceCulling culling) const {
-  const Bvh& bvh = data_->bvh;
-  if (bvh.empty() || !(max_t >= Real(0))) return false;
-  const geometry::TriangleRay tri_ray = geometry::TriangleRay::prepare(ray);
-  if (!tri_ray.valid) return false;
-  const BoxRay box_ray = prepare_box_ray(ray);
-  const bool filter = filter_applies(ray);
-  const std::vector<Vec3>& verts = data_->mesh.vertices;
-  const std::vector<TriangleIndices>& tris = data_->mesh.triangles;
-  Real t_near = Real(0);
-  return !bvh.traverse([&](const BvhNode& node) { return slab(node, box_ray, max_t, t_near); },
-                       [&](std::uint32_t tri) {
-                         const TriangleIndices& t = tris[tri];
-                         const Vec3& a = verts[t[0]];
-                         const Vec3& b = verts[t[1]];
-                         const Vec3& c = verts[t[2]];
-                         if (filter && !may_hit(tri_ray, a, b, c)) return true;
-                         const std::optional<RayHit> hit = geometry::ray_triangle(tri_ray, max_t, a, b, c);
-                         return !(hit && passes_culling(culling, *hit, a, b, c));
-                       });
+}  // namespace
+
+std::optional<MeshRayHit> TriangleMesh::raycast(const Ray& ray, Real max_t, FaceCulling culling,
+                                                RayTraversal traversal) const {
+  const Data& d = *data_;
+  if (d.bvh.empty() || !(max_t >= Real(0))) return std::nullopt;
+  const MeshRay r = prepare_mesh_ray(ray, culling);
+  if (!r.tri.valid) return std::nullopt;
+  ClosestHit closest(max_t);
+  if (const detail::RayBvh* wide = wide_of(d, traversal)) {
+    const detail::WideRay w = detail::prepare_wide_ray(ray);
+    if (w.valid) {
+      const std::span<const std::uint32_t> prims = d.bvh.primitives();
+      detail::traverse_wide(*wide, w, detail::round_up_float(max_t),
+                            [&](std::uint32_t first, std::uint32_t count, float& t_max) {
+                              const Real limit = closest.limit();
+                              for (std::uint32_t i = first; i != first + count; ++i)
+                                closest.visit(r, limit, d.leaf_triangles[i], prims[i]);
+                              if (closest.best) t_max = detail::round_up_float(closest.best_t);
+                              return true;
+                            });
+      return closest.best;
+    }
+  }
+  closest_binary(d, ray, r, closest);
+  return closest.best;
 }
 
-void TriangleMesh::raycast_all(const Ray& ray, Real max_t, std::vector<MeshRayHit>& hits, FaceCulling culling) const {
-  const Bvh& bvh = data_->bvh;
-  if (bvh.empty() || !(max_t >= Real(0))) return;
-  const geometry::TriangleRay tri_ray = geometry::TriangleRay::prepare(ray);
-  if (!tri_ray.valid) return;
-  const BoxRay box_ray = prepare_box_ray(ray);
-  const bool filter = filter_applies(ray);
-  const std::vector<Vec3>& verts = data_->mesh.vertices;
-  const std::vector<TriangleIndices>& tris = data_->mesh.triangles;
+bool TriangleMesh::raycast_any(const Ray& ray, Real max_t, FaceCulling culling, RayTraversal traversal) const {
+  const Data& d = *data_;
+  if (d.bvh.empty() || !(max_t >= Real(0))) return false;
+  const MeshRay r = prepare_mesh_ray(ray, culling);
+  if (!r.tri.valid) return false;
+  return !for_each_candidate(d, ray, max_t, traversal, [&](const std::array<Vec3, 3>& corners, std::uint32_t) {
+    return !cast_triangle(r, max_t, corners).has_value();
+  });
+}
+
+void TriangleMesh::raycast_all(const Ray& ray, Real max_t, std::vector<MeshRayHit>& hits, FaceCulling culling,
+                               RayTraversal traversal) const {
+  const Data& d = *data_;
+  if (d.bvh.empty() || !(max_t >= Real(0))) return;
+  const MeshRay r = prepare_mesh_ray(ray, culling);
+  if (!r.tri.valid) return;
   const std::size_t start = hits.size();
-  Real t_near = Real(0);
-  bvh.traverse([&](const BvhNode& node) { return slab(node, box_ray, max_t, t_near); },
-               [&](std::uint32_t tri) {
-                 const TriangleIndices& t = tris[tri];
-                 const Vec3& a = verts[t[0]];
-                 const Vec3& b = verts[t[1]];
-                 const Vec3& c = verts[t[2]];
-                 if (filter && !may_hit(tri_ray, a, b, c)) return true;
-                 const std::optional<RayHit> hit = geometry::ray_triangle(tri_ray, max_t, a, b, c);
-                 if (hit && passes_culling(culling, *hit, a, b, c)) hits.push_back({*hit, tri});
-                 return true;
-               });
+  for_each_candidate(d, ray, max_t, traversal, [&](const std::array<Vec3, 3>& corners, std::uint32_t tri) {
+    if (const std::optional<RayHit> hit = cast_triangle(r, max_t, corners)) hits.push_back({*hit, tri});
+    return true;
+  });
   std::sort(hits.begin() + static_cast<std::ptrdiff_t>(start), hits.end(),
             [](const MeshRayHit& x, const MeshRayHit& y) {
               return x.hit.t < y.hit.t || (x.hit.t == y.hit.t && x.triangle < y.triangle);

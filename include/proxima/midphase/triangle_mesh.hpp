@@ -16,11 +16,32 @@
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <span>
 #include <vector>
 
 namespace proxima {
+
+namespace detail {
+struct RayBvh;  // 4-wide ray hierarchy (src/midphase/ray_bvh.hpp)
+}  // namespace detail
+
+namespace midphase {
+struct OrientedTree;  // oriented node bounds for mesh-mesh queries (src/midphase/oriented_tree.hpp)
+}  // namespace midphase
+
+namespace detail {
+/// A midphase::OrientedTree built on first use (std::call_once, so safe when a shared mesh
+/// is queried from several threads). A copy starts empty: a deformed mesh builds its own.
+struct OrientedTreeSlot {
+  OrientedTreeSlot() = default;
+  OrientedTreeSlot(const OrientedTreeSlot&) {}
+  OrientedTreeSlot& operator=(const OrientedTreeSlot&) = delete;
+  mutable std::once_flag once;                                 ///< guards the build
+  mutable std::shared_ptr<const midphase::OrientedTree> tree;  ///< set once by the build
+};
+}  // namespace detail
 
 /// Marks "no triangle / no neighbour / no child".
 inline constexpr std::uint32_t kNoIndex = 0xffffffffu;
@@ -31,6 +52,14 @@ enum class FaceCulling : std::uint8_t {
   None,   ///< both sides
   Back,   ///< only hits from the front side (the ray direction opposes the normal)
   Front,  ///< only hits from the back side
+};
+
+/// Which hierarchy a mesh ray cast traverses. Both give the same answers (same triangles,
+/// same t, bit for bit): only the exact watertight triangle test decides a hit.
+enum class RayTraversal : std::uint8_t {
+  Wide,    ///< the 4-wide hierarchy collapsed from bvh() (four child boxes per SSE slab test,
+           ///< float boxes rounded outward), falling back to Binary for rays it cannot bound
+  Binary,  ///< the binary bvh(), one box at a time: the scalar reference of Wide
 };
 
 /// A ray hit on a mesh: the hit (t, point, normal facing the ray origin; local frame of the
@@ -89,6 +118,11 @@ class TriangleMesh {
   /// The BVH over the triangles (local frame).
   const Bvh& bvh() const { return data_->bvh; }
 
+  /// Oriented bounds (OBB) of every bvh() node's subtree for mesh-mesh queries (internal
+  /// type, src/midphase/oriented_tree.hpp): built on the first call, O(n log n), then shared
+  /// by the copies of this mesh; thread-safe.
+  const midphase::OrientedTree& oriented_tree() const;
+
   /// Box of the vertices (local frame).
   Aabb local_aabb() const { return data_->bvh.bounds(); }
   /// Box in the world frame under `pose`, from the transformed vertices. O(V).
@@ -96,12 +130,15 @@ class TriangleMesh {
 
   /// Closest hit of `ray` (local frame) within [0, max_t]: watertight (a ray through a
   /// shared edge or vertex never slips through), ties broken by the lower triangle index.
-  std::optional<MeshRayHit> raycast(const Ray& ray, Real max_t, FaceCulling culling = FaceCulling::None) const;
+  /// `traversal` picks the hierarchy (same answer either way). O(log n) typical.
+  std::optional<MeshRayHit> raycast(const Ray& ray, Real max_t, FaceCulling culling = FaceCulling::None,
+                                    RayTraversal traversal = RayTraversal::Wide) const;
   /// True when the ray hits any triangle within [0, max_t] (stops at the first found).
-  bool raycast_any(const Ray& ray, Real max_t, FaceCulling culling = FaceCulling::None) const;
+  bool raycast_any(const Ray& ray, Real max_t, FaceCulling culling = FaceCulling::None,
+                   RayTraversal traversal = RayTraversal::Wide) const;
   /// Appends every hit within [0, max_t] to `hits`, sorted by t then triangle index.
-  void raycast_all(const Ray& ray, Real max_t, std::vector<MeshRayHit>& hits,
-                   FaceCulling culling = FaceCulling::None) const;
+  void raycast_all(const Ray& ray, Real max_t, std::vector<MeshRayHit>& hits, FaceCulling culling = FaceCulling::None,
+                   RayTraversal traversal = RayTraversal::Wide) const;
 
   /// For a closed mesh: true when `point` (local) is inside or on the surface. For an open
   /// mesh: true when its generalised winding number is at least 1/2.
@@ -124,6 +161,11 @@ class TriangleMesh {
     /// Corners of triangle bvh.primitives()[i] at index i (BVH leaf order, so a leaf's
     /// triangles are contiguous for the ray casts).
     std::vector<std::array<Vec3, 3>> leaf_triangles;
+    /// Oriented node bounds for mesh-mesh queries, built by oriented_tree() on first use.
+    detail::OrientedTreeSlot oriented;
+    /// 4-wide hierarchy for ray casts over the same leaves (RayTraversal::Wide); null or
+    /// empty when the mesh's bounds do not fit its float layout.
+    std::shared_ptr<const detail::RayBvh> ray_bvh;
   };
 
  private:
