@@ -9,11 +9,14 @@
 //    cross products) with the rotation matrix R = A^T B expressed in A's frame; an epsilon
 //    is added to |R| so that the near-zero cross products of parallel edges cannot
 //    report a false separation (Gottschalk, Lin, Manocha, "OBBTree", SIGGRAPH 1996;
-//    Ericson, Real-Time Collision Detection, 4.4.1). Aabb-Obb treats the Aabb as an Obb.
+//    Ericson, Real-Time Collision Detection, 4.4.1); the test itself is in
+//    box_separation.hpp, shared with the mesh-mesh descent. Aabb-Obb treats the Aabb as an Obb.
 #include <proxima/bounds/overlap.hpp>
 #include <proxima/core/tolerance.hpp>
 
 #include <cmath>
+
+#include "bounds/box_separation.hpp"
 
 namespace proxima {
 
@@ -50,46 +53,11 @@ bool overlaps(const BoundingSphere& a, const BoundingCapsule& b) {
 }
 
 bool overlaps(const Obb& a, const Obb& b) {
-  // Rotation of b in a's frame and translation in a's frame.
-  Real r[3][3];
-  Real abs_r[3][3];
+  const Vec3 axes_a[3] = {a.axes[0], a.axes[1], a.axes[2]};
+  const Vec3 axes_b[3] = {b.axes[0], b.axes[1], b.axes[2]};
   constexpr Real kParallelEpsilon = Real(32) * kEpsilon;
-  for (int i = 0; i < 3; ++i) {
-    for (int j = 0; j < 3; ++j) {
-      r[i][j] = glm::dot(a.axes[i], b.axes[j]);
-      abs_r[i][j] = std::abs(r[i][j]) + kParallelEpsilon;
-    }
-  }
-  const Vec3 d = b.center - a.center;
-  const Real t[3] = {glm::dot(d, a.axes[0]), glm::dot(d, a.axes[1]), glm::dot(d, a.axes[2])};
-  const Vec3& ea = a.half_extents;
-  const Vec3& eb = b.half_extents;
-  // a's face normals.
-  for (int i = 0; i < 3; ++i) {
-    const Real ra = ea[i];
-    const Real rb = eb[0] * abs_r[i][0] + eb[1] * abs_r[i][1] + eb[2] * abs_r[i][2];
-    if (std::abs(t[i]) > ra + rb) return false;
-  }
-  // b's face normals.
-  for (int j = 0; j < 3; ++j) {
-    const Real ra = ea[0] * abs_r[0][j] + ea[1] * abs_r[1][j] + ea[2] * abs_r[2][j];
-    const Real rb = eb[j];
-    if (std::abs(t[0] * r[0][j] + t[1] * r[1][j] + t[2] * r[2][j]) > ra + rb) return false;
-  }
-  // Edge cross products a_i x b_j.
-  for (int i = 0; i < 3; ++i) {
-    const int i1 = (i + 1) % 3;
-    const int i2 = (i + 2) % 3;
-    for (int j = 0; j < 3; ++j) {
-      const int j1 = (j + 1) % 3;
-      const int j2 = (j + 2) % 3;
-      const Real ra = ea[i1] * abs_r[i2][j] + ea[i2] * abs_r[i1][j];
-      const Real rb = eb[j1] * abs_r[i][j2] + eb[j2] * abs_r[i][j1];
-      const Real dist = std::abs(t[i2] * r[i1][j] - t[i1] * r[i2][j]);
-      if (dist > ra + rb) return false;
-    }
-  }
-  return true;
+  return detail::boxes_within(detail::box_pair_frame(axes_a, a.center, axes_b, b.center, kParallelEpsilon),
+                              a.half_extents, b.half_extents, Real(0));
 }
 
 bool overlaps(const Aabb& a, const Obb& b) {

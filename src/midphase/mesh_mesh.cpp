@@ -47,6 +47,9 @@
 #include <cstdint>
 #include <limits>
 
+#include "bounds/box_separation.hpp"
+#include "midphase/oriented_tree.hpp"
+
 namespace proxima::midphase {
 namespace {
 
@@ -85,36 +88,9 @@ inline NodeBox node_box(const BvhNode& n) { return {(n.min + n.max) * Real(0.5),
 /// True when A's box and B's box (B-local, mapped by f) may be within `margin`: false only
 /// when one of the 15 axes separates them by more than margin (Ericson 4.4.1).
 bool boxes_overlap(const RelativeFrame& f, const NodeBox& a, const NodeBox& bl, Real margin) {
-  const Vec3 bc = f.rotation * bl.c + f.t;
-  const Vec3 d = bc - a.c;
+  const Vec3 d = f.rotation * bl.c + f.t - a.c;
   const Real t[3] = {d.x, d.y, d.z};
-  const Real ea[3] = {a.h.x, a.h.y, a.h.z};
-  const Real eb[3] = {bl.h.x, bl.h.y, bl.h.z};
-  const auto& r = f.r;
-  const auto& ar = f.abs_r;
-  for (int i = 0; i < 3; ++i) {
-    const Real rb = ar[i][0] * eb[0] + ar[i][1] * eb[1] + ar[i][2] * eb[2];
-    if (std::abs(t[i]) > ea[i] + rb + margin) return false;
-  }
-  for (int j = 0; j < 3; ++j) {
-    const Real ra = ar[0][j] * ea[0] + ar[1][j] * ea[1] + ar[2][j] * ea[2];
-    const Real tj = t[0] * r[0][j] + t[1] * r[1][j] + t[2] * r[2][j];
-    if (std::abs(tj) > ra + eb[j] + margin) return false;
-  }
-  // A_i x B_j: the axis has length <= 1, so `margin` unscaled is conservative.
-  for (int i = 0; i < 3; ++i) {
-    const int i1 = (i + 1) % 3;
-    const int i2 = (i + 2) % 3;
-    for (int j = 0; j < 3; ++j) {
-      const int j1 = (j + 1) % 3;
-      const int j2 = (j + 2) % 3;
-      const Real ra = ea[i1] * ar[i2][j] + ea[i2] * ar[i1][j];
-      const Real rb = eb[j1] * ar[i][j2] + eb[j2] * ar[i][j1];
-      const Real tl = t[i2] * r[i1][j] - t[i1] * r[i2][j];
-      if (std::abs(tl) > ra + rb + margin) return false;
-    }
-  }
-  return true;
+  return detail::boxes_within(f.r, f.abs_r, t, a.h, bl.h, margin);
 }
 
 /// A lower bound of the squared distance between A's box and B's box: the larger of the
@@ -161,6 +137,56 @@ Real box_distance_lower_bound_squared(const RelativeFrame& f, const NodeBox& a, 
 inline Real extent_sum(const BvhNode& n) {
   const Vec3 e = n.max - n.min;
   return e.x + e.y + e.z;
+}
+
+/// The axis-aligned node test (the reference path): A's boxes in A's frame against B's boxes
+/// as oriented boxes mapped by f.
+struct AabbNodes {
+  const BvhNode* na;
+  const BvhNode* nb;
+  const RelativeFrame* f;
+
+  bool overlap(std::uint32_t ia, std::uint32_t ib, Real margin) const {
+    return boxes_overlap(*f, node_box(na[ia]), node_box(nb[ib]), margin);
+  }
+  Real lower_bound2(std::uint32_t ia, std::uint32_t ib, Real prune2) const {
+    return box_distance_lower_bound_squared(*f, node_box(na[ia]), node_box(nb[ib]), prune2);
+  }
+  Real size_a(std::uint32_t ia) const { return extent_sum(na[ia]); }
+  Real size_b(std::uint32_t ib) const { return extent_sum(nb[ib]); }
+};
+
+/// The oriented node test: both meshes' OrientedTree boxes, B's mapped into A's frame per
+/// pair (36 multiplications) and then the shared separating-axis test.
+struct OrientedNodes {
+  const OrientedNode* oa;
+  const OrientedNode* ob;
+  const RelativeFrame* f;
+
+  detail::BoxPairFrame pair(std::uint32_t ia, std::uint32_t ib) const {
+    const OrientedNode& a = oa[ia];
+    const OrientedNode& b = ob[ib];
+    const Vec3 axes_b[3] = {f->rotation * b.axis[0], f->rotation * b.axis[1], f->rotation * b.axis[2]};
+    return detail::box_pair_frame(a.axis, a.center, axes_b, f->rotation * b.center + f->t, Real(8) * kEpsilon);
+  }
+  bool overlap(std::uint32_t ia, std::uint32_t ib, Real margin) const {
+    return detail::boxes_within(pair(ia, ib), oa[ia].half, ob[ib].half, margin);
+  }
+  Real lower_bound2(std::uint32_t ia, std::uint32_t ib, Real /*prune2*/) const {
+    const Real g = detail::boxes_gap(pair(ia, ib), oa[ia].half, ob[ib].half);
+    return g * g;
+  }
+  Real size_a(std::uint32_t ia) const { return oa[ia].half.x + oa[ia].half.y + oa[ia].half.z; }
+  Real size_b(std::uint32_t ib) const { return ob[ib].half.x + ob[ib].half.y + ob[ib].half.z; }
+};
+
+/// Calls `run(nodes)` with the node test of `kind` for the pair (a, b).
+template <class Run>
+auto with_nodes(MeshMeshNodes kind, const TriangleMesh& a, const TriangleMesh& b, const RelativeFrame& f, Run&& run) {
+  if (kind == MeshMeshNodes::Oriented && !a.bvh().empty() && !b.bvh().empty()) {
+    return run(OrientedNodes{a.oriented_tree().nodes.data(), b.oriented_tree().nodes.data(), &f});
+  }
+  return run(AabbNodes{a.bvh().nodes().data(), b.bvh().nodes().data(), &f});
 }
 
 /// Largest |coordinate| of both meshes' boxes in A's frame: the scale of rounding errors.
@@ -249,16 +275,16 @@ inline bool triangles_within(const std::array<Vec3, 3>& a, const std::array<Vec3
          contact_distance * contact_distance;
 }
 
-/// Visits every leaf pair whose boxes are within `margin` (A leaf, B leaf); `visit` returns
-/// false to stop. Returns false when stopped.
-template <class Visit>
-bool descend_overlapping(const Bvh& ba, const Bvh& bb, const RelativeFrame& f, Real margin, Visit&& visit) {
+/// Visits every leaf pair whose nodes are within `margin` by the node test `nodes` (A leaf,
+/// B leaf); `visit` returns false to stop. Returns false when stopped.
+template <class Nodes, class Visit>
+bool descend_overlapping(const Bvh& ba, const Bvh& bb, const Nodes& nodes, Real margin, Visit&& visit) {
   if (ba.empty() || bb.empty()) return true;
   const auto na = ba.nodes();
   const auto nb = bb.nodes();
   std::uint32_t stack[kPairStackSize][2];
   std::uint32_t top = 0;
-  if (!boxes_overlap(f, node_box(na[0]), node_box(nb[0]), margin)) return true;
+  if (!nodes.overlap(0, 0, margin)) return true;
   stack[top][0] = 0;
   stack[top][1] = 0;
   ++top;
@@ -272,11 +298,10 @@ bool descend_overlapping(const Bvh& ba, const Bvh& bb, const RelativeFrame& f, R
       if (!visit(a, b)) return false;
       continue;
     }
-    const bool split_a = b.is_leaf() || (!a.is_leaf() && extent_sum(a) >= extent_sum(b));
+    const bool split_a = b.is_leaf() || (!a.is_leaf() && nodes.size_a(ia) >= nodes.size_b(ib));
     if (split_a) {
-      const NodeBox box_b = node_box(b);
       for (std::uint32_t c = a.first + 1;; --c) {
-        if (boxes_overlap(f, node_box(na[c]), box_b, margin)) {
+        if (nodes.overlap(c, ib, margin)) {
           stack[top][0] = c;
           stack[top][1] = ib;
           ++top;
@@ -284,9 +309,8 @@ bool descend_overlapping(const Bvh& ba, const Bvh& bb, const RelativeFrame& f, R
         if (c == a.first) break;
       }
     } else {
-      const NodeBox box_a = node_box(a);
       for (std::uint32_t c = b.first + 1;; --c) {
-        if (boxes_overlap(f, box_a, node_box(nb[c]), margin)) {
+        if (nodes.overlap(ia, c, margin)) {
           stack[top][0] = ia;
           stack[top][1] = c;
           ++top;
@@ -310,13 +334,14 @@ Vec3 facing_normal(const std::array<Vec3, 3>& ta, const Vec3& towards, const Tra
 
 /// The first triangle pair (A, B) within the contact distance found by the overlap descent,
 /// or false when there is none.
-bool find_pair_within(const TriangleMesh& a, const TriangleMesh& b, const RelativeFrame& f, Real margin, Real cd,
-                      std::uint32_t& found_a, std::uint32_t& found_b) {
+template <class Nodes>
+bool find_pair_within(const TriangleMesh& a, const TriangleMesh& b, const RelativeFrame& f, const Nodes& nodes,
+                      Real margin, Real cd, std::uint32_t& found_a, std::uint32_t& found_b) {
   const auto prims_a = a.bvh().primitives();
   LeafTriangles leaf_b;
   std::uint32_t loaded = kNoIndex;
   const BvhNode* nodes_b = b.bvh().nodes().data();
-  return !descend_overlapping(a.bvh(), b.bvh(), f, margin, [&](const BvhNode& la, const BvhNode& lb) {
+  return !descend_overlapping(a.bvh(), b.bvh(), nodes, margin, [&](const BvhNode& la, const BvhNode& lb) {
     const auto id_b = static_cast<std::uint32_t>(&lb - nodes_b);
     if (id_b != loaded) {
       load_leaf(b, f, lb, leaf_b);
@@ -342,18 +367,19 @@ bool find_pair_within(const TriangleMesh& a, const TriangleMesh& b, const Relati
 }  // namespace
 
 bool mesh_mesh_intersect(const TriangleMesh& a, const Transform& pose_a, const TriangleMesh& b, const Transform& pose_b,
-                         const PairRequest& request) {
+                         const PairRequest& request, MeshMeshNodes node_kind) {
   const RelativeFrame f = make_frame(pose_a, pose_b);
   const Real cd = std::max(request.contact_distance, Real(0));
   const Real margin = node_margin(pair_scale(a, b, f), cd);
   std::uint32_t ta = kNoIndex;
   std::uint32_t tb = kNoIndex;
-  return find_pair_within(a, b, f, margin, cd, ta, tb);
+  return with_nodes(node_kind, a, b, f,
+                    [&](const auto& nodes) { return find_pair_within(a, b, f, nodes, margin, cd, ta, tb); });
 }
 
 void mesh_mesh_collide_all(const TriangleMesh& a, const Transform& pose_a, const TriangleMesh& b,
-                           const Transform& pose_b, const PairRequest& request,
-                           std::vector<GeometryContact>& contacts) {
+                           const Transform& pose_b, const PairRequest& request, std::vector<GeometryContact>& contacts,
+                           MeshMeshNodes node_kind) {
   const RelativeFrame f = make_frame(pose_a, pose_b);
   const Real cd = std::max(request.contact_distance, Real(0));
   const Real scale = pair_scale(a, b, f);
@@ -362,7 +388,7 @@ void mesh_mesh_collide_all(const TriangleMesh& a, const Transform& pose_a, const
   LeafTriangles leaf_b;
   std::uint32_t loaded = kNoIndex;
   const BvhNode* nodes_b = b.bvh().nodes().data();
-  descend_overlapping(a.bvh(), b.bvh(), f, margin, [&](const BvhNode& la, const BvhNode& lb) {
+  const auto visit = [&](const BvhNode& la, const BvhNode& lb) {
     const auto id_b = static_cast<std::uint32_t>(&lb - nodes_b);
     if (id_b != loaded) {
       load_leaf(b, f, lb, leaf_b);
@@ -408,13 +434,18 @@ void mesh_mesh_collide_all(const TriangleMesh& a, const Transform& pose_a, const
       }
     }
     return true;
-  });
+  };
+  with_nodes(node_kind, a, b, f,
+             [&](const auto& nodes) { return descend_overlapping(a.bvh(), b.bvh(), nodes, margin, visit); });
 }
 
-GeometryDistance mesh_mesh_distance(const TriangleMesh& a, const Transform& pose_a, const TriangleMesh& b,
-                                    const Transform& pose_b, const PairRequest& request) {
+namespace {
+
+/// The distance descent with node test `nodes` (see mesh_mesh_distance).
+template <class Nodes>
+GeometryDistance distance_descent(const TriangleMesh& a, const Transform& pose_a, const TriangleMesh& b,
+                                  const PairRequest& request, const RelativeFrame& f, const Nodes& nodes) {
   GeometryDistance out;
-  const RelativeFrame f = make_frame(pose_a, pose_b);
   const Real scale = pair_scale(a, b, f);
   const Bvh& ba = a.bvh();
   const Bvh& bb = b.bvh();
@@ -440,7 +471,7 @@ GeometryDistance mesh_mesh_distance(const TriangleMesh& a, const Transform& pose
   };
   Entry stack[kPairStackSize];
   std::uint32_t top = 0;
-  stack[top++] = {0, 0, box_distance_lower_bound_squared(f, node_box(na[0]), node_box(nb[0]))};
+  stack[top++] = {0, 0, nodes.lower_bound2(0, 0, std::numeric_limits<Real>::infinity())};
   LeafTriangles leaf_b;
   std::uint32_t loaded = kNoIndex;
   bool touching = false;
@@ -449,7 +480,7 @@ GeometryDistance mesh_mesh_distance(const TriangleMesh& a, const Transform& pose
   {
     std::uint32_t hit_a = kNoIndex;
     std::uint32_t hit_b = kNoIndex;
-    if (find_pair_within(a, b, f, node_margin(scale, Real(0)), Real(0), hit_a, hit_b)) {
+    if (find_pair_within(a, b, f, nodes, node_margin(scale, Real(0)), Real(0), hit_a, hit_b)) {
       const std::array<Vec3, 3> ta = a.triangle(hit_a);
       const std::array<Vec3, 3> tl = b.triangle(hit_b);
       const std::array<Vec3, 3> tb{f.rotation * tl[0] + f.t, f.rotation * tl[1] + f.t, f.rotation * tl[2] + f.t};
@@ -509,17 +540,15 @@ GeometryDistance mesh_mesh_distance(const TriangleMesh& a, const Transform& pose
       }
       continue;
     }
-    const bool split_a = ndb.is_leaf() || (!nda.is_leaf() && extent_sum(nda) >= extent_sum(ndb));
+    const bool split_a = ndb.is_leaf() || (!nda.is_leaf() && nodes.size_a(e.a) >= nodes.size_b(e.b));
     Entry c0;
     Entry c1;
     if (split_a) {
-      const NodeBox box_b = node_box(ndb);
-      c0 = {nda.first, e.b, box_distance_lower_bound_squared(f, node_box(na[nda.first]), box_b, best2)};
-      c1 = {nda.first + 1, e.b, box_distance_lower_bound_squared(f, node_box(na[nda.first + 1]), box_b, best2)};
+      c0 = {nda.first, e.b, nodes.lower_bound2(nda.first, e.b, best2)};
+      c1 = {nda.first + 1, e.b, nodes.lower_bound2(nda.first + 1, e.b, best2)};
     } else {
-      const NodeBox box_a = node_box(nda);
-      c0 = {e.a, ndb.first, box_distance_lower_bound_squared(f, box_a, node_box(nb[ndb.first]), best2)};
-      c1 = {e.a, ndb.first + 1, box_distance_lower_bound_squared(f, box_a, node_box(nb[ndb.first + 1]), best2)};
+      c0 = {e.a, ndb.first, nodes.lower_bound2(e.a, ndb.first, best2)};
+      c1 = {e.a, ndb.first + 1, nodes.lower_bound2(e.a, ndb.first + 1, best2)};
     }
     if (c1.lb2 < c0.lb2) std::swap(c0, c1);  // c0 nearer: pushed last, popped first
     if (c1.lb2 < best2) stack[top++] = c1;
@@ -542,6 +571,15 @@ GeometryDistance mesh_mesh_distance(const TriangleMesh& a, const Transform& pose
   out.a.triangle = best_a;
   out.b.triangle = best_b;
   return out;
+}
+
+}  // namespace
+
+GeometryDistance mesh_mesh_distance(const TriangleMesh& a, const Transform& pose_a, const TriangleMesh& b,
+                                    const Transform& pose_b, const PairRequest& request, MeshMeshNodes node_kind) {
+  const RelativeFrame f = make_frame(pose_a, pose_b);
+  return with_nodes(node_kind, a, b, f,
+                    [&](const auto& nodes) { return distance_descent(a, pose_a, b, request, f, nodes); });
 }
 
 }  // namespace proxima::midphase
