@@ -1,7 +1,8 @@
 // Mesh against mesh on the W4 workload (mesh_icosphere.obj at the identity, 20,480
 // triangles; mesh_torusknot.obj at each of the 1,000 poses of mesh_poses.txt, 50,000
 // triangles), every pose per iteration:
-//   MeshMesh/Boolean/proxima       midphase::mesh_mesh_intersect
+//   MeshMesh/Boolean/proxima       midphase::mesh_mesh_intersect (oriented nodes)
+//   MeshMesh/Boolean/proxima_aabb  the same on the axis-aligned nodes (the reference path)
 //   MeshMesh/Boolean/fcl_obbrss    fcl::collide, BVHModel<OBBRSSd>, one contact asked
 //   MeshMesh/Boolean/fcl_aabb      fcl::collide, BVHModel<AABBd>, one contact asked (every
 //                                  20th pose only, argument /20: about 20 ms a query)
@@ -12,12 +13,15 @@
 //                                  points (meshes that intersect: 0 in both)
 // Counters: per_query (time per pose), hits (poses found intersecting), pairs (contacts or
 // contact pairs summed over the poses), sum_distance (sum of the distances).
-// Build the BVHs once, outside the timing (see MeshMesh/Build for Proxima's build time).
+// Build the BVHs once, outside the timing (see MeshMesh/Build for Proxima's build time and
+// MeshMesh/BuildOriented for the oriented nodes of both meshes, built on the first
+// mesh-mesh query and here before the timing).
 #include <benchmark/benchmark.h>
 
 #include <proxima/midphase/triangle_mesh.hpp>
 
 #include "../src/midphase/mesh_mesh.hpp"
+#include "../src/midphase/oriented_tree.hpp"
 #include "support/bench_main.hpp"
 #include "support/workloads.hpp"
 
@@ -55,12 +59,26 @@ proxima::IndexedMesh to_indexed(const ObjMesh& m) {
   return out;
 }
 
-void report(benchmark::State& state, std::uint64_t hits, std::uint64_t pairs, double sum_distance,
-            std::size_t queries = g_poses.size()) {
-  state.counters["per_query"] = pb::time_per_item(queries);
-  state.counters["hits"] = static_cast<double>(hits);
-  state.counters["pairs"] = static_cast<double>(pairs);
-  state.counters["sum_distance"] = sum_distance;
+/// What the queries of one pass over the poses found.
+struct Tally {
+  std::uint64_t hits = 0;   ///< poses found intersecting
+  std::uint64_t pairs = 0;  ///< contacts (or contact pairs) summed
+  double sum = 0.0;         ///< distances summed
+};
+
+/// Times `query(pose_index, tally)` over `count` poses per iteration and reports the tally.
+template <class Query>
+void run_poses(benchmark::State& state, std::size_t count, Query&& query) {
+  Tally tally;
+  for (auto _ : state) {
+    tally = {};
+    for (std::size_t i = 0; i < count; ++i) query(i, tally);
+    benchmark::DoNotOptimize(tally);
+  }
+  state.counters["per_query"] = pb::time_per_item(count);
+  state.counters["hits"] = static_cast<double>(tally.hits);
+  state.counters["pairs"] = static_cast<double>(tally.pairs);
+  state.counters["sum_distance"] = tally.sum;
 }
 
 void proxima_build(benchmark::State& state) {
@@ -72,54 +90,43 @@ void proxima_build(benchmark::State& state) {
   state.counters["triangles"] = static_cast<double>(b.triangles.size());
 }
 
-void proxima_boolean(benchmark::State& state) {
-  std::uint64_t hits = 0;
-  const proxima::PairRequest request;
+/// The oriented nodes of both meshes (what the first mesh-mesh query of the pair builds).
+void proxima_build_oriented(benchmark::State& state) {
   for (auto _ : state) {
-    hits = 0;
-    for (const proxima::Transform& pose : g_transforms) {
-      hits += proxima::midphase::mesh_mesh_intersect(*g_mesh_a, proxima::Transform{}, *g_mesh_b, pose, request);
+    for (const proxima::TriangleMesh* m : {g_mesh_a.get(), g_mesh_b.get()}) {
+      auto tree = proxima::midphase::build_oriented_tree(m->bvh(), m->vertices(), m->triangles());
+      benchmark::DoNotOptimize(tree);
     }
-    benchmark::DoNotOptimize(hits);
   }
-  report(state, hits, 0, 0.0);
+  state.counters["triangles"] = static_cast<double>(g_mesh_a->triangle_count() + g_mesh_b->triangle_count());
 }
 
-void proxima_contacts(benchmark::State& state) {
-  std::uint64_t hits = 0;
-  std::uint64_t pairs = 0;
+using proxima::midphase::MeshMeshNodes;
+enum class Query { Boolean, Contacts, Distance };
+
+/// Proxima's query `q` on node kind state.range(0) (a MeshMeshNodes).
+template <Query q>
+void proxima_query(benchmark::State& state) {
+  const auto nodes = static_cast<MeshMeshNodes>(state.range(0));
   const proxima::PairRequest request;
+  const proxima::Transform identity;
   std::vector<proxima::GeometryContact> contacts;
-  for (auto _ : state) {
-    hits = 0;
-    pairs = 0;
-    for (const proxima::Transform& pose : g_transforms) {
+  run_poses(state, g_transforms.size(), [&](std::size_t i, Tally& t) {
+    const proxima::Transform& pose = g_transforms[i];
+    if constexpr (q == Query::Boolean) {
+      t.hits += proxima::midphase::mesh_mesh_intersect(*g_mesh_a, identity, *g_mesh_b, pose, request, nodes) ? 1u : 0u;
+    } else if constexpr (q == Query::Contacts) {
       contacts.clear();
-      proxima::midphase::mesh_mesh_collide_all(*g_mesh_a, proxima::Transform{}, *g_mesh_b, pose, request, contacts);
-      hits += contacts.empty() ? 0u : 1u;
-      pairs += contacts.size();
-    }
-    benchmark::DoNotOptimize(pairs);
-  }
-  report(state, hits, pairs, 0.0);
-}
-
-void proxima_distance(benchmark::State& state) {
-  double sum = 0.0;
-  std::uint64_t hits = 0;
-  const proxima::PairRequest request;
-  for (auto _ : state) {
-    sum = 0.0;
-    hits = 0;
-    for (const proxima::Transform& pose : g_transforms) {
+      proxima::midphase::mesh_mesh_collide_all(*g_mesh_a, identity, *g_mesh_b, pose, request, contacts, nodes);
+      t.hits += contacts.empty() ? 0u : 1u;
+      t.pairs += contacts.size();
+    } else {
       const proxima::GeometryDistance d =
-          proxima::midphase::mesh_mesh_distance(*g_mesh_a, proxima::Transform{}, *g_mesh_b, pose, request);
-      sum += static_cast<double>(d.result.signed_distance);
-      hits += d.result.signed_distance <= Real(0) ? 1u : 0u;
+          proxima::midphase::mesh_mesh_distance(*g_mesh_a, identity, *g_mesh_b, pose, request, nodes);
+      t.sum += static_cast<double>(d.result.signed_distance);
+      t.hits += d.result.signed_distance <= Real(0) ? 1u : 0u;
     }
-    benchmark::DoNotOptimize(sum);
-  }
-  report(state, hits, 0, sum);
+  });
 }
 
 #if PROXIMA_HAVE_FCL
@@ -143,85 +150,37 @@ fcl::Transform3d fcl_transform(const pb::Pose& p) {
   return t;
 }
 
-template <class BV>
-struct FclPair {
-  std::unique_ptr<fcl::CollisionObjectd> a;
-  std::unique_ptr<fcl::CollisionObjectd> b;
+/// FCL's query `q` with bounding volume BV, on every state.range(0)-th pose (FCL's AABB
+/// models are slow on this workload).
+template <class BV, Query q>
+void fcl_query(benchmark::State& state) {
+  fcl::CollisionObjectd a(fcl_model<BV>(g_obj_a), fcl::Transform3d::Identity());
+  fcl::CollisionObjectd b(fcl_model<BV>(g_obj_b), fcl::Transform3d::Identity());
   std::vector<fcl::Transform3d> poses;
-  /// `stride`: every stride-th pose only (FCL's AABB models are slow on this workload).
-  explicit FclPair(std::size_t stride) {
-    a = std::make_unique<fcl::CollisionObjectd>(fcl_model<BV>(g_obj_a), fcl::Transform3d::Identity());
-    b = std::make_unique<fcl::CollisionObjectd>(fcl_model<BV>(g_obj_b), fcl::Transform3d::Identity());
-    for (std::size_t i = 0; i < g_poses.size(); i += stride) poses.push_back(fcl_transform(g_poses[i]));
+  for (std::size_t i = 0; i < g_poses.size(); i += static_cast<std::size_t>(state.range(0))) {
+    poses.push_back(fcl_transform(g_poses[i]));
   }
-};
-
-template <class BV>
-void fcl_boolean(benchmark::State& state) {
-  FclPair<BV> pair(static_cast<std::size_t>(state.range(0)));
-  fcl::CollisionRequestd request;
-  request.num_max_contacts = 1;
-  std::uint64_t hits = 0;
-  for (auto _ : state) {
-    hits = 0;
-    for (const fcl::Transform3d& t : pair.poses) {
-      pair.b->setTransform(t);
-      pair.b->computeAABB();
-      fcl::CollisionResultd result;
-      fcl::collide(pair.a.get(), pair.b.get(), request, result);
-      hits += result.isCollision() ? 1u : 0u;
-    }
-    benchmark::DoNotOptimize(hits);
-  }
-  report(state, hits, 0, 0.0, pair.poses.size());
-}
-
-template <class BV>
-void fcl_contacts(benchmark::State& state) {
-  FclPair<BV> pair(static_cast<std::size_t>(state.range(0)));
-  fcl::CollisionRequestd request;
-  request.num_max_contacts = 1000000;
-  request.enable_contact = true;
-  std::uint64_t hits = 0;
-  std::uint64_t pairs = 0;
-  for (auto _ : state) {
-    hits = 0;
-    pairs = 0;
-    for (const fcl::Transform3d& t : pair.poses) {
-      pair.b->setTransform(t);
-      pair.b->computeAABB();
-      fcl::CollisionResultd result;
-      fcl::collide(pair.a.get(), pair.b.get(), request, result);
-      hits += result.isCollision() ? 1u : 0u;
-      pairs += result.numContacts();
-    }
-    benchmark::DoNotOptimize(pairs);
-  }
-  report(state, hits, pairs, 0.0, pair.poses.size());
-}
-
-template <class BV>
-void fcl_distance(benchmark::State& state) {
-  FclPair<BV> pair(static_cast<std::size_t>(state.range(0)));
-  fcl::DistanceRequestd request;
-  request.enable_nearest_points = true;
-  double sum = 0.0;
-  std::uint64_t hits = 0;
-  for (auto _ : state) {
-    sum = 0.0;
-    hits = 0;
-    for (const fcl::Transform3d& t : pair.poses) {
-      pair.b->setTransform(t);
-      pair.b->computeAABB();
+  fcl::CollisionRequestd collision;
+  collision.num_max_contacts = q == Query::Contacts ? 1000000 : 1;
+  collision.enable_contact = q == Query::Contacts;
+  fcl::DistanceRequestd distance;
+  distance.enable_nearest_points = true;
+  run_poses(state, poses.size(), [&](std::size_t i, Tally& t) {
+    b.setTransform(poses[i]);
+    b.computeAABB();
+    if constexpr (q == Query::Distance) {
       fcl::DistanceResultd result;
-      fcl::distance(pair.a.get(), pair.b.get(), request, result);
+      fcl::distance(&a, &b, distance, result);
       const double d = result.min_distance < 0.0 ? 0.0 : result.min_distance;
-      sum += d;
-      hits += d <= 0.0 ? 1u : 0u;
+      t.sum += d;
+      t.hits += d <= 0.0 ? 1u : 0u;
+    } else {
+      fcl::CollisionResultd result;
+      fcl::collide(&a, &b, collision, result);
+      t.hits += result.isCollision() ? 1u : 0u;
+      t.pairs += q == Query::Contacts ? result.numContacts() : 0u;
     }
-    benchmark::DoNotOptimize(sum);
-  }
-  report(state, hits, 0, sum, pair.poses.size());
+  });
 }
 #endif
 
@@ -242,34 +201,36 @@ bool register_all(const std::string& dir) {
   if (!mb) return pb::report_load_error(mb.error());
   g_mesh_a = std::make_unique<proxima::TriangleMesh>(std::move(*ma));
   g_mesh_b = std::make_unique<proxima::TriangleMesh>(std::move(*mb));
+  g_mesh_a->oriented_tree();  // built on the first query otherwise
+  g_mesh_b->oriented_tree();
 
   benchmark::RegisterBenchmark("MeshMesh/Build/proxima", proxima_build)->Unit(benchmark::kMillisecond);
-  benchmark::RegisterBenchmark("MeshMesh/Boolean/proxima", proxima_boolean)->Unit(benchmark::kMillisecond);
+  benchmark::RegisterBenchmark("MeshMesh/BuildOriented/proxima", proxima_build_oriented)->Unit(benchmark::kMillisecond);
+  const auto oriented = static_cast<std::int64_t>(MeshMeshNodes::Oriented);
+  const auto aabb = static_cast<std::int64_t>(MeshMeshNodes::Aabb);
+  const auto add = [&](const std::string& query, auto proxima_fn, auto fcl_obbrss_fn, auto fcl_aabb_fn) {
+    const std::string base = "MeshMesh/" + query + "/";
+    benchmark::RegisterBenchmark((base + "proxima").c_str(), proxima_fn)->Arg(oriented)->Unit(benchmark::kMillisecond);
+    benchmark::RegisterBenchmark((base + "proxima_aabb").c_str(), proxima_fn)->Arg(aabb)->Unit(benchmark::kMillisecond);
 #if PROXIMA_HAVE_FCL
-  benchmark::RegisterBenchmark("MeshMesh/Boolean/fcl_obbrss", fcl_boolean<fcl::OBBRSSd>)
-      ->Arg(1)
-      ->Unit(benchmark::kMillisecond);
-  benchmark::RegisterBenchmark("MeshMesh/Boolean/fcl_aabb", fcl_boolean<fcl::AABBd>)
-      ->Arg(20)
-      ->Unit(benchmark::kMillisecond);
+    benchmark::RegisterBenchmark((base + "fcl_obbrss").c_str(), fcl_obbrss_fn)->Arg(1)->Unit(benchmark::kMillisecond);
+    benchmark::RegisterBenchmark((base + "fcl_aabb").c_str(), fcl_aabb_fn)->Arg(20)->Unit(benchmark::kMillisecond);
+#else
+    (void)fcl_obbrss_fn;
+    (void)fcl_aabb_fn;
 #endif
-  benchmark::RegisterBenchmark("MeshMesh/Contacts/proxima", proxima_contacts)->Unit(benchmark::kMillisecond);
+  };
 #if PROXIMA_HAVE_FCL
-  benchmark::RegisterBenchmark("MeshMesh/Contacts/fcl_obbrss", fcl_contacts<fcl::OBBRSSd>)
-      ->Arg(1)
-      ->Unit(benchmark::kMillisecond);
-  benchmark::RegisterBenchmark("MeshMesh/Contacts/fcl_aabb", fcl_contacts<fcl::AABBd>)
-      ->Arg(20)
-      ->Unit(benchmark::kMillisecond);
-#endif
-  benchmark::RegisterBenchmark("MeshMesh/Distance/proxima", proxima_distance)->Unit(benchmark::kMillisecond);
-#if PROXIMA_HAVE_FCL
-  benchmark::RegisterBenchmark("MeshMesh/Distance/fcl_obbrss", fcl_distance<fcl::OBBRSSd>)
-      ->Arg(1)
-      ->Unit(benchmark::kMillisecond);
-  benchmark::RegisterBenchmark("MeshMesh/Distance/fcl_aabb", fcl_distance<fcl::AABBd>)
-      ->Arg(20)
-      ->Unit(benchmark::kMillisecond);
+  add("Boolean", proxima_query<Query::Boolean>, fcl_query<fcl::OBBRSSd, Query::Boolean>,
+      fcl_query<fcl::AABBd, Query::Boolean>);
+  add("Contacts", proxima_query<Query::Contacts>, fcl_query<fcl::OBBRSSd, Query::Contacts>,
+      fcl_query<fcl::AABBd, Query::Contacts>);
+  add("Distance", proxima_query<Query::Distance>, fcl_query<fcl::OBBRSSd, Query::Distance>,
+      fcl_query<fcl::AABBd, Query::Distance>);
+#else
+  add("Boolean", proxima_query<Query::Boolean>, nullptr, nullptr);
+  add("Contacts", proxima_query<Query::Contacts>, nullptr, nullptr);
+  add("Distance", proxima_query<Query::Distance>, nullptr, nullptr);
 #endif
   return true;
 }

@@ -8,6 +8,9 @@
 // geometry::closest_points_triangle_triangle over all pairs, its witnesses lie on the
 // triangles it names; collide_all reports exactly the intersecting triangle pairs.
 // Disagreements are allowed only for pairs whose exact distance is within rounding of zero.
+// The default (oriented-node) descent is checked against brute force; the axis-aligned
+// reference path must give the same boolean, the same distance (within rounding) and the
+// same contact pairs, here and on larger meshes over random poses (OrientedMatchesAabb).
 #include <gtest/gtest.h>
 
 #include <proxima/core/tolerance.hpp>
@@ -193,6 +196,33 @@ struct Stats {
   int ambiguous_pairs = 0;
 };
 
+/// Triangle pairs of collide_all with node kind `nodes`.
+std::set<std::pair<std::uint32_t, std::uint32_t>> contact_pairs(const TriangleMesh& a, const Transform& pose_a,
+                                                                const TriangleMesh& b, const Transform& pose_b,
+                                                                const PairRequest& request,
+                                                                midphase::MeshMeshNodes nodes) {
+  std::vector<GeometryContact> contacts;
+  midphase::mesh_mesh_collide_all(a, pose_a, b, pose_b, request, contacts, nodes);
+  std::set<std::pair<std::uint32_t, std::uint32_t>> pairs;
+  for (const GeometryContact& c : contacts) pairs.insert({c.a.triangle, c.b.triangle});
+  return pairs;
+}
+
+/// The oriented-node descent against the axis-aligned one: same boolean, same contact
+/// pairs, same distance within rounding. Returns the boolean.
+bool expect_paths_agree(const TriangleMesh& a, const Transform& pose_a, const TriangleMesh& b, const Transform& pose_b,
+                        const PairRequest& request) {
+  using midphase::MeshMeshNodes;
+  const bool hit = midphase::mesh_mesh_intersect(a, pose_a, b, pose_b, request, MeshMeshNodes::Oriented);
+  EXPECT_EQ(hit, midphase::mesh_mesh_intersect(a, pose_a, b, pose_b, request, MeshMeshNodes::Aabb));
+  EXPECT_EQ(contact_pairs(a, pose_a, b, pose_b, request, MeshMeshNodes::Oriented),
+            contact_pairs(a, pose_a, b, pose_b, request, MeshMeshNodes::Aabb));
+  const GeometryDistance d = midphase::mesh_mesh_distance(a, pose_a, b, pose_b, request, MeshMeshNodes::Oriented);
+  const GeometryDistance r = midphase::mesh_mesh_distance(a, pose_a, b, pose_b, request, MeshMeshNodes::Aabb);
+  EXPECT_NEAR(d.result.signed_distance, r.result.signed_distance, distance_tolerance());
+  return hit;
+}
+
 void check_case(const TriangleMesh& a, const Transform& pose_a, const TriangleMesh& b, const Transform& pose_b,
                 Stats& stats) {
   const std::vector<Tri> ta = world_triangles(a, pose_a);
@@ -233,6 +263,7 @@ void check_case(const TriangleMesh& a, const Transform& pose_a, const TriangleMe
   std::vector<GeometryContact> contacts;
   midphase::mesh_mesh_collide_all(a, pose_a, b, pose_b, request, contacts);
   std::set<std::pair<std::uint32_t, std::uint32_t>> pairs;
+  expect_paths_agree(a, pose_a, b, pose_b, request);
   for (const GeometryContact& c : contacts) {
     ASSERT_LT(c.a.triangle, a.triangle_count());
     ASSERT_LT(c.b.triangle, b.triangle_count());
@@ -301,6 +332,26 @@ TEST(MeshMesh, BoxBoxBruteForce) {
 
 // Axis-aligned boxes (common rotation) apart by a gap g along x: distance g exactly, witnesses
 // on the facing faces, no contact; touching (g = 0): boolean true, distance 0.
+TEST(MeshMesh, OrientedMatchesAabb) {
+  // Larger meshes than the brute-force sweeps (1,280 and 1,536 triangles), 300 poses with
+  // B's centre within reach of A's, half of them with a contact distance.
+  const TriangleMesh a = make(icosphere(3, Real(0.6)));
+  const TriangleMesh b = make(torus(Real(0.8), Real(0.2), 48, 16));
+  test::Random rng(21);
+  int hits = 0;
+  const int cases = 300;
+  for (int k = 0; k < cases; ++k) {
+    SCOPED_TRACE(k);
+    const Transform pose_a = rng.pose(Real(2));
+    const Transform pose_b{pose_a.position + rng.in_ball(Real(1.5)), rng.rotation()};
+    PairRequest request;
+    if (k % 2 == 1) request.contact_distance = Real(0.02);
+    hits += expect_paths_agree(a, pose_a, b, pose_b, request) ? 1 : 0;
+  }
+  EXPECT_GT(hits, cases / 10);
+  EXPECT_LT(hits, cases - cases / 10);
+}
+
 TEST(MeshMesh, BoxGapAnalytic) {
   const TriangleMesh a = make(box_mesh(Vec3(0.5, 0.5, 0.5), 3));
   const TriangleMesh b = make(box_mesh(Vec3(0.3, 0.2, 0.4), 2));
