@@ -1,8 +1,8 @@
 // ConvexHull queries (the hull itself is built in convex_hull_build.cpp).
 //
-//  - support_index: linear scan for hulls up to kLinearScanMaxVertices (four vertices per
-//    step with SSE2 in float: three loads transposed to x, y, z lanes, a running maximum
-//    and index per lane, then the lowest index among the lanes holding the maximum, so
+//  - support_index: linear scan for hulls up to kLinearScanMaxVertices (in float with SSE2,
+//    four vertices per step over blocks stored x x x x y y y y z z z z: every dot product
+//    and the running maximum in one pass, then the first vertex reaching the maximum, so
 //    the answer is the first vertex of largest dot product, as the scalar scan gives);
 //    otherwise hill-climbing (a local maximum
 //    of a linear function over the vertex graph of a convex polytope is global; moves
@@ -29,6 +29,7 @@
 #include <proxima/shapes/convex_hull.hpp>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <limits>
 
@@ -53,53 +54,12 @@ Vec3 closest_on_segment(const Vec3& p, const Vec3& a, const Vec3& b) {
 }
 
 // Index of the first vertex of largest dot product with d (0 when no dot product is larger
-// than -infinity, e.g. for a NaN direction). v holds n >= 1 tightly packed vertices.
-std::uint32_t scan_support(const Vec3* v, std::uint32_t n, const Vec3& d) {
+// than -infinity, e.g. for a NaN direction). v holds n >= 1 tightly packed vertices. The
+// reference path: the vectorised scan below must return the same index.
+[[maybe_unused]] std::uint32_t scan_support(const Vec3* v, std::uint32_t n, const Vec3& d) {
   std::uint32_t best = 0;
   Real best_dot = -std::numeric_limits<Real>::infinity();
-  std::uint32_t i = 0;
-#if PROXIMA_HULL_SCAN_SSE2
-  static_assert(sizeof(Vec3) == 3 * sizeof(float), "packed vertices");
-  if (n >= 4) {
-    const float* p = &v[0].x;
-    const __m128 dx = _mm_set1_ps(d.x);
-    const __m128 dy = _mm_set1_ps(d.y);
-    const __m128 dz = _mm_set1_ps(d.z);
-    __m128 lane_best = _mm_set1_ps(-std::numeric_limits<float>::infinity());
-    __m128i lane_index = _mm_setzero_si128();
-    __m128i index = _mm_set_epi32(3, 2, 1, 0);
-    const __m128i four = _mm_set1_epi32(4);
-    for (; i + 4 <= n; i += 4, p += 12) {
-      const __m128 a = _mm_loadu_ps(p);                                 // x0 y0 z0 x1
-      const __m128 b = _mm_loadu_ps(p + 4);                             // y1 z1 x2 y2
-      const __m128 c = _mm_loadu_ps(p + 8);                             // z2 x3 y3 z3
-      const __m128 t1 = _mm_shuffle_ps(b, c, _MM_SHUFFLE(2, 1, 3, 2));  // x2 y2 x3 y3
-      const __m128 t2 = _mm_shuffle_ps(a, b, _MM_SHUFFLE(1, 0, 2, 1));  // y0 z0 y1 z1
-      const __m128 x = _mm_shuffle_ps(a, t1, _MM_SHUFFLE(2, 0, 3, 0));
-      const __m128 y = _mm_shuffle_ps(t2, t1, _MM_SHUFFLE(3, 1, 2, 0));
-      const __m128 z = _mm_shuffle_ps(t2, c, _MM_SHUFFLE(3, 0, 3, 1));
-      // (x dx + y dy) + z dz: the same operations as glm::dot.
-      const __m128 dot = _mm_add_ps(_mm_add_ps(_mm_mul_ps(x, dx), _mm_mul_ps(y, dy)), _mm_mul_ps(z, dz));
-      const __m128 gt = _mm_cmpgt_ps(dot, lane_best);
-      lane_best = _mm_or_ps(_mm_and_ps(gt, dot), _mm_andnot_ps(gt, lane_best));
-      const __m128i gti = _mm_castps_si128(gt);
-      lane_index = _mm_or_si128(_mm_and_si128(gti, index), _mm_andnot_si128(gti, lane_index));
-      index = _mm_add_epi32(index, four);
-    }
-    alignas(16) float values[4];
-    alignas(16) std::int32_t indices[4];
-    _mm_store_ps(values, lane_best);
-    _mm_store_si128(reinterpret_cast<__m128i*>(indices), lane_index);
-    for (int k = 0; k < 4; ++k) {
-      const auto idx = static_cast<std::uint32_t>(indices[k]);
-      if (values[k] > best_dot || (values[k] == best_dot && idx < best)) {
-        best_dot = values[k];
-        best = idx;
-      }
-    }
-  }
-#endif
-  for (; i < n; ++i) {
+  for (std::uint32_t i = 0; i < n; ++i) {
     const Real dot = glm::dot(v[i], d);
     if (dot > best_dot) {
       best_dot = dot;
@@ -109,6 +69,39 @@ std::uint32_t scan_support(const Vec3* v, std::uint32_t n, const Vec3& d) {
   return best;
 }
 
+#if PROXIMA_HULL_SCAN_SSE2
+// The same answer from the blocks of four (ConvexHull::Data::scan_blocks, n <= the scan's
+// limit): pass 1 takes every dot product, (x dx + y dy) + z dz as glm::dot does, keeps them
+// on the stack and the lane-wise maximum (maxps drops NaN products); pass 2 returns the
+// first vertex whose product equals the maximum. Padding repeats vertex 0, so it can only
+// tie behind it.
+std::uint32_t scan_support_blocks(const float* blocks, std::uint32_t n, const Vec3& d) {
+  constexpr std::uint32_t kMaxBlocks = (ConvexHull::kLinearScanMaxVertices + 3) / 4;
+  alignas(16) float dots[kMaxBlocks * 4];
+  const std::uint32_t nb = (n + 3) / 4;
+  const __m128 dx = _mm_set1_ps(d.x);
+  const __m128 dy = _mm_set1_ps(d.y);
+  const __m128 dz = _mm_set1_ps(d.z);
+  __m128 best = _mm_set1_ps(-std::numeric_limits<float>::infinity());
+  const float* p = blocks;
+  for (std::uint32_t b = 0; b < nb; ++b, p += 12) {
+    const __m128 x = _mm_loadu_ps(p);
+    const __m128 y = _mm_loadu_ps(p + 4);
+    const __m128 z = _mm_loadu_ps(p + 8);
+    const __m128 dot = _mm_add_ps(_mm_add_ps(_mm_mul_ps(x, dx), _mm_mul_ps(y, dy)), _mm_mul_ps(z, dz));
+    _mm_store_ps(dots + 4 * b, dot);
+    best = _mm_max_ps(dot, best);  // NaN in dot: keeps best
+  }
+  best = _mm_max_ps(best, _mm_shuffle_ps(best, best, _MM_SHUFFLE(2, 3, 0, 1)));
+  best = _mm_max_ps(best, _mm_shuffle_ps(best, best, _MM_SHUFFLE(1, 0, 3, 2)));
+  for (std::uint32_t b = 0; b < nb; ++b) {
+    const int mask = _mm_movemask_ps(_mm_cmpeq_ps(_mm_load_ps(dots + 4 * b), best));
+    if (mask != 0) return 4 * b + static_cast<std::uint32_t>(std::countr_zero(static_cast<unsigned>(mask)));
+  }
+  return 0;  // every product NaN
+}
+#endif
+
 }  // namespace
 
 std::uint32_t ConvexHull::support_index(const Vec3& direction, std::uint32_t start_vertex) const {
@@ -116,7 +109,13 @@ std::uint32_t ConvexHull::support_index(const Vec3& direction, std::uint32_t sta
   // and the dot products keep the hull's own resolution.
   const std::vector<Vec3>& v = data_->shifted_vertices;
   const auto n = static_cast<std::uint32_t>(v.size());
-  if (n <= kLinearScanMaxVertices) return scan_support(v.data(), n, direction);
+  if (n <= kLinearScanMaxVertices) {
+#if PROXIMA_HULL_SCAN_SSE2
+    return scan_support_blocks(data_->scan_blocks.data(), n, direction);
+#else
+    return scan_support(v.data(), n, direction);
+#endif
+  }
   std::uint32_t current = start_vertex < n ? start_vertex : 0;
   Real current_dot = glm::dot(v[current], direction);
   // Steepest ascent: each pass moves to the best strictly better neighbour. The dot

@@ -709,6 +709,20 @@ Result<ConvexHull> ConvexHull::create(std::span<const Vec3> points) {
   data->reference = data->local_box.center();
   data->shifted_vertices.reserve(data->vertices.size());
   for (const Vec3& v : data->vertices) data->shifted_vertices.push_back(v - data->reference);
+  {
+    // Blocks of four vertices as x x x x y y y y z z z z; padding repeats vertex 0, which
+    // can never be the first vertex of largest dot product ahead of vertex 0 itself.
+    const std::size_t nv = data->shifted_vertices.size();
+    const std::size_t blocks = (nv + 3) / 4;
+    data->scan_blocks.assign(blocks * 12, Real(0));
+    for (std::size_t i = 0; i < blocks * 4; ++i) {
+      const Vec3& p = data->shifted_vertices[i < nv ? i : 0];
+      Real* block = data->scan_blocks.data() + (i / 4) * 12 + (i % 4);
+      block[0] = p.x;
+      block[4] = p.y;
+      block[8] = p.z;
+    }
+  }
   const D3 ref{double(data->reference.x), double(data->reference.y), double(data->reference.z)};
   data->shifted_offsets.reserve(data->faces.size());
   for (const HullFace& f : data->faces) {

@@ -5,6 +5,7 @@
 ///
 /// Steps (Gilbert, Johnson, Keerthi, IEEE J. Robotics and Automation 1988):
 ///   1. w0 = s_A(d) - s_B(-d) for an initial direction d (warm-start axis or a guess);
+///      -d.w0/|d| is already a lower bound of the distance (boolean mode may stop here);
 ///   2. repeat: w = s_A(-v) - s_B(v) for the current closest point v of the Minkowski
 ///      difference D = A - B; stop when the duality gap |v|^2 - v.w is small (relative or
 ///      absolute), when w adds nothing, when |v| stops decreasing, or at the cap;
@@ -81,6 +82,9 @@ struct Result {
   Vec3 point_b{Real(0)};       ///< witness on B (common frame)
   Simplex simplex;             ///< final simplex (EPA starts from it)
   Real lower_bound = Real(0);  ///< proven lower bound on the distance
+  /// EarlyExit: the direction u (A to B, not unit) whose supporting plane of D proves the
+  /// distance above the margin (support of D along u below -margin |u|); zero otherwise.
+  Vec3 separating_axis{Real(0)};
   int iterations = 0;
 };
 
@@ -284,7 +288,20 @@ Result distance(SupportA& support_a, SupportB& support_b, const Vec3& initial_di
   Vec3 v = s.v[0].w;
   Real vv = glm::dot(v, v);
   Real scale2 = vv;  // largest |w|^2 seen: the noise level of the dot products
-  Real lower = Real(0);
+  // The first vertex is the support of D along d0: its plane bounds the distance below
+  // already, so a good axis (the cached separating axis of a coherent pair, or the line
+  // between the centres) ends a boolean query after one pair of support calls.
+  Real lower = std::max(-glm::dot(d0, s.v[0].w) / std::sqrt(glm::dot(d0, d0)), Real(0));
+  if (settings.margin >= Real(0) && lower > settings.margin) {
+    r.status = Status::EarlyExit;
+    r.v = v;
+    r.distance = std::sqrt(vv);
+    r.point_a = s.v[0].a;
+    r.point_b = s.v[0].b;
+    r.lower_bound = std::min(lower, r.distance);
+    r.separating_axis = d0;
+    return r;
+  }
   Status status = Status::MaxIterations;
   Vertex last = s.v[0];
   bool momentum = settings.variant == Variant::Nesterov;
@@ -317,6 +334,7 @@ Result distance(SupportA& support_a, SupportB& support_b, const Vec3& initial_di
     if (lb > lower) lower = lb;
     if (settings.margin >= Real(0) && lower > settings.margin) {
       status = Status::EarlyExit;
+      r.separating_axis = -dir;
       break;
     }
     // Duality gap of v: |v| - v.w/|v| (only meaningful with the support at -v).

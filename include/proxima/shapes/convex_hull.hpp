@@ -165,10 +165,13 @@ class ConvexHull {
     Real tolerance = Real(0);                     ///< absolute tolerance of contains / on-surface tests
     Vec3 reference{Real(0)};                      ///< centre of the box: queries work relative to it
     std::vector<Vec3> shifted_vertices;           ///< vertices - reference (exact for far hulls)
-    std::vector<Real> shifted_offsets;            ///< face offsets relative to reference
-    Real volume = Real(0);                        ///< volume (length^3)
-    Vec3 centroid{Real(0)};                       ///< centre of volume, local frame
-    Mat3 unit_inertia{Real(0)};                   ///< inertia about the centroid at density 1
+    /// shifted_vertices in blocks of four, structure of arrays per block (x0 x1 x2 x3,
+    /// y0..y3, z0..z3), the last block padded with copies of vertex 0: the scan's layout.
+    std::vector<Real> scan_blocks;
+    std::vector<Real> shifted_offsets;  ///< face offsets relative to reference
+    Real volume = Real(0);              ///< volume (length^3)
+    Vec3 centroid{Real(0)};             ///< centre of volume, local frame
+    Mat3 unit_inertia{Real(0)};         ///< inertia about the centroid at density 1
   };
 
  private:
