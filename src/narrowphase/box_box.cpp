@@ -1,28 +1,33 @@
 // Box-box: separating axes, exact distance and clipped contact manifold, all in the frame of
-// one box with fixed-size stack buffers (no general-purpose face structures).
+// one box with fixed-size stack buffers and plain arrays (no general-purpose face structures).
 //
 // Steps (Gottschalk, Lin, Manocha, "OBBTree", SIGGRAPH 1996, for the 15 axes; Ericson,
-// Real-Time Collision Detection 4.4.1; Box2D / Dirk Gregorius for the clipping):
-//  1. Work in A's frame: R = A^T B (from the relative rotation, once), t = A^T (cB - cA).
-//     The 15 candidate axes are A's 3 face normals, B's 3 and the 9 cross products
-//     A_i x B_j; a cross product of nearly parallel edges is skipped (its direction is
-//     noise, and a parallel edge pair adds no face to the Minkowski difference). Each axis
-//     is normalised so its separation is a length.
-//  2. The largest separation over the axes decides: > 0 separated, <= 0 overlapping with
-//     depth = -(largest separation), which is exact for polytopes (every face of the
-//     Minkowski difference has one of these normals).
+// Real-Time Collision Detection 4.4.1 and 5.1.9; Box2D / Dirk Gregorius, "Robust Contact
+// Creation for Physics Simulations", GDC 2015, for the clipping and the face bias):
+//  1. Both rotations become matrices once; in A's frame R = A^T B (r[i][j] = A_i . B_j), its
+//     absolute value, and t = A^T (cB - cA). The 15 candidate axes are A's 3 face normals,
+//     B's 3 and the 9 cross products A_i x B_j; a cross product of nearly parallel edges is
+//     skipped (its direction is noise, and a parallel edge pair adds no face to the
+//     Minkowski difference). Each axis is normalised so its separation is a length.
+//  2. The 6 face axes first, with an early out when one separates by more than the contact
+//     distance; then the 9 edge axes. The largest separation decides: > 0 separated,
+//     <= 0 overlapping with depth = -(largest separation), exact for polytopes (every face
+//     of the Minkowski difference has one of these normals). A PairCache keeps the last
+//     axis, tried first: while it still separates, nothing else is computed.
 //  3. Separated: the exact distance is the smallest over the 16 corners clamped against the
 //     other box and the edge pairs A_i, B_j whose axis separates the boxes by less than the
 //     best distance so far (the separation along an axis bounds every distance from below;
 //     the supporting edges along the separating side are the only candidates of a pair).
-//  4. Manifold: the chosen axis (a face axis unless an edge axis is clearly shallower, for
-//     stable manifolds); face axis: the reference face is a rectangle in its box's frame,
-//     the incident face's 4 corners are projected along the normal onto its plane and
-//     clipped against it in 2D (at most 8 points, gaps interpolated linearly), reduced to 4
-//     by area (manifold_reduction.hpp) before anything is mapped to the world; edge axis:
-//     the closest points of the two supporting edges. Separated pairs within the contact
-//     distance clip the faces supporting the exact distance normal the same way.
-//  5. The last separating axis is kept in PairCache::sat_feature and tried first.
+//  4. Manifold: a face axis unless an edge axis is clearly shallower (relative bias, so the
+//     choice is stable from frame to frame), A's face before B's. Face axis: the incident
+//     face's 4 corners are written in the reference face's 2D frame (u, v) with their gap
+//     along the normal, clipped against the reference rectangle's 4 sides (one coordinate
+//     bound each, sides that clip nothing skipped), reduced to max_contacts by area only
+//     when more points survive (deepest, farthest, largest triangle, largest quadrilateral,
+//     manifold_reduction.hpp's steps in 2D); only the chosen points are mapped to the world.
+//     Edge axis: the closest points of the two supporting edges (closed form, clamped).
+//     Separated pairs within the contact distance clip the faces supporting the exact
+//     distance normal the same way (the projection direction is then tilted).
 #include <proxima/geometry/closest_points.hpp>
 
 #include <array>
@@ -30,7 +35,6 @@
 #include <limits>
 
 #include "face_clipping.hpp"
-#include "manifold_reduction.hpp"
 #include "pairs_polyhedral.hpp"
 
 namespace proxima::narrow {
@@ -38,24 +42,32 @@ namespace {
 
 // Edge axes whose |A_i x B_j| (the sine of the angle) is below this are skipped.
 const Real kParallelSine = Real(4) * kSqrtEpsilon;
+const Real kParallelSine2 = kParallelSine * kParallelSine;
 // An edge axis replaces the best face axis in manifolds only when its separation exceeds
 // kEdgeRelative * face separation (separations are negative when overlapping).
 constexpr Real kEdgeRelative = Real(0.98);
 // B's face axis replaces A's only when its separation exceeds kFaceRelative * A's.
 constexpr Real kFaceRelative = Real(0.98);
+// Separated pairs take their normal from the closest points only when these are more than
+// kDirectionGap * tolerance apart; closer, their difference is mostly rounding and the
+// separating axis (whose separation is within that gap of the distance) gives the normal.
+constexpr Real kDirectionGap = Real(0.1);
 constexpr int kAxes = 15;
 constexpr Real kInfinity = std::numeric_limits<Real>::infinity();
+constexpr int kNext[3] = {1, 2, 0};
+constexpr int kPrev[3] = {2, 0, 1};
 
-// The pair in A's frame.
+// The pair in A's frame, with plain arrays (glm's operator[] with a run-time index is a
+// switch) and both world rotations as matrices (columns: the box's axes in the world).
 struct BoxPair {
-  Vec3 a;         // A's half extents
-  Vec3 b;         // B's half extents
+  Real a[3];      // A's half extents
+  Real b[3];      // B's half extents
   Real r[3][3];   // r[i][j] = A_i . B_j
   Real ar[3][3];  // |r|
-  Vec3 t;         // B's centre in A's frame
-  Real ha[3];     // a, b and t as plain arrays (glm's operator[] is a switch)
-  Real hb[3];
-  Real tt[3];
+  Real t[3];      // B's centre in A's frame
+  Real tb[3];     // the same vector in B's axes: tb[j] = B_j . t
+  Mat3 rot_a;
+  Mat3 rot_b;
   Real tol;       // distance tolerance of the pair
   Real rounding;  // a few rounding errors at the pair's own size (not clamped to 1)
 };
@@ -63,28 +75,35 @@ struct BoxPair {
 BoxPair make_pair(const Box& a, const Transform& pose_a, const Box& b, const Transform& pose_b,
                   const PairRequest& request) {
   BoxPair p;
-  p.a = a.half_extents();
-  p.b = b.half_extents();
-  const Quat qa_inv = glm::conjugate(pose_a.rotation);
-  const Mat3 rel = glm::mat3_cast(qa_inv * pose_b.rotation);  // column j = B_j in A's frame
+  const Vec3 ha = a.half_extents();
+  const Vec3 hb = b.half_extents();
+  p.a[0] = ha.x;
+  p.a[1] = ha.y;
+  p.a[2] = ha.z;
+  p.b[0] = hb.x;
+  p.b[1] = hb.y;
+  p.b[2] = hb.z;
+  p.rot_a = glm::mat3_cast(pose_a.rotation);
+  p.rot_b = glm::mat3_cast(pose_b.rotation);
+  const Vec3 d = pose_b.position - pose_a.position;
   for (int i = 0; i < 3; ++i) {
+    const Vec3& ai = p.rot_a[i];
     for (int j = 0; j < 3; ++j) {
-      p.r[i][j] = rel[j][i];
+      const Vec3& bj = p.rot_b[j];
+      p.r[i][j] = ai.x * bj.x + ai.y * bj.y + ai.z * bj.z;
       p.ar[i][j] = std::abs(p.r[i][j]);
     }
+    p.t[i] = ai.x * d.x + ai.y * d.y + ai.z * d.z;
   }
-  p.t = qa_inv * (pose_b.position - pose_a.position);
-  for (int i = 0; i < 3; ++i) {
-    p.ha[i] = p.a[i];
-    p.hb[i] = p.b[i];
-    p.tt[i] = p.t[i];
-  }
-  const Real scale = std::max({max_abs_component(p.a), max_abs_component(p.b), max_abs_component(p.t)});
+  for (int j = 0; j < 3; ++j) p.tb[j] = p.t[0] * p.r[0][j] + p.t[1] * p.r[1][j] + p.t[2] * p.r[2][j];
+  Real scale = std::max({p.a[0], p.a[1], p.a[2], p.b[0], p.b[1], p.b[2]});
+  scale = std::max({scale, std::abs(p.t[0]), std::abs(p.t[1]), std::abs(p.t[2])});
   p.tol = resolve_tolerance(request, scale);
   p.rounding = kRelativeTolerance * scale;
   return p;
 }
 
+// B's axis j in A's frame.
 Vec3 b_axis(const BoxPair& p, int j) { return Vec3(p.r[0][j], p.r[1][j], p.r[2][j]); }
 
 // Separation of the boxes along axis k (0-2 A's faces, 3-5 B's, 6-14 A_i x B_j with
@@ -94,32 +113,30 @@ bool axis_separation(const BoxPair& p, int k, Real& sep, Vec3& axis) {
   Real l[3] = {Real(0), Real(0), Real(0)};
   if (k < 3) {
     const int i = k;
-    const Real rb = p.hb[0] * p.ar[i][0] + p.hb[1] * p.ar[i][1] + p.hb[2] * p.ar[i][2];
-    sep = std::abs(p.tt[i]) - (p.ha[i] + rb);
-    l[i] = p.tt[i] >= Real(0) ? Real(1) : Real(-1);
+    sep = std::abs(p.t[i]) - (p.a[i] + p.b[0] * p.ar[i][0] + p.b[1] * p.ar[i][1] + p.b[2] * p.ar[i][2]);
+    l[i] = p.t[i] >= Real(0) ? Real(1) : Real(-1);
     axis = Vec3(l[0], l[1], l[2]);
     return true;
   }
   if (k < 6) {
     const int j = k - 3;
-    const Real ra = p.ha[0] * p.ar[0][j] + p.ha[1] * p.ar[1][j] + p.ha[2] * p.ar[2][j];
-    const Real tj = p.tt[0] * p.r[0][j] + p.tt[1] * p.r[1][j] + p.tt[2] * p.r[2][j];
-    sep = std::abs(tj) - (ra + p.hb[j]);
-    const Real s = tj >= Real(0) ? Real(1) : Real(-1);
+    sep = std::abs(p.tb[j]) - (p.a[0] * p.ar[0][j] + p.a[1] * p.ar[1][j] + p.a[2] * p.ar[2][j] + p.b[j]);
+    const Real s = p.tb[j] >= Real(0) ? Real(1) : Real(-1);
     axis = s * b_axis(p, j);
     return true;
   }
   const int i = (k - 6) / 3;
   const int j = (k - 6) % 3;
-  const int i1 = (i + 1) % 3;
-  const int i2 = (i + 2) % 3;
-  const int j1 = (j + 1) % 3;
-  const int j2 = (j + 2) % 3;
-  const Real len = std::sqrt(p.r[i1][j] * p.r[i1][j] + p.r[i2][j] * p.r[i2][j]);
-  if (!(len > kParallelSine)) return false;
-  const Real ra = p.ha[i1] * p.ar[i2][j] + p.ha[i2] * p.ar[i1][j];
-  const Real rb = p.hb[j1] * p.ar[i][j2] + p.hb[j2] * p.ar[i][j1];
-  const Real tl = p.tt[i2] * p.r[i1][j] - p.tt[i1] * p.r[i2][j];
+  const int i1 = kNext[i];
+  const int i2 = kPrev[i];
+  const int j1 = kNext[j];
+  const int j2 = kPrev[j];
+  const Real len2 = p.r[i1][j] * p.r[i1][j] + p.r[i2][j] * p.r[i2][j];
+  if (!(len2 > kParallelSine2)) return false;
+  const Real len = std::sqrt(len2);
+  const Real ra = p.a[i1] * p.ar[i2][j] + p.a[i2] * p.ar[i1][j];
+  const Real rb = p.b[j1] * p.ar[i][j2] + p.b[j2] * p.ar[i][j1];
+  const Real tl = p.t[i2] * p.r[i1][j] - p.t[i1] * p.r[i2][j];
   sep = (std::abs(tl) - (ra + rb)) / len;
   const Real sign = tl < Real(0) ? Real(-1) : Real(1);
   l[i1] = -sign * p.r[i2][j] / len;
@@ -128,132 +145,151 @@ bool axis_separation(const BoxPair& p, int k, Real& sep, Vec3& axis) {
   return true;
 }
 
-struct SatResult {
-  Real max_sep = -kInfinity;  // over all axes (exact)
-  int max_axis = 0;
-  Vec3 max_normal{Real(0), Real(0), Real(1)};
-  Real face_a_sep = -kInfinity;
-  int face_a_axis = 0;
-  Real face_b_sep = -kInfinity;
-  int face_b_axis = 3;
-  Real edge_sep = -kInfinity;
-  int edge_axis = -1;
-  bool early_out = false;  // stopped at an axis separating by more than the limit
-  // Separation of each edge axis (-infinity when skipped); complete only without early out.
-  std::array<Real, 9> edge_seps;
-};
-
-// Separations along all 15 axes, straight-line (no axis vectors): sep[k] as in
-// axis_separation, -infinity for a skipped edge axis. Returns the largest face separation
-// (the 6 face axes are computed first so a caller may stop there).
-void face_separations(const BoxPair& p, Real* sep) {
-  for (int i = 0; i < 3; ++i) {
-    sep[i] = std::abs(p.tt[i]) - (p.ha[i] + p.hb[0] * p.ar[i][0] + p.hb[1] * p.ar[i][1] + p.hb[2] * p.ar[i][2]);
-  }
-  for (int j = 0; j < 3; ++j) {
-    const Real tj = p.tt[0] * p.r[0][j] + p.tt[1] * p.r[1][j] + p.tt[2] * p.r[2][j];
-    sep[3 + j] = std::abs(tj) - (p.ha[0] * p.ar[0][j] + p.ha[1] * p.ar[1][j] + p.ha[2] * p.ar[2][j] + p.hb[j]);
-  }
+// The unit axis k in A's frame, A to B (k not a skipped edge axis).
+Vec3 axis_normal(const BoxPair& p, int k) {
+  Real sep = Real(0);
+  Vec3 axis(Real(0), Real(0), Real(1));
+  static_cast<void>(axis_separation(p, k, sep, axis));
+  return axis;
 }
 
-void edge_separations(const BoxPair& p, Real* sep) {
-  static constexpr int kNext[3] = {1, 2, 0};
-  static constexpr int kPrev[3] = {2, 0, 1};
+// The world normal of axis k, A to B.
+Vec3 world_normal(const BoxPair& p, int k) {
+  if (k < 3) return p.t[k] >= Real(0) ? p.rot_a[k] : -p.rot_a[k];
+  if (k < 6) return p.tb[k - 3] >= Real(0) ? p.rot_b[k - 3] : -p.rot_b[k - 3];
+  return p.rot_a * axis_normal(p, k);
+}
+
+struct SatResult {
+  Real sep[kAxes];  // per axis; edges (6-14) only when edges_done, -infinity when skipped
+  Real max_sep;     // over the computed axes (an edge axis must beat a face axis by the rounding)
+  int max_axis;
+  int face_a_axis;  // A's best face axis (0-2), the first on ties
+  int face_b_axis;  // B's best face axis (3-5)
+  int edge_axis;    // best edge axis (6-14), -1 when none
+  bool edges_done;
+};
+
+// Separations along the 6 face axes, the best of A's and of B's, and the largest.
+void face_separations(const BoxPair& p, SatResult& s) {
+  for (int i = 0; i < 3; ++i) {
+    s.sep[i] = std::abs(p.t[i]) - (p.a[i] + p.b[0] * p.ar[i][0] + p.b[1] * p.ar[i][1] + p.b[2] * p.ar[i][2]);
+  }
+  for (int j = 0; j < 3; ++j) {
+    s.sep[3 + j] = std::abs(p.tb[j]) - (p.a[0] * p.ar[0][j] + p.a[1] * p.ar[1][j] + p.a[2] * p.ar[2][j] + p.b[j]);
+  }
+  s.face_a_axis = s.sep[1] > s.sep[0] ? 1 : 0;
+  if (s.sep[2] > s.sep[s.face_a_axis]) s.face_a_axis = 2;
+  s.face_b_axis = s.sep[4] > s.sep[3] ? 4 : 3;
+  if (s.sep[5] > s.sep[s.face_b_axis]) s.face_b_axis = 5;
+  // Largest face axis, A's first on ties.
+  s.max_axis = s.sep[s.face_b_axis] > s.sep[s.face_a_axis] ? s.face_b_axis : s.face_a_axis;
+  s.max_sep = s.sep[s.max_axis];
+  s.edge_axis = -1;
+  s.edges_done = false;
+}
+
+// Separations along the 9 edge axes, straight-line, then the best edge axis and the
+// largest axis overall.
+void edge_separations(const BoxPair& p, SatResult& s) {
   for (int i = 0; i < 3; ++i) {
     const int i1 = kNext[i];
     const int i2 = kPrev[i];
     for (int j = 0; j < 3; ++j) {
       const int j1 = kNext[j];
       const int j2 = kPrev[j];
-      const Real len = std::sqrt(p.r[i1][j] * p.r[i1][j] + p.r[i2][j] * p.r[i2][j]);
-      const Real ra = p.ha[i1] * p.ar[i2][j] + p.ha[i2] * p.ar[i1][j];
-      const Real rb = p.hb[j1] * p.ar[i][j2] + p.hb[j2] * p.ar[i][j1];
-      const Real tl = p.tt[i2] * p.r[i1][j] - p.tt[i1] * p.r[i2][j];
-      sep[6 + 3 * i + j] = len > kParallelSine ? (std::abs(tl) - (ra + rb)) / len : -kInfinity;
+      const Real len2 = p.r[i1][j] * p.r[i1][j] + p.r[i2][j] * p.r[i2][j];
+      const Real ra = p.a[i1] * p.ar[i2][j] + p.a[i2] * p.ar[i1][j];
+      const Real rb = p.b[j1] * p.ar[i][j2] + p.b[j2] * p.ar[i][j1];
+      const Real tl = p.t[i2] * p.r[i1][j] - p.t[i1] * p.r[i2][j];
+      s.sep[6 + 3 * i + j] = len2 > kParallelSine2 ? (std::abs(tl) - (ra + rb)) / std::sqrt(len2) : -kInfinity;
     }
   }
+  Real edge_sep = -kInfinity;
+  for (int k = 6; k < kAxes; ++k) {
+    const Real e = s.sep[k];
+    if (e > edge_sep) {
+      edge_sep = e;
+      s.edge_axis = k;
+    }
+  }
+  // An edge axis must beat the face axes by more than the rounding: nearly parallel edges
+  // give an axis next to a face normal with the same separation up to rounding, and its
+  // supporting edges would not witness it.
+  if (s.edge_axis >= 0 && edge_sep > s.max_sep + p.rounding) {
+    s.max_sep = edge_sep;
+    s.max_axis = s.edge_axis;
+  }
+  s.edges_done = true;
 }
 
-// Runs the 15 axes; stops after the face axes when one separates by more than `limit`.
-SatResult run_sat(const BoxPair& p, Real limit, const PairCache* cache) {
+// The full SAT (no early out).
+SatResult full_sat(const BoxPair& p) {
   SatResult s;
-  if (cache != nullptr && cache->valid && cache->sat_feature < static_cast<std::uint32_t>(kAxes)) {
-    Real sep = Real(0);
-    Vec3 axis(Real(0), Real(0), Real(1));
-    const int k = static_cast<int>(cache->sat_feature);
-    if (axis_separation(p, k, sep, axis) && sep > limit) {
-      s.max_sep = sep;
-      s.max_axis = k;
-      s.max_normal = axis;
-      s.early_out = true;
-      return s;
-    }
-  }
-  Real sep[kAxes];
-  face_separations(p, sep);
-  s.face_a_axis = sep[1] > sep[0] ? 1 : 0;
-  if (sep[2] > sep[s.face_a_axis]) s.face_a_axis = 2;
-  s.face_a_sep = sep[s.face_a_axis];
-  s.face_b_axis = sep[4] > sep[3] ? 4 : 3;
-  if (sep[5] > sep[s.face_b_axis]) s.face_b_axis = 5;
-  s.face_b_sep = sep[s.face_b_axis];
-  // Largest face axis, A's first on ties.
-  s.max_axis = s.face_b_sep > s.face_a_sep ? s.face_b_axis : s.face_a_axis;
-  s.max_sep = sep[s.max_axis];
-  if (s.max_sep > limit) {
-    s.early_out = true;
-  } else {
-    edge_separations(p, sep);
-    for (int k = 6; k < kAxes; ++k) {
-      const Real e = sep[k];
-      s.edge_seps[static_cast<std::size_t>(k - 6)] = e;
-      if (e > s.edge_sep) {
-        s.edge_sep = e;
-        s.edge_axis = k;
-      }
-      // An edge axis must beat the face axes by more than the rounding: nearly parallel
-      // edges give an axis next to a face normal with the same separation up to rounding,
-      // and its supporting edges would not witness it.
-      if (e > s.max_sep + (s.max_axis < 6 ? p.rounding : Real(0))) {
-        s.max_sep = e;
-        s.max_axis = k;
-      }
-    }
-    s.early_out = s.max_sep > limit;
-  }
-  Real check = Real(0);
-  static_cast<void>(axis_separation(p, s.max_axis, check, s.max_normal));
+  face_separations(p, s);
+  edge_separations(p, s);
   return s;
 }
 
-void store_cache(PairCache* cache, const SatResult& s) {
+void store_cache(PairCache* cache, const BoxPair& p, int axis) {
   if (cache == nullptr) return;
-  cache->sat_feature = static_cast<std::uint32_t>(s.max_axis);
-  cache->axis = s.max_normal;
+  cache->sat_feature = static_cast<std::uint32_t>(axis);
+  cache->axis = axis_normal(p, axis);
   cache->valid = true;
 }
 
-// Supporting edge of A (index i) and B (index j) along the A-frame normal n, as segments.
-void supporting_edges(const BoxPair& p, int i, int j, const Vec3& n, Vec3& a0, Vec3& a1, Vec3& b0, Vec3& b1) {
+// The cached axis when it still separates the pair by more than `limit` (its A-frame
+// direction refreshed in the cache), else -1.
+int cached_separating_axis(const BoxPair& p, Real limit, PairCache* cache) {
+  if (cache == nullptr || !cache->valid || cache->sat_feature >= static_cast<std::uint32_t>(kAxes)) return -1;
+  const int k = static_cast<int>(cache->sat_feature);
+  Real sep = Real(0);
+  Vec3 axis;
+  if (!axis_separation(p, k, sep, axis) || !(sep > limit)) return -1;
+  cache->axis = axis;
+  return k;
+}
+
+// Supporting edge of A (index i) and B (index j) along the A-frame normal n: centres and
+// B's edge direction, in A's frame (A's edge runs along A_i).
+void supporting_edges(const BoxPair& p, int i, int j, const Vec3& n, Vec3& ca, Vec3& cb, Vec3& eb) {
   const Real nn[3] = {n.x, n.y, n.z};
-  Real ca[3];
-  Real ea[3] = {Real(0), Real(0), Real(0)};
-  for (int m = 0; m < 3; ++m) ca[m] = m == i ? Real(0) : (nn[m] >= Real(0) ? p.ha[m] : -p.ha[m]);
-  ea[i] = p.ha[i];
-  a0 = Vec3(ca[0] - ea[0], ca[1] - ea[1], ca[2] - ea[2]);
-  a1 = Vec3(ca[0] + ea[0], ca[1] + ea[1], ca[2] + ea[2]);
-  Vec3 cb = p.t;
-  Vec3 eb(Real(0));
+  Real c[3];
+  for (int m = 0; m < 3; ++m) c[m] = m == i ? Real(0) : (nn[m] >= Real(0) ? p.a[m] : -p.a[m]);
+  ca = Vec3(c[0], c[1], c[2]);
+  cb = Vec3(p.t[0], p.t[1], p.t[2]);
   for (int m = 0; m < 3; ++m) {
-    const Vec3 bm = b_axis(p, m);
-    if (m == j) {
-      eb = p.hb[m] * bm;
-    } else {
-      cb += (glm::dot(n, bm) <= Real(0) ? p.hb[m] : -p.hb[m]) * bm;
-    }
+    if (m == j) continue;
+    const Real nb = nn[0] * p.r[0][m] + nn[1] * p.r[1][m] + nn[2] * p.r[2][m];
+    cb += (nb <= Real(0) ? p.b[m] : -p.b[m]) * b_axis(p, m);
   }
-  b0 = cb - eb;
-  b1 = cb + eb;
+  eb = b_axis(p, j);
+}
+
+// Closest points in A's frame of A's edge (centre ca, direction A_i, half length a_i) and
+// B's edge (centre cb, unit direction eb, half length b_j): the lines' closest points,
+// clamped to the segments (Ericson 5.1.9 with centred parameters).
+void closest_edge_points(const BoxPair& p, int i, int j, const Vec3& ca, const Vec3& cb, const Vec3& eb, Vec3& on_a,
+                         Vec3& on_b) {
+  const Vec3 w = cb - ca;
+  const Real wv[3] = {w.x, w.y, w.z};
+  const Real c = p.r[i][j];         // A_i . B_j
+  const Real da = wv[i];            // A_i . w
+  const Real db = glm::dot(eb, w);  // B_j . w
+  const Real denom = Real(1) - c * c;
+  // s along A_i, u along B_j: minimise |w + u eb - s A_i|.
+  Real s = denom > Real(0) ? (da - c * db) / denom : Real(0);
+  s = std::clamp(s, -p.a[i], p.a[i]);
+  Real u = c * s - db;
+  if (u < -p.b[j] || u > p.b[j]) {
+    u = std::clamp(u, -p.b[j], p.b[j]);
+    s = std::clamp(da + c * u, -p.a[i], p.a[i]);
+  }
+  on_a = ca;
+  Real oa[3] = {on_a.x, on_a.y, on_a.z};
+  oa[i] += s;
+  on_a = Vec3(oa[0], oa[1], oa[2]);
+  on_b = cb + u * eb;
 }
 
 // Closest points of two boxes in A's frame and their squared distance.
@@ -264,94 +300,87 @@ struct ClosestFeatures {
 };
 
 // Exact closest points of two separated boxes, in A's frame (step 3). `s` must come from a
-// full SAT run (no early out).
+// full SAT run (edges_done).
 ClosestFeatures closest_features(const BoxPair& p, const SatResult& s) {
   ClosestFeatures best;
+  const Vec3 av(p.a[0], p.a[1], p.a[2]);
+  const Vec3 bv(p.b[0], p.b[1], p.b[2]);
+  const Vec3 t(p.t[0], p.t[1], p.t[2]);
   const Vec3 bx = b_axis(p, 0);
   const Vec3 by = b_axis(p, 1);
   const Vec3 bz = b_axis(p, 2);
   // B's corners against A.
   for (int c = 0; c < 8; ++c) {
-    const Vec3 v =
-        p.t + ((c & 1) ? p.b.x : -p.b.x) * bx + ((c & 2) ? p.b.y : -p.b.y) * by + ((c & 4) ? p.b.z : -p.b.z) * bz;
-    const Vec3 q = glm::clamp(v, -p.a, p.a);
+    const Vec3 v = t + ((c & 1) ? bv.x : -bv.x) * bx + ((c & 2) ? bv.y : -bv.y) * by + ((c & 4) ? bv.z : -bv.z) * bz;
+    const Vec3 q = glm::clamp(v, -av, av);
     const Real d2 = length_squared(v - q);
     if (d2 < best.d2) best = {d2, q, v};
   }
   // A's corners against B (in B's frame, centred on B).
   for (int c = 0; c < 8; ++c) {
-    const Vec3 v((c & 1) ? p.a.x : -p.a.x, (c & 2) ? p.a.y : -p.a.y, (c & 4) ? p.a.z : -p.a.z);
-    const Vec3 w = v - p.t;
+    const Vec3 v((c & 1) ? av.x : -av.x, (c & 2) ? av.y : -av.y, (c & 4) ? av.z : -av.z);
+    const Vec3 w = v - t;
     const Vec3 local(glm::dot(w, bx), glm::dot(w, by), glm::dot(w, bz));
-    const Vec3 q = glm::clamp(local, -p.b, p.b);
+    const Vec3 q = glm::clamp(local, -bv, bv);
     const Real d2 = length_squared(local - q);
-    if (d2 < best.d2) best = {d2, v, p.t + q.x * bx + q.y * by + q.z * bz};
+    if (d2 < best.d2) best = {d2, v, t + q.x * bx + q.y * by + q.z * bz};
   }
   // Edge pairs: the closest points of edges A_i, B_j (inner points of both) differ along
   // +-(A_i x B_j), on the side where that axis separates the boxes, by at least its
   // separation; a pair whose axis does not separate, or separates by more than the best
   // distance so far, cannot improve it.
   for (int k = 0; k < 9; ++k) {
-    const Real sep = s.edge_seps[static_cast<std::size_t>(k)];
+    const Real sep = s.sep[6 + k];
     if (!(sep > Real(0)) || sep * sep >= best.d2) continue;
     Real check = Real(0);
     Vec3 n(Real(0), Real(0), Real(1));
     if (!axis_separation(p, 6 + k, check, n)) continue;
-    Vec3 a0;
-    Vec3 a1;
-    Vec3 b0;
-    Vec3 b1;
-    supporting_edges(p, k / 3, k % 3, n, a0, a1, b0, b1);
-    const geometry::SegmentPair sp = geometry::closest_points_segment_segment(a0, a1, b0, b1);
+    const int i = k / 3;
+    const int j = k % 3;
+    Vec3 ca;
+    Vec3 cb;
+    Vec3 eb;
+    supporting_edges(p, i, j, n, ca, cb, eb);
+    Vec3 a1 = ca;
+    Vec3 a0 = ca;
+    a1[i] += p.a[i];
+    a0[i] -= p.a[i];
+    const geometry::SegmentPair sp =
+        geometry::closest_points_segment_segment(a0, a1, cb - p.b[j] * eb, cb + p.b[j] * eb);
     if (sp.distance_squared < best.d2) best = {sp.distance_squared, sp.on_a, sp.on_b};
   }
   return best;
 }
 
-// ---- Face clipping in the reference box's frame -------------------------------------------
+// ---- Face clipping in the reference box's 2D face frame -------------------------------
 
-// The incident box seen from the reference box: half extents, axes and centre in the
-// reference frame.
-struct RefFrame {
-  Vec3 h;         // reference half extents
-  Vec3 g;         // incident half extents
-  Vec3 axes[3];   // incident axes in the reference frame
-  Vec3 c;         // incident centre in the reference frame
-  bool ref_is_a;  // the reference box is A
+// Candidate contacts on the reference face: 2D coordinates (u, v) along the reference
+// box's axes i1, i2, gap along the projection direction, feature ids. At most 8 after
+// clipping a quadrilateral by 4 sides, plus one slot for a distance witness. Plain arrays
+// without initialisers (the buffers stay raw).
+struct FacePoints {
+  Real u[9];
+  Real v[9];
+  Real gap[9];
+  std::uint32_t id[9];    // incident corner (sign bits) or crossing hash
+  std::uint32_t side[9];  // side plane that made a crossing, kCorner for an incident corner
+  int count;
 };
 
-RefFrame frame_of_a(const BoxPair& p) {
-  RefFrame f;
-  f.h = p.a;
-  f.g = p.b;
-  for (int j = 0; j < 3; ++j) f.axes[j] = b_axis(p, j);
-  f.c = p.t;
-  f.ref_is_a = true;
-  return f;
-}
+constexpr std::uint32_t kCorner = 0xFFu;
 
-RefFrame frame_of_b(const BoxPair& p) {
-  RefFrame f;
-  f.h = p.b;
-  f.g = p.a;
-  for (int i = 0; i < 3; ++i) f.axes[i] = Vec3(p.r[i][0], p.r[i][1], p.r[i][2]);
-  const Vec3 bx = b_axis(p, 0);
-  const Vec3 by = b_axis(p, 1);
-  const Vec3 bz = b_axis(p, 2);
-  f.c = -Vec3(glm::dot(p.t, bx), glm::dot(p.t, by), glm::dot(p.t, bz));
-  f.ref_is_a = false;
-  return f;
-}
-
-// A clipped point: 2D position on the reference plane, gap along the projection direction,
-// feature ids. Deliberately without default member initialisers (stack buffers stay raw).
-struct ClipPoint {
-  Real u;
-  Real v;
-  Real gap;
-  std::uint32_t id;    // incident corner (sign bits) or crossing hash
-  std::uint32_t side;  // side plane that made a crossing
-  bool crossing;
+// The reference face and the projection: the reference box's face i on side s (normal
+// s e_i in its frame), the projection direction `dir` from the reference box towards the
+// incident one in the reference frame, the reference box's half extents, and where the
+// reference frame lies in the world.
+struct Reference {
+  int i;
+  int i1;
+  int i2;
+  Real s;
+  Real h[3];
+  bool is_a;
+  Vec3 dir_world;  // dir in the world
 };
 
 constexpr std::uint32_t edge_hash(std::uint32_t a, std::uint32_t b, std::uint32_t side) {
@@ -361,158 +390,313 @@ constexpr std::uint32_t edge_hash(std::uint32_t a, std::uint32_t b, std::uint32_
 }
 
 // Keeps the part of polygon `in` (n points) where sign * coordinate <= limit (coordinate u
-// when `along_u`, else v); writes to `out`, returns the new count (<= n + 1).
-int clip_side(const ClipPoint* in, int n, ClipPoint* out, bool along_u, Real sign, Real limit, std::uint32_t side) {
+// when `along_u`, else v); writes to `out`, returns the new count (<= n + 1). A crossing is
+// made only where the two ends lie strictly on opposite sides (an end on the side plane is
+// kept as it is, so no point is doubled). Returns -1 when no point lies outside (nothing to
+// clip, `out` untouched).
+int clip_side(const FacePoints& in, FacePoints& out, bool along_u, Real sign, Real limit, std::uint32_t side) {
+  const int n = in.count;
+  const Real* x = along_u ? in.u : in.v;
+  Real d[8];
+  bool any_out = false;
+  for (int k = 0; k < n; ++k) {
+    d[k] = sign * x[k] - limit;
+    any_out = any_out || d[k] > Real(0);
+  }
+  if (!any_out) return -1;
   int m = 0;
-  for (int i = 0; i < n; ++i) {
-    const ClipPoint& c = in[i];
-    const ClipPoint& x = in[i + 1 == n ? 0 : i + 1];
-    const Real dc = sign * (along_u ? c.u : c.v) - limit;
-    const Real dx = sign * (along_u ? x.u : x.v) - limit;
-    if (dc <= Real(0)) out[m++] = c;
-    if ((dc <= Real(0)) != (dx <= Real(0))) {
+  for (int k = 0; k < n; ++k) {
+    const int q = k + 1 == n ? 0 : k + 1;
+    const Real dc = d[k];
+    const Real dx = d[q];
+    if (dc <= Real(0)) {
+      out.u[m] = in.u[k];
+      out.v[m] = in.v[k];
+      out.gap[m] = in.gap[k];
+      out.id[m] = in.id[k];
+      out.side[m] = in.side[k];
+      ++m;
+    }
+    if ((dc < Real(0) && dx > Real(0)) || (dc > Real(0) && dx < Real(0))) {
       const Real w = dc / (dc - dx);
-      ClipPoint q;
-      q.u = c.u + (x.u - c.u) * w;
-      q.v = c.v + (x.v - c.v) * w;
-      q.gap = c.gap + (x.gap - c.gap) * w;
-      q.id = edge_hash(c.id, x.id, side);
-      q.side = side;
-      q.crossing = true;
-      out[m++] = q;
+      out.u[m] = in.u[k] + (in.u[q] - in.u[k]) * w;
+      out.v[m] = in.v[k] + (in.v[q] - in.v[k]) * w;
+      out.gap[m] = in.gap[k] + (in.gap[q] - in.gap[k]) * w;
+      out.id[m] = edge_hash(in.id[k], in.id[q], side);
+      out.side[m] = side;
+      ++m;
     }
   }
+  out.count = m;
   return m;
 }
 
-// Candidate contacts in the reference frame, before reduction.
-struct FaceContacts {
-  Vec3 on_ref[9];
-  Vec3 on_inc[9];
-  Real depth[9];
-  std::uint32_t id[9];
-  int count;
+// The incident box seen from the reference box: half extents g, axes m[j] (incident axis j
+// in the reference frame, m[j][c] its component c) and centre c.
+struct Incident {
+  Real g[3];
+  Real m[3][3];
+  Real c[3];
 };
+
+Incident incident_of_b(const BoxPair& p) {
+  Incident f;
+  for (int j = 0; j < 3; ++j) {
+    f.g[j] = p.b[j];
+    f.c[j] = p.t[j];
+    for (int c = 0; c < 3; ++c) f.m[j][c] = p.r[c][j];
+  }
+  return f;
+}
+
+Incident incident_of_a(const BoxPair& p) {
+  Incident f;
+  for (int i = 0; i < 3; ++i) {
+    f.g[i] = p.a[i];
+    f.c[i] = -p.tb[i];
+    for (int c = 0; c < 3; ++c) f.m[i][c] = p.r[i][c];
+  }
+  return f;
+}
 
 // Clips the incident box's face most opposed to `dir` (unit, reference frame, from the
 // reference box towards the incident one) against the reference face whose normal is
 // nearest `dir`, projecting along `dir`. Returns false when that face is tilted more than
-// acos(kReferenceFaceCosine) from `dir`; else writes the points whose gap is at most
-// `contact_distance` (possibly none).
-bool clip_box_faces(const RefFrame& f, const Vec3& dir, Real contact_distance, FaceContacts& out) {
+// acos(kReferenceFaceCosine) from `dir`; else fills `ref` and writes to `out` the points
+// whose gap is at most `contact_distance` (possibly none). For a face axis `dir` is a unit
+// coordinate vector and the projection is exact.
+bool clip_box_faces(const Real (&h)[3], const Incident& f, const Vec3& dir, Real contact_distance, Reference& ref,
+                    FacePoints& out) {
   out.count = 0;
-  // Plain arrays: glm's operator[] with a run-time index is a switch.
   const Real dv[3] = {dir.x, dir.y, dir.z};
-  const Real hh[3] = {f.h.x, f.h.y, f.h.z};
-  const Real gg[3] = {f.g.x, f.g.y, f.g.z};
   const Real ad[3] = {std::abs(dv[0]), std::abs(dv[1]), std::abs(dv[2])};
   int i = 0;
   if (ad[1] > ad[0]) i = 1;
   if (ad[2] > ad[i]) i = 2;
   if (!(ad[i] >= kReferenceFaceCosine)) return false;
-  const int i1 = (i + 1) % 3;
-  const int i2 = (i + 2) % 3;
+  const int i1 = kNext[i];
+  const int i2 = kPrev[i];
   const Real s = dv[i] >= Real(0) ? Real(1) : Real(-1);
   const Real inv_cos = Real(1) / ad[i];
-  const std::uint32_t ref_index = static_cast<std::uint32_t>(2 * i + (s > Real(0) ? 1 : 0));
+  ref.i = i;
+  ref.i1 = i1;
+  ref.i2 = i2;
+  ref.s = s;
+  for (int c = 0; c < 3; ++c) ref.h[c] = h[c];
   // Incident face: the incident axis most parallel to dir, on the side facing the reference.
-  const Real dd[3] = {glm::dot(dir, f.axes[0]), glm::dot(dir, f.axes[1]), glm::dot(dir, f.axes[2])};
+  const Real dd[3] = {f.m[0][0] * dv[0] + f.m[0][1] * dv[1] + f.m[0][2] * dv[2],
+                      f.m[1][0] * dv[0] + f.m[1][1] * dv[1] + f.m[1][2] * dv[2],
+                      f.m[2][0] * dv[0] + f.m[2][1] * dv[1] + f.m[2][2] * dv[2]};
   int j = 0;
   if (std::abs(dd[1]) > std::abs(dd[0])) j = 1;
   if (std::abs(dd[2]) > std::abs(dd[j])) j = 2;
-  const int j1 = (j + 1) % 3;
-  const int j2 = (j + 2) % 3;
+  const int j1 = kNext[j];
+  const int j2 = kPrev[j];
   const Real sj = dd[j] <= Real(0) ? Real(1) : Real(-1);  // the face of the incident box facing back
-  const Vec3 centre = f.c + (sj * gg[j]) * f.axes[j];
-  const Vec3 e1 = gg[j1] * f.axes[j1];
-  const Vec3 e2 = gg[j2] * f.axes[j2];
+  // Corners centre +- e1 +- e2, in the coordinates i, i1, i2 of the reference frame.
+  const Real cj = sj * f.g[j];
+  const Real centre[3] = {f.c[0] + cj * f.m[j][0], f.c[1] + cj * f.m[j][1], f.c[2] + cj * f.m[j][2]};
+  const Real e1[3] = {f.g[j1] * f.m[j1][i], f.g[j1] * f.m[j1][i1], f.g[j1] * f.m[j1][i2]};
+  const Real e2[3] = {f.g[j2] * f.m[j2][i], f.g[j2] * f.m[j2][i1], f.g[j2] * f.m[j2][i2]};
   static constexpr Real kS1[4] = {1, -1, -1, 1};
   static constexpr Real kS2[4] = {1, 1, -1, -1};
   // Corner ids (sign bits on the incident box's axes): bit j from sj, bits j1, j2 from kS1, kS2.
   const std::uint32_t base_bits = sj > Real(0) ? (1u << j) : 0u;
-  ClipPoint buf0[8];
-  ClipPoint buf1[8];
+  FacePoints buf;
+  buf.count = 4;
   for (int v = 0; v < 4; ++v) {
-    const Vec3 q = centre + kS1[v] * e1 + kS2[v] * e2;
-    const Real qv[3] = {q.x, q.y, q.z};
-    const Real gap = (s * qv[i] - hh[i]) * inv_cos;
-    ClipPoint& cp = buf0[v];
-    cp.u = qv[i1] - gap * dv[i1];
-    cp.v = qv[i2] - gap * dv[i2];
-    cp.gap = gap;
-    cp.id = base_bits | (kS1[v] > Real(0) ? (1u << j1) : 0u) | (kS2[v] > Real(0) ? (1u << j2) : 0u);
-    cp.side = 0;
-    cp.crossing = false;
+    const Real qi = centre[i] + kS1[v] * e1[0] + kS2[v] * e2[0];
+    const Real q1 = centre[i1] + kS1[v] * e1[1] + kS2[v] * e2[1];
+    const Real q2 = centre[i2] + kS1[v] * e1[2] + kS2[v] * e2[2];
+    const Real gap = (s * qi - h[i]) * inv_cos;
+    buf.u[v] = q1 - gap * dv[i1];
+    buf.v[v] = q2 - gap * dv[i2];
+    buf.gap[v] = gap;
+    buf.id[v] = base_bits | (kS1[v] > Real(0) ? (1u << j1) : 0u) | (kS2[v] > Real(0) ? (1u << j2) : 0u);
+    buf.side[v] = kCorner;
   }
-  int n = 4;
-  n = clip_side(buf0, n, buf1, true, Real(1), hh[i1], 0);
-  n = clip_side(buf1, n, buf0, false, Real(1), hh[i2], 1);
-  n = clip_side(buf0, n, buf1, true, Real(-1), hh[i1], 2);
-  n = clip_side(buf1, n, buf0, false, Real(-1), hh[i2], 3);
-  for (int k = 0; k < n; ++k) {
-    const ClipPoint& q = buf0[k];
-    if (!(q.gap <= contact_distance)) continue;
-    Real r3[3];
-    r3[i] = s * hh[i];
-    r3[i1] = q.u;
-    r3[i2] = q.v;
-    const Vec3 on_ref(r3[0], r3[1], r3[2]);
-    const int c = out.count++;
-    out.on_ref[c] = on_ref;
-    out.on_inc[c] = on_ref + q.gap * dir;
-    out.depth[c] = -q.gap;
-    const std::uint32_t rid = q.crossing ? ((ref_index * 32u + q.side) & 0x3FFFu) : ref_index;
-    const FeatureKind rk = q.crossing ? FeatureKind::Edge : FeatureKind::Face;
-    const FeatureKind ik = q.crossing ? FeatureKind::Edge : FeatureKind::Vertex;
-    out.id[c] = f.ref_is_a ? make_feature_id(rk, rid, ik, q.id) : make_feature_id(ik, q.id, rk, rid);
+  // Two buffers alternate; a side that clips nothing leaves the polygon where it is.
+  FacePoints tmp;
+  FacePoints* cur = &buf;
+  FacePoints* other = &tmp;
+  const Real lim[4] = {h[i1], h[i2], h[i1], h[i2]};
+  for (int side = 0; side < 4 && cur->count > 0; ++side) {
+    if (clip_side(*cur, *other, side % 2 == 0, side < 2 ? Real(1) : Real(-1), lim[side],
+                  static_cast<std::uint32_t>(side)) >= 0) {
+      std::swap(cur, other);
+    }
   }
+  int n = 0;
+  for (int k = 0; k < cur->count; ++k) {
+    if (!(cur->gap[k] <= contact_distance)) continue;
+    out.u[n] = cur->u[k];
+    out.v[n] = cur->v[k];
+    out.gap[n] = cur->gap[k];
+    out.id[n] = cur->id[k];
+    out.side[n] = cur->side[k];
+    ++n;
+  }
+  out.count = n;
   return true;
 }
 
-// Reduces the candidates to at most max_contacts and writes them to `m` in the world frame
-// (`pose_ref` maps the reference frame to the world). `normal` is the world normal A to B.
-int reduce_to_manifold(const FaceContacts& fc, const Vec3& dir, bool ref_is_a, const Transform& pose_ref,
-                       const Vec3& normal, int max_contacts, ContactManifold& m) {
+// Chooses at most k (1..4) of the n candidates (manifold_reduction.hpp's steps, with areas
+// in the reference plane) and writes their indices to `chosen`, the deepest first; when
+// n <= k and not `always`, every point in polygon order starting from the deepest. Returns
+// how many.
+int choose_points(const FacePoints& fp, int k, bool always, std::array<int, 4>& chosen) {
+  const int n = fp.count;
+  int i0 = 0;
+  for (int q = 1; q < n; ++q) {
+    if (fp.gap[q] < fp.gap[i0]) i0 = q;
+  }
+  if (n <= k && !always) {
+    for (int q = 0; q < n; ++q) chosen[static_cast<std::size_t>(q)] = (i0 + q) % n;
+    return n;
+  }
+  chosen[0] = i0;
+  if (k == 1) return 1;
+  const Real u0 = fp.u[i0];
+  const Real v0 = fp.v[i0];
+  const Real g0 = fp.gap[i0];
+  // Farthest from the deepest (positions: midpoints of the two surface points, so half the
+  // gap lies along the normal).
+  int i1 = -1;
+  Real best = Real(0);
+  for (int q = 0; q < n; ++q) {
+    const Real du = fp.u[q] - u0;
+    const Real dw = fp.v[q] - v0;
+    const Real dg = Real(0.5) * (fp.gap[q] - g0);
+    const Real d2 = du * du + dw * dw + dg * dg;
+    if (q != i0 && d2 > best) {
+      i1 = q;
+      best = d2;
+    }
+  }
+  if (i1 < 0) return 1;
+  chosen[1] = i1;
+  if (k == 2) return 2;
+  const Real eu = fp.u[i1] - u0;
+  const Real ev = fp.v[i1] - v0;
+  // Largest triangle.
+  int i2 = -1;
+  best = Real(0);
+  Real orientation = Real(0);
+  for (int q = 0; q < n; ++q) {
+    if (q == i0 || q == i1) continue;
+    const Real area = eu * (fp.v[q] - v0) - ev * (fp.u[q] - u0);
+    if (std::abs(area) > best) {
+      i2 = q;
+      best = std::abs(area);
+      orientation = area;
+    }
+  }
+  if (i2 < 0) return 2;
+  chosen[2] = i2;
+  if (k == 3) return 3;
+  // Largest area added outside the triangle (i0, i1, i2), oriented like `orientation`.
+  const Real sg = orientation > Real(0) ? Real(1) : Real(-1);
+  const Real pu[3] = {u0, fp.u[i1], fp.u[i2]};
+  const Real pv[3] = {v0, fp.v[i1], fp.v[i2]};
+  int i3 = -1;
+  best = Real(0);
+  for (int q = 0; q < n; ++q) {
+    if (q == i0 || q == i1 || q == i2) continue;
+    Real added = -kInfinity;
+    for (int e = 0; e < 3; ++e) {
+      const int f = e == 2 ? 0 : e + 1;
+      const Real area = (pu[f] - pu[e]) * (fp.v[q] - pv[e]) - (pv[f] - pv[e]) * (fp.u[q] - pu[e]);
+      added = std::max(added, -sg * area);
+    }
+    if (added > best) {
+      i3 = q;
+      best = added;
+    }
+  }
+  if (i3 < 0) return 3;
+  chosen[3] = i3;
+  return 4;
+}
+
+// Writes the chosen candidates to `m` in the world frame. `pose_ref` and `rot_ref` place
+// the reference box; `normal` is the world normal A to B (m.normal). A candidate with index
+// `witness` takes the world points `witness_a`, `witness_b` instead and feature id 0.
+void write_points(const FacePoints& fp, const Reference& ref, const Vec3& pos_ref, const Mat3& rot_ref,
+                  const Vec3& normal, int max_contacts, ContactManifold& m, int witness = -1,
+                  const Vec3& witness_a = Vec3(0), const Vec3& witness_b = Vec3(0)) {
   std::array<int, 4> chosen;
-  const int k = std::clamp(max_contacts, 1, kMaxContactPoints);
-  const int n = select_contacts(
-      fc.count, [&](int q) { return (fc.on_ref[q] + fc.on_inc[q]) * Real(0.5); }, [&](int q) { return fc.depth[q]; },
-      [](int) { return true; }, dir, k, chosen);
+  // A witness may coincide with a clipped point: the reduction drops such a double.
+  const int n = choose_points(fp, std::clamp(max_contacts, 1, kMaxContactPoints), witness >= 0, chosen);
+  const std::uint32_t ref_index = static_cast<std::uint32_t>(2 * ref.i + (ref.s > Real(0) ? 1 : 0));
+  const Vec3 base = pos_ref + (ref.s * ref.h[ref.i]) * rot_ref[ref.i];
+  const Vec3& eu = rot_ref[ref.i1];
+  const Vec3& ev = rot_ref[ref.i2];
   for (int q = 0; q < n; ++q) {
     const int c = chosen[static_cast<std::size_t>(q)];
     ContactPoint& out = m.points[static_cast<std::size_t>(q)];
-    const Vec3 pr = pose_ref.apply(fc.on_ref[c]);
-    const Vec3 pi = pose_ref.apply(fc.on_inc[c]);
-    out.point_a = ref_is_a ? pr : pi;
-    out.point_b = ref_is_a ? pi : pr;
     out.normal = normal;
-    out.depth = fc.depth[c];
-    out.feature_id = fc.id[c];
+    out.depth = -fp.gap[c];
+    if (c == witness) {
+      out.point_a = witness_a;
+      out.point_b = witness_b;
+      out.feature_id = 0;
+      continue;
+    }
+    const Vec3 on_ref = base + fp.u[c] * eu + fp.v[c] * ev;
+    const Vec3 on_inc = on_ref + fp.gap[c] * ref.dir_world;
+    out.point_a = ref.is_a ? on_ref : on_inc;
+    out.point_b = ref.is_a ? on_inc : on_ref;
+    const bool crossing = fp.side[c] != kCorner;
+    const std::uint32_t rid = crossing ? ((ref_index * 32u + fp.side[c]) & 0x3FFFu) : ref_index;
+    const FeatureKind rk = crossing ? FeatureKind::Edge : FeatureKind::Face;
+    const FeatureKind ik = crossing ? FeatureKind::Edge : FeatureKind::Vertex;
+    out.feature_id = ref.is_a ? make_feature_id(rk, rid, ik, fp.id[c]) : make_feature_id(ik, fp.id[c], rk, rid);
   }
   m.count = n;
-  return n;
 }
 
-// The closest points of the two supporting edges of edge axis k, as a one-point manifold.
+// Candidates of face axis k (< 6) whose gap is at most contact_distance; `ref` tells where
+// they lie. The reference is A for k < 3, else B; the projection is along the axis.
+void face_axis_points(const BoxPair& p, int k, Real contact_distance, Reference& ref, FacePoints& fp) {
+  if (k < 3) {
+    Vec3 dir(Real(0));
+    dir[k] = p.t[k] >= Real(0) ? Real(1) : Real(-1);
+    static_cast<void>(clip_box_faces(p.a, incident_of_b(p), dir, contact_distance, ref, fp));
+    ref.is_a = true;
+    ref.dir_world = p.rot_a[k] * dir[k];
+  } else {
+    // The normal is s B_j (s the sign of tb[j]); from B towards A it is -s e_j in B's frame.
+    const int j = k - 3;
+    Vec3 dir(Real(0));
+    dir[j] = p.tb[j] >= Real(0) ? Real(-1) : Real(1);
+    static_cast<void>(clip_box_faces(p.b, incident_of_a(p), dir, contact_distance, ref, fp));
+    ref.is_a = false;
+    ref.dir_world = p.rot_b[j] * dir[j];
+  }
+}
+
+// The closest points of the two supporting edges of edge axis k (A-frame normal n_local),
+// as a one-point manifold with depth -sep.
 void edge_manifold(const BoxPair& p, const Transform& pose_a, int k, Real sep, const Vec3& n_local,
                    ContactManifold& m) {
-  Vec3 a0;
-  Vec3 a1;
-  Vec3 b0;
-  Vec3 b1;
   const int i = (k - 6) / 3;
   const int j = (k - 6) % 3;
-  supporting_edges(p, i, j, n_local, a0, a1, b0, b1);
-  const geometry::SegmentPair sp = geometry::closest_points_segment_segment(a0, a1, b0, b1);
+  Vec3 ca;
+  Vec3 cb;
+  Vec3 eb;
+  supporting_edges(p, i, j, n_local, ca, cb, eb);
+  Vec3 on_a;
+  Vec3 on_b;
+  closest_edge_points(p, i, j, ca, cb, eb, on_a, on_b);
   m.count = 1;
   ContactPoint& c = m.points[0];
-  c.point_a = pose_a.apply(sp.on_a);
-  c.point_b = pose_a.apply(sp.on_b);
+  c.point_a = pose_a.position + p.rot_a * on_a;
+  c.point_b = pose_a.position + p.rot_a * on_b;
   c.normal = m.normal;
   c.depth = -sep;
   // Edge ids: the axis and which of the four parallel edges (sign bits of the normal).
   std::uint32_t ea = 0;
-  std::uint32_t eb = 0;
+  std::uint32_t ebits = 0;
   const Real nl[3] = {n_local.x, n_local.y, n_local.z};
   for (int q = 0, bit = 0; q < 3; ++q) {
     if (q == i) continue;
@@ -521,67 +705,101 @@ void edge_manifold(const BoxPair& p, const Transform& pose_a, int k, Real sep, c
   }
   for (int q = 0, bit = 0; q < 3; ++q) {
     if (q == j) continue;
-    if (glm::dot(n_local, b_axis(p, q)) <= Real(0)) eb |= 1u << bit;
+    if (nl[0] * p.r[0][q] + nl[1] * p.r[1][q] + nl[2] * p.r[2][q] <= Real(0)) ebits |= 1u << bit;
     ++bit;
   }
   c.feature_id = make_feature_id(FeatureKind::Edge, static_cast<std::uint32_t>(i) * 4u + ea, FeatureKind::Edge,
-                                 static_cast<std::uint32_t>(j) * 4u + eb);
-}
-
-// Penetration (sep <= 0) along axis k with A-frame normal n_local: candidate contacts of the
-// face axis k (< 6) clipped with the given contact distance. Returns the reference frame
-// and the projection direction in it.
-bool face_axis_contacts(const BoxPair& p, int k, const Vec3& n_local, Real contact_distance, FaceContacts& fc,
-                        RefFrame& f, Vec3& dir) {
-  if (k < 3) {
-    f = frame_of_a(p);
-    dir = n_local;
-  } else {
-    f = frame_of_b(p);
-    // n_local = s B_j in A's frame, so -n in B's frame is -s e_j.
-    const Vec3 bj = b_axis(p, k - 3);
-    const Real sd = glm::dot(n_local, bj) >= Real(0) ? Real(-1) : Real(1);
-    dir = Vec3(k == 3 ? sd : Real(0), k == 4 ? sd : Real(0), k == 5 ? sd : Real(0));
-  }
-  return clip_box_faces(f, dir, contact_distance, fc);
+                                 static_cast<std::uint32_t>(j) * 4u + ebits);
 }
 
 // One-point fallback along the A-frame normal: B's support point in -n and its image on A.
 void support_point(const BoxPair& p, const Transform& pose_a, const Vec3& n_local, Real sep, ContactManifold& m) {
-  Vec3 pb = p.t;
+  Vec3 pb(p.t[0], p.t[1], p.t[2]);
   for (int j = 0; j < 3; ++j) {
     const Vec3 bj = b_axis(p, j);
-    pb += (glm::dot(n_local, bj) <= Real(0) ? p.hb[j] : -p.hb[j]) * bj;
+    pb += (glm::dot(n_local, bj) <= Real(0) ? p.b[j] : -p.b[j]) * bj;
   }
   m.count = 1;
-  m.points[0] = ContactPoint{pose_a.apply(pb - sep * n_local), pose_a.apply(pb), m.normal, -sep, 0};
-}
-
-Transform frame_pose(const RefFrame& f, const Transform& pose_a, const Transform& pose_b) {
-  return f.ref_is_a ? pose_a : pose_b;
+  m.points[0] =
+      ContactPoint{pose_a.position + p.rot_a * (pb - sep * n_local), pose_a.position + p.rot_a * pb, m.normal, -sep, 0};
 }
 
 // Manifold of an overlapping pair along axis k (exact separation sep): clipped faces for a
 // face axis, the closest points of the supporting edges for an edge axis.
 ContactManifold& overlap_on_axis(const BoxPair& p, const Transform& pose_a, const Transform& pose_b, int k, Real sep,
                                  const PairRequest& request, ContactManifold& m) {
-  Real check = Real(0);
-  Vec3 n_local(Real(0), Real(0), Real(1));
-  static_cast<void>(axis_separation(p, k, check, n_local));
+  const Vec3 n_local = axis_normal(p, k);
   m.status = status_from_distance(sep, p.tol);
-  m.normal = pose_a.apply_vector(n_local);
+  m.normal = world_normal(p, k);
   if (k < 6) {
-    FaceContacts fc;
-    RefFrame f;
-    Vec3 dir(Real(0), Real(0), Real(1));
-    if (face_axis_contacts(p, k, n_local, request.contact_distance, fc, f, dir) && fc.count > 0) {
-      reduce_to_manifold(fc, dir, f.ref_is_a, frame_pose(f, pose_a, pose_b), m.normal, request.max_contacts, m);
+    Reference ref;
+    FacePoints fp;
+    face_axis_points(p, k, request.contact_distance, ref, fp);
+    if (fp.count > 0) {
+      write_points(fp, ref, ref.is_a ? pose_a.position : pose_b.position, ref.is_a ? p.rot_a : p.rot_b, m.normal,
+                   request.max_contacts, m);
     } else {
       support_point(p, pose_a, n_local, sep, m);
     }
     return m;
   }
   edge_manifold(p, pose_a, k, sep, n_local, m);
+  return m;
+}
+
+// Separated pairs within the contact distance: faces supporting the exact distance normal,
+// the reference being the box whose face is better aligned with it.
+ContactManifold& near_manifold(const BoxPair& p, const Transform& pose_a, const Transform& pose_b, const SatResult& s,
+                               const PairRequest& request, ContactManifold& m) {
+  const ClosestFeatures cf = closest_features(p, s);
+  const Real dist = std::sqrt(cf.d2);
+  Vec3 n_local = axis_normal(p, s.max_axis);
+  Vec3 unit;
+  Real len = Real(0);
+  if (dist > kDirectionGap * p.tol && unit_and_length(cf.on_b - cf.on_a, unit, len)) n_local = unit;
+  const Real sd = std::max(dist, s.max_sep);
+  m.normal = p.rot_a * n_local;
+  m.status = status_from_distance(sd, p.tol);
+  const Vec3 world_a = pose_a.position + p.rot_a * cf.on_a;
+  const Vec3 world_b = pose_a.position + p.rot_a * cf.on_b;
+  if (!(sd <= request.contact_distance)) return m;
+  const Vec3 n_b = -Vec3(glm::dot(n_local, b_axis(p, 0)), glm::dot(n_local, b_axis(p, 1)),
+                         glm::dot(n_local, b_axis(p, 2)));  // -n in B's frame
+  const bool use_a = max_abs_component(n_local) >= max_abs_component(n_b);
+  Reference ref;
+  FacePoints fp;
+  const bool clipped = use_a ? clip_box_faces(p.a, incident_of_b(p), n_local, request.contact_distance, ref, fp)
+                             : clip_box_faces(p.b, incident_of_a(p), n_b, request.contact_distance, ref, fp);
+  if (clipped) {
+    ref.is_a = use_a;
+    ref.dir_world = use_a ? m.normal : -m.normal;
+    // The pair's own closest points, kept when every clipped point is shallower (tilted
+    // reference face).
+    Real smallest_gap = kInfinity;
+    for (int q = 0; q < fp.count; ++q) smallest_gap = std::min(smallest_gap, fp.gap[q]);
+    int witness = -1;
+    if (smallest_gap > sd) {
+      // Its position for the reduction: the reference-side witness in the reference frame.
+      const Vec3 on_ref = use_a ? cf.on_a : cf.on_b;
+      const Vec3 local = use_a ? on_ref
+                               : Vec3(glm::dot(on_ref - Vec3(p.t[0], p.t[1], p.t[2]), b_axis(p, 0)),
+                                      glm::dot(on_ref - Vec3(p.t[0], p.t[1], p.t[2]), b_axis(p, 1)),
+                                      glm::dot(on_ref - Vec3(p.t[0], p.t[1], p.t[2]), b_axis(p, 2)));
+      witness = fp.count++;
+      fp.u[witness] = local[ref.i1];
+      fp.v[witness] = local[ref.i2];
+      fp.gap[witness] = sd;
+      fp.id[witness] = 0;
+      fp.side[witness] = kCorner;
+    }
+    if (fp.count > 0) {
+      write_points(fp, ref, use_a ? pose_a.position : pose_b.position, use_a ? p.rot_a : p.rot_b, m.normal,
+                   request.max_contacts, m, witness, world_a, world_b);
+      return m;
+    }
+  }
+  m.count = 1;
+  m.points[0] = ContactPoint{world_a, world_b, m.normal, -sd, 0};
   return m;
 }
 
@@ -592,9 +810,13 @@ bool pair_intersect(const Box& a, const Transform& pose_a, const Box& b, const T
   if (!finite_poses(pose_a, pose_b)) return false;
   const BoxPair p = make_pair(a, pose_a, b, pose_b, request);
   const Real limit = std::max(request.contact_distance, Real(0));
-  const SatResult s = run_sat(p, limit, cache);
-  store_cache(cache, s);
-  if (s.early_out || s.max_sep > limit) return false;
+  const int cached = cached_separating_axis(p, limit, cache);
+  if (cached >= 0) return false;
+  SatResult s;
+  face_separations(p, s);
+  if (s.max_sep <= limit) edge_separations(p, s);
+  store_cache(cache, p, s.max_axis);
+  if (s.max_sep > limit) return false;
   if (s.max_sep <= Real(0)) return true;
   return closest_features(p, s).d2 <= limit * limit;
 }
@@ -603,21 +825,22 @@ DistanceResult pair_distance(const Box& a, const Transform& pose_a, const Box& b
                              const PairRequest& request, PairCache* cache) {
   if (!finite_poses(pose_a, pose_b)) return invalid_distance();
   const BoxPair p = make_pair(a, pose_a, b, pose_b, request);
-  const SatResult s = run_sat(p, kInfinity, nullptr);
-  store_cache(cache, s);
+  const SatResult s = full_sat(p);
+  store_cache(cache, p, s.max_axis);
+  const Vec3 max_normal = axis_normal(p, s.max_axis);
   DistanceResult r;
   r.method = PairMethod::Sat;
   if (s.max_sep > Real(0)) {
     const ClosestFeatures f = closest_features(p, s);
     const Real dist = std::sqrt(f.d2);
-    Vec3 n = s.max_normal;
+    Vec3 n = max_normal;
     Vec3 unit;
     Real len = Real(0);
-    if (dist > p.tol * Real(1e-3) && unit_and_length(f.on_b - f.on_a, unit, len)) n = unit;
+    if (dist > kDirectionGap * p.tol && unit_and_length(f.on_b - f.on_a, unit, len)) n = unit;
     r.signed_distance = std::max(dist, s.max_sep);
-    r.point_a = pose_a.apply(f.on_a);
-    r.point_b = pose_a.apply(f.on_b);
-    r.normal = pose_a.apply_vector(n);
+    r.point_a = pose_a.position + p.rot_a * f.on_a;
+    r.point_b = pose_a.position + p.rot_a * f.on_b;
+    r.normal = p.rot_a * n;
     r.status = status_from_distance(r.signed_distance, p.tol);
     return r;
   }
@@ -625,34 +848,24 @@ DistanceResult pair_distance(const Box& a, const Transform& pose_a, const Box& b
   // point (the Minkowski face through the origin is the sum of the two supporting features,
   // so the clipped incident face reaches the exact depth); edge axis: the closest points of
   // the two supporting edges.
-  r.normal = pose_a.apply_vector(s.max_normal);
+  r.normal = world_normal(p, s.max_axis);
   r.signed_distance = s.max_sep;
   r.status = status_from_distance(r.signed_distance, p.tol);
   ContactManifold m;
   m.normal = r.normal;
-  bool done = false;
   if (s.max_axis < 6) {
-    FaceContacts fc;
-    RefFrame f;
-    Vec3 dir(Real(0), Real(0), Real(1));
-    if (face_axis_contacts(p, s.max_axis, s.max_normal, kInfinity, fc, f, dir) && fc.count > 0) {
-      int deepest = 0;
-      for (int q = 1; q < fc.count; ++q) {
-        if (fc.depth[q] > fc.depth[deepest]) deepest = q;
-      }
-      const Vec3 on_b = f.ref_is_a ? fc.on_inc[deepest] : fc.on_ref[deepest];
-      r.point_b = frame_pose(f, pose_a, pose_b).apply(on_b);
-      done = true;
+    Reference ref;
+    FacePoints fp;
+    face_axis_points(p, s.max_axis, kInfinity, ref, fp);
+    if (fp.count > 0) {
+      write_points(fp, ref, ref.is_a ? pose_a.position : pose_b.position, ref.is_a ? p.rot_a : p.rot_b, r.normal, 1, m);
+    } else {
+      support_point(p, pose_a, max_normal, s.max_sep, m);
     }
   } else {
-    edge_manifold(p, pose_a, s.max_axis, s.max_sep, s.max_normal, m);
-    r.point_b = m.points[0].point_b;
-    done = true;
+    edge_manifold(p, pose_a, s.max_axis, s.max_sep, max_normal, m);
   }
-  if (!done) {
-    support_point(p, pose_a, s.max_normal, s.max_sep, m);
-    r.point_b = m.points[0].point_b;
-  }
+  r.point_b = m.points[0].point_b;
   r.point_a = r.point_b - r.signed_distance * r.normal;
   return r;
 }
@@ -662,101 +875,62 @@ ContactManifold pair_collide(const Box& a, const Transform& pose_a, const Box& b
   if (!finite_poses(pose_a, pose_b)) return invalid_manifold();
   const BoxPair p = make_pair(a, pose_a, b, pose_b, request);
   const Real limit = std::max(request.contact_distance, Real(0));
-  const SatResult s = run_sat(p, limit, cache);
-  store_cache(cache, s);
   ContactManifold m;
   m.method = PairMethod::Sat;
-  if (s.early_out || s.max_sep > limit || request.max_contacts < 1) {
-    m.normal = pose_a.apply_vector(s.max_normal);
-    m.status = PairStatus::Separated;
+  m.status = PairStatus::Separated;
+  // Warm start: the last axis, while it still separates.
+  const int cached = cached_separating_axis(p, limit, cache);
+  if (cached >= 0) {
+    m.normal = world_normal(p, cached);
     return m;
   }
-  if (s.max_sep > Real(0)) {
-    // Separated within the contact distance: faces supporting the exact distance normal,
-    // the reference being the box whose face is better aligned with it.
-    const ClosestFeatures cf = closest_features(p, s);
-    const Real dist = std::sqrt(cf.d2);
-    Vec3 n_local = s.max_normal;
-    Vec3 unit;
-    Real len = Real(0);
-    if (dist > p.tol * Real(1e-3) && unit_and_length(cf.on_b - cf.on_a, unit, len)) n_local = unit;
-    const Real sd = std::max(dist, s.max_sep);
-    m.normal = pose_a.apply_vector(n_local);
-    m.status = status_from_distance(sd, p.tol);
-    if (!(sd <= request.contact_distance)) return m;
-    const RefFrame fa = frame_of_a(p);
-    const RefFrame fb = frame_of_b(p);
-    const Vec3 n_b = -Vec3(glm::dot(n_local, b_axis(p, 0)), glm::dot(n_local, b_axis(p, 1)),
-                           glm::dot(n_local, b_axis(p, 2)));  // -n in B's frame
-    const bool use_a = max_abs_component(n_local) >= max_abs_component(n_b);
-    const RefFrame& f = use_a ? fa : fb;
-    const Vec3 dir = use_a ? n_local : n_b;
-    FaceContacts fc;
-    if (clip_box_faces(f, dir, request.contact_distance, fc)) {
-      // The pair's own closest points, kept when every clipped point is shallower (tilted
-      // reference face).
-      Real deepest = -kInfinity;
-      for (int q = 0; q < fc.count; ++q) deepest = std::max(deepest, fc.depth[q]);
-      if (deepest < -sd) {
-        const Transform to_ref = use_a ? Transform{} : pose_b.inverse() * pose_a;
-        const int c = fc.count++;
-        const Vec3 ra = to_ref.apply(cf.on_a);
-        const Vec3 rb = to_ref.apply(cf.on_b);
-        fc.on_ref[c] = use_a ? ra : rb;
-        fc.on_inc[c] = use_a ? rb : ra;
-        fc.depth[c] = -sd;
-        fc.id[c] = 0;
-      }
-      if (fc.count > 0) {
-        reduce_to_manifold(fc, dir, use_a, use_a ? pose_a : pose_b, m.normal, request.max_contacts, m);
-        return m;
-      }
-    }
-    m.count = 1;
-    m.points[0] = ContactPoint{pose_a.apply(cf.on_a), pose_a.apply(cf.on_b), m.normal, -sd, 0};
+  SatResult s;
+  face_separations(p, s);
+  if (s.max_sep <= limit) edge_separations(p, s);
+  store_cache(cache, p, s.max_axis);
+  if (s.max_sep > limit || request.max_contacts < 1) {
+    m.normal = world_normal(p, s.max_axis);
     return m;
   }
+  if (s.max_sep > Real(0)) return near_manifold(p, pose_a, pose_b, s, request, m);
   // Overlapping: prefer a face axis (A's, then B's) unless an edge axis is clearly shallower.
   int k = s.face_a_axis;
-  Real sep = s.face_a_sep;
-  if (s.face_b_sep > kFaceRelative * s.face_a_sep + Real(1e-3) * p.tol) {
+  Real sep = s.sep[k];
+  if (s.sep[s.face_b_axis] > kFaceRelative * sep + Real(1e-3) * p.tol) {
     k = s.face_b_axis;
-    sep = s.face_b_sep;
+    sep = s.sep[k];
   }
-  if (s.edge_axis >= 0 && s.edge_sep > kEdgeRelative * sep + Real(1e-3) * p.tol) {
+  if (s.edge_axis >= 0 && s.sep[s.edge_axis] > kEdgeRelative * sep + Real(1e-3) * p.tol) {
     k = s.edge_axis;
-    sep = s.edge_sep;
+    sep = s.sep[k];
   }
-  Real check = Real(0);
-  Vec3 n_local(Real(0), Real(0), Real(1));
-  static_cast<void>(axis_separation(p, k, check, n_local));
-  m.status = status_from_distance(sep, p.tol);
-  m.normal = pose_a.apply_vector(n_local);
   if (k < 6) {
-    FaceContacts fc;
-    RefFrame f;
-    Vec3 dir(Real(0), Real(0), Real(1));
-    if (face_axis_contacts(p, k, n_local, request.contact_distance, fc, f, dir) && fc.count > 0) {
+    Reference ref;
+    FacePoints fp;
+    face_axis_points(p, k, request.contact_distance, ref, fp);
+    if (fp.count > 0) {
       // A preferred (not deepest-separating) face axis is kept only while no point goes
       // deeper than the pair's exact depth; else the exact axis decides.
-      Real deepest = -kInfinity;
-      for (int q = 0; q < fc.count; ++q) deepest = std::max(deepest, fc.depth[q]);
-      if (k == s.max_axis || deepest <= -s.max_sep + p.tol) {
-        reduce_to_manifold(fc, dir, f.ref_is_a, frame_pose(f, pose_a, pose_b), m.normal, request.max_contacts, m);
+      Real smallest_gap = fp.gap[0];
+      for (int q = 1; q < fp.count; ++q) smallest_gap = std::min(smallest_gap, fp.gap[q]);
+      if (k == s.max_axis || -smallest_gap <= -s.max_sep + p.tol) {
+        m.status = status_from_distance(sep, p.tol);
+        m.normal = ref.is_a ? ref.dir_world : -ref.dir_world;
+        write_points(fp, ref, ref.is_a ? pose_a.position : pose_b.position, ref.is_a ? p.rot_a : p.rot_b, m.normal,
+                     request.max_contacts, m);
         return m;
       }
-    } else if (k == s.max_axis) {
-      support_point(p, pose_a, n_local, sep, m);
-      return m;
     }
-    if (k != s.max_axis) return overlap_on_axis(p, pose_a, pose_b, s.max_axis, s.max_sep, request, m);
-    support_point(p, pose_a, n_local, sep, m);
-    return m;
+    // No point (rounding) or a preferred axis that went too deep: the exact axis decides
+    // (for k == max_axis this ends in the one-point fallback).
+    return overlap_on_axis(p, pose_a, pose_b, s.max_axis, s.max_sep, request, m);
   }
   if (k != s.max_axis && -sep > -s.max_sep + p.tol) {
     return overlap_on_axis(p, pose_a, pose_b, s.max_axis, s.max_sep, request, m);
   }
-  edge_manifold(p, pose_a, k, sep, n_local, m);
+  m.status = status_from_distance(sep, p.tol);
+  m.normal = world_normal(p, k);
+  edge_manifold(p, pose_a, k, sep, axis_normal(p, k), m);
   return m;
 }
 
