@@ -1,17 +1,24 @@
-// Solid-leaf BSP tree of a closed polyhedron (autopartition over its face planes).
+// Solid-leaf BSP tree of a closed polyhedron (face planes and axis-aligned planes).
 //
 // Steps (Naylor, "Constructing good partitioning trees", Graphics Interface 1993; Ericson,
 // Real-Time Collision Detection, 2005, sections 8.3-8.4):
 //  1. Validate the mesh with analyse_mesh: closed, consistently and outward oriented, no
 //     degenerate triangle. Compute every face plane once (double precision, relative to the
 //     centre of the mesh's box); fragments keep the plane of the face they came from.
-//  2. Build iteratively (an explicit task stack, so convex solids that give a chain of depth n
-//     do not exhaust the call stack): for a node's polygon list, score up to max_candidates
-//     face planes by k * splits + (1 - k) * |front - back| (counted over at most 256 of the
-//     node's polygons) and take the cheapest; polygons within the plane thickness of it are
-//     consumed, the others go to the front or back list, straddling ones are split
-//     (Sutherland-Hodgman with thick planes, Ericson 8.3.4).
-//  3. An empty front list is an outside leaf (in front of an outward face with no other face
+//  2. Build iteratively (an explicit task stack, so deep trees do not exhaust the call stack):
+//     for a node's polygon list, score up to max_candidates face planes and (nodes of at
+//     least 8 polygons) six axis-aligned planes, the median and the middle of the polygon
+//     centroids on each axis, by k * splits + (1 - k) * |front - back| - consumed (counted
+//     over at most 256 of the node's polygons; consumed: polygons coplanar with a face plane),
+//     and take the cheapest. Face planes alone (pure autopartition) give a chain of depth n on
+//     a convex solid, since every face plane leaves all other faces behind it; the
+//     axis-aligned planes are what balances such trees (Naylor 1993 on splitting planes not
+//     taken from faces). An axis plane is kept only when both sides receive polygons, each
+//     fewer than the node has. Polygons within the plane thickness of a face plane and facing
+//     its way are consumed, coplanar ones facing the other way go to the front, the others to
+//     their side, straddling ones are split (Sutherland-Hodgman with thick planes, Ericson
+//     8.3.4).
+//  3. After a face plane, an empty front list is an outside leaf (in front of an outward face with no other face
 //     in the cell), an empty back list an inside leaf.
 //  4. Point queries descend by the sign of the plane distance; within the tolerance both
 //     sides are visited and differing answers mean OnBoundary (Ericson 8.4.1). Segment
@@ -25,6 +32,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <string>
 
 namespace proxima {
@@ -103,6 +111,20 @@ struct Builder {
     return Side::On;
   }
 
+  // True when the polygon's face normal points the way of the plane's normal.
+  bool same_facing(const PlaneD& pl, const Polygon& poly) const {
+    const PlaneD& own = planes[poly.plane];
+    return own.n[0] * pl.n[0] + own.n[1] * pl.n[1] + own.n[2] * pl.n[2] > 0;
+  }
+  P3 centroid(const Polygon& poly) const {
+    P3 c{0, 0, 0};
+    for (std::uint32_t i = 0; i < poly.count; ++i) {
+      for (std::size_t a = 0; a < 3; ++a) c[a] += points[poly.first + i][a];
+    }
+    for (double& x : c) x /= double(poly.count);
+    return c;
+  }
+
   // Splits `poly` by `pl` (thick plane), appending the pieces with >= 3 vertices.
   void split(const PlaneD& pl, std::uint32_t poly_index, std::vector<std::uint32_t>& front_list,
              std::vector<std::uint32_t>& back_list) {
@@ -158,6 +180,9 @@ struct Builder {
 // Candidate planes are scored against at most this many polygons of the node (evenly spread),
 // so that choosing a plane costs O(max_candidates) per node rather than O(n max_candidates).
 constexpr std::size_t kScoredPolygons = 256;
+// Axis-aligned candidate planes are scored only for nodes with at least this many polygons
+// (below it a chain of face planes is as short as anything an axis split leaves).
+constexpr std::size_t kAxisMinPolygons = 8;
 
 struct Task {
   std::vector<std::uint32_t> polys;
@@ -244,6 +269,8 @@ Result<BspPolyhedron> BspPolyhedron::create(const IndexedMesh& mesh, const BspBu
   }
 
   const double k = double(options.split_weight);
+  std::vector<P3> centroids;
+  std::vector<double> coordinate;
   std::vector<Task> tasks;
   {
     Task root;
@@ -267,47 +294,118 @@ Result<BspPolyhedron> BspPolyhedron::create(const IndexedMesh& mesh, const BspBu
       link(task, leaf);
       continue;
     }
-    // Choose the splitting plane among up to max_candidates polygons spread over the list.
+    // Choose the splitting plane: up to max_candidates face planes spread over the list and,
+    // for lists of at least kAxisMinPolygons, six axis-aligned planes (the median and the
+    // middle of the polygon centroids on each axis), all scored against the same sample.
     const std::size_t np = task.polys.size();
     const std::size_t candidates = std::min<std::size_t>(np, options.max_candidates);
     const std::size_t scored = std::min<std::size_t>(np, kScoredPolygons);
-    std::uint32_t best_plane = b.polygons[task.polys[0]].plane;
-    double best_cost = std::numeric_limits<double>::infinity();
-    for (std::size_t ci = 0; ci < candidates; ++ci) {
-      const std::uint32_t plane = b.polygons[task.polys[ci * np / candidates]].plane;
-      const PlaneD& pl = b.planes[plane];
-      std::size_t front = 0;
-      std::size_t back = 0;
+    auto score = [&](const PlaneD& pl, bool face, std::size_t& front, std::size_t& back) {
+      front = 0;
+      back = 0;
       std::size_t splits = 0;
+      std::size_t on = 0;
       for (std::size_t si = 0; si < scored; ++si) {
         switch (b.side_of_polygon(pl, b.polygons[task.polys[si * np / scored]])) {
           case Side::Front: ++front; break;
           case Side::Back: ++back; break;
-          case Side::Straddle: ++splits; break;
-          case Side::On: break;
+          case Side::Straddle:
+            ++splits;
+            ++front;
+            ++back;
+            break;
+          case Side::On: ++on; break;
         }
       }
-      const double imbalance = std::abs(double(front) - double(back));
-      const double cost = k * double(splits) + (1.0 - k) * imbalance;
-      if (cost < best_cost) {
-        best_cost = cost;
-        best_plane = plane;
+      // Coplanar polygons are consumed by a face plane (never tested again below it): they
+      // lower its cost, so that a box's face planes beat any axis plane.
+      return k * double(splits) + (1.0 - k) * std::abs(double(front) - double(back)) - (face ? double(on) : 0.0);
+    };
+    std::uint32_t best_face = b.polygons[task.polys[0]].plane;
+    double best_face_cost = std::numeric_limits<double>::infinity();
+    for (std::size_t ci = 0; ci < candidates; ++ci) {
+      const std::uint32_t plane = b.polygons[task.polys[ci * np / candidates]].plane;
+      std::size_t front = 0;
+      std::size_t back = 0;
+      const double cost = score(b.planes[plane], true, front, back);
+      if (cost < best_face_cost) {
+        best_face_cost = cost;
+        best_face = plane;
       }
     }
-    const PlaneD pl = b.planes[best_plane];
+    std::optional<PlaneD> best_axis;
+    if (options.axis_planes && np >= kAxisMinPolygons) {
+      centroids.clear();
+      for (std::size_t si = 0; si < scored; ++si)
+        centroids.push_back(b.centroid(b.polygons[task.polys[si * np / scored]]));
+      double best_axis_cost = best_face_cost;
+      for (std::size_t axis = 0; axis < 3; ++axis) {
+        coordinate.clear();
+        for (const P3& c : centroids) coordinate.push_back(c[axis]);
+        const auto mid = coordinate.begin() + std::ptrdiff_t(coordinate.size() / 2);
+        std::nth_element(coordinate.begin(), mid, coordinate.end());
+        const auto [lo, hi] = std::minmax_element(coordinate.begin(), coordinate.end());
+        for (const double offset : {*mid, 0.5 * (*lo + *hi)}) {
+          PlaneD pl;
+          pl.n = {axis == 0 ? 1.0 : 0.0, axis == 1 ? 1.0 : 0.0, axis == 2 ? 1.0 : 0.0};
+          pl.d = offset;
+          std::size_t front = 0;
+          std::size_t back = 0;
+          const double cost = score(pl, false, front, back);
+          if (front != 0 && back != 0 && cost < best_axis_cost) {
+            best_axis_cost = cost;
+            best_axis = pl;
+          }
+        }
+      }
+    }
     Task front_task;
     Task back_task;
-    for (const std::uint32_t pi : task.polys) {
-      switch (b.side_of_polygon(pl, b.polygons[pi])) {
-        case Side::Front: front_task.polys.push_back(pi); break;
-        case Side::Back: back_task.polys.push_back(pi); break;
-        case Side::Straddle:
-          ++tree.stats_.split_faces;
-          b.split(pl, pi, front_task.polys, back_task.polys);
-          break;
-        case Side::On: break;
+    auto partition = [&](const PlaneD& pl, bool face) {
+      front_task.polys.clear();
+      back_task.polys.clear();
+      std::uint32_t splits = 0;
+      for (const std::uint32_t pi : task.polys) {
+        switch (b.side_of_polygon(pl, b.polygons[pi])) {
+          case Side::Front: front_task.polys.push_back(pi); break;
+          case Side::Back: back_task.polys.push_back(pi); break;
+          case Side::Straddle:
+            ++splits;
+            b.split(pl, pi, front_task.polys, back_task.polys);
+            break;
+          case Side::On:
+            // Coplanar: a polygon facing the plane's way is the plane (consumed) when the
+            // plane is a face plane and bounds the back side otherwise; one facing the
+            // other way bounds the solid in front, so it goes there.
+            if (b.same_facing(pl, b.polygons[pi])) {
+              if (!face) back_task.polys.push_back(pi);
+            } else {
+              front_task.polys.push_back(pi);
+            }
+            break;
+        }
+      }
+      return splits;
+    };
+    PlaneD pl = b.planes[best_face];
+    bool face = true;
+    if (best_axis) {
+      // An axis plane has no face to tell inside from outside, so it is kept only when both
+      // sides get polygons, each fewer than the node has (the recursion then terminates).
+      const std::size_t mark = b.polygons.size();
+      const std::size_t point_mark = b.points.size();
+      const std::uint32_t splits = partition(*best_axis, false);
+      if (!front_task.polys.empty() && !back_task.polys.empty() && front_task.polys.size() < np &&
+          back_task.polys.size() < np) {
+        pl = *best_axis;
+        face = false;
+        tree.stats_.split_faces += splits;
+      } else {
+        b.polygons.resize(mark);  // drop the fragments of the rejected split
+        b.points.resize(point_mark);
       }
     }
+    if (face) tree.stats_.split_faces += partition(pl, true);
     const std::uint32_t index = static_cast<std::uint32_t>(tree.nodes_.size());
     BspNode node;
     node.normal = Vec3(Real(pl.n[0]), Real(pl.n[1]), Real(pl.n[2]));

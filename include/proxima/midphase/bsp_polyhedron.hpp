@@ -1,8 +1,10 @@
 #pragma once
 /// @file bsp_polyhedron.hpp
-/// BspPolyhedron: a solid-leaf BSP tree of a closed, consistently oriented triangle mesh
-/// (autopartition: every splitting plane is the plane of a face). Classifies points as
-/// inside / outside / on the boundary and segments or rays into their inside intervals.
+/// BspPolyhedron: a solid-leaf BSP tree of a closed, consistently oriented triangle mesh.
+/// Splitting planes are face planes (autopartition) or axis-aligned planes through the
+/// polygons' centroids, whichever scores best, so convex solids give a balanced tree rather
+/// than a chain. Classifies points as inside / outside / on the boundary and segments or
+/// rays into their inside intervals.
 ///
 /// Build: Naylor, "Constructing good partitioning trees" (Graphics Interface 1993); Ericson,
 /// Real-Time Collision Detection, ch. 8 (solid-leaf trees, thick planes, split cost).
@@ -36,16 +38,22 @@ struct BspBuildOptions {
   /// Weight of the number of split polygons against the front/back imbalance in the plane
   /// cost k * splits + (1 - k) * |front - back| (Ericson 8.3.2 suggests 0.8), in [0, 1].
   Real split_weight = Real(0.8);
-  /// At most this many candidate planes (faces spread evenly over the node's polygons) are
-  /// scored per node, each against at most 256 of the node's polygons, so choosing a plane
-  /// costs O(max_candidates) and the build is dominated by partitioning (>= 1).
+  /// At most this many candidate face planes (faces spread evenly over the node's polygons)
+  /// are scored per node, each against at most 256 of the node's polygons, so choosing a
+  /// plane costs O(max_candidates) per node (>= 1).
   std::uint32_t max_candidates = 32;
+  /// Also score six axis-aligned planes per node of at least 8 polygons (on each axis the
+  /// median and the middle of the sampled polygon centroids). Such a plane is taken only when
+  /// it leaves polygons on both sides (a face-free plane cannot tell an empty side's inside
+  /// from its outside). False: pure autopartition (a convex solid of n face planes then gives
+  /// a chain of depth n).
+  bool axis_planes = true;
 };
 
 /// One node of the compact tree: a plane `normal . (x - reference) = offset` and two children.
 /// A child index >= kBspInside is a leaf: kBspInside (solid) or kBspOutside (empty).
 struct BspNode {
-  Vec3 normal{Real(0), Real(0), Real(1)};  ///< unit plane normal (outward normal of the face it came from)
+  Vec3 normal{Real(0), Real(0), Real(1)};  ///< unit plane normal (outward normal of a face, or an axis)
   Real offset = Real(0);                   ///< plane offset relative to BspPolyhedron::reference()
   std::uint32_t front = 0;                 ///< child on the side the normal points to
   std::uint32_t back = 0;                  ///< child on the other side
@@ -83,12 +91,13 @@ class BspPolyhedron {
   /// Steps: validate with analyse_mesh (errors of analyse_mesh; InvalidArgument "mesh" when
   /// the mesh is not closed (boundary or non-manifold edges), not consistently oriented, has
   /// degenerate triangles, or encloses a non-positive volume (inward-facing triangles));
-  /// then recursive autopartition: pick the candidate face plane of least cost, send the
-  /// polygons coplanar with it (within the plane thickness) nowhere (they are the plane),
-  /// those in front or behind to that side, and split straddling ones (Sutherland-Hodgman
-  /// with thick planes); an empty front list makes an outside leaf, an empty back list an
-  /// inside leaf. O(n log n) typical for balanced meshes, O(n^2) worst case (convex solids
-  /// give a chain of depth n).
+  /// then recursive partition: pick the candidate plane of least cost (face planes and, with
+  /// options.axis_planes, axis-aligned planes through the polygon centroids); polygons
+  /// coplanar with a face plane (within the plane thickness) and facing its way are the plane
+  /// and go nowhere, coplanar ones facing the other way go to the front, the others to the
+  /// side they lie on, straddling ones are split (Sutherland-Hodgman with thick planes); after
+  /// a face plane an empty front list makes an outside leaf, an empty back list an inside
+  /// leaf. O(n log n) typical, O(n^2) worst case.
   static Result<BspPolyhedron> create(const IndexedMesh& mesh, const BspBuildOptions& options = {});
 
   /// Classifies `point` (local frame). A point within `tolerance` (length; negative: the

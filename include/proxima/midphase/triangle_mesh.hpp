@@ -9,6 +9,7 @@
 #include <proxima/geometry/aabb.hpp>
 #include <proxima/geometry/ray.hpp>
 #include <proxima/midphase/bvh.hpp>
+#include <proxima/midphase/mesh_point_cache.hpp>
 #include <proxima/shapes/indexed_mesh.hpp>
 #include <proxima/shapes/mass_properties.hpp>
 #include <proxima/shapes/surface_point.hpp>
@@ -140,8 +141,14 @@ class TriangleMesh {
   void raycast_all(const Ray& ray, Real max_t, std::vector<MeshRayHit>& hits, FaceCulling culling = FaceCulling::None,
                    RayTraversal traversal = RayTraversal::Wide) const;
 
-  /// For a closed mesh: true when `point` (local) is inside or on the surface. For an open
-  /// mesh: true when its generalised winding number is at least 1/2.
+  /// For a closed mesh: true when `point` (local) is inside, or within
+  /// linear_tolerance(largest box extent) of the surface (so every point of a face, edge or
+  /// vertex is contained); answered by a BSP tree (BspPolyhedron) built on the first call
+  /// (thread-safe; O(n log n) once, then O(depth)), which hands points near its planes to
+  /// the pseudo-normal test at the nearest surface point. For an open mesh: true when its
+  /// generalised winding number is at least 1/2, computed over the BVH with a far-field
+  /// expansion and an error bound; only points whose bound does not settle the comparison
+  /// with 1/2 take the exact sum over every triangle. Non-finite point: false.
   bool contains(const Vec3& point) const;
   /// Nearest surface point to `point` (local frame); the distance is negative inside a
   /// closed mesh (unsigned for an open one, the normal then faces `point`). O(log n) typical.
@@ -166,6 +173,9 @@ class TriangleMesh {
     /// 4-wide hierarchy for ray casts over the same leaves (RayTraversal::Wide); null or
     /// empty when the mesh's bounds do not fit its float layout.
     std::shared_ptr<const detail::RayBvh> ray_bvh;
+    /// Built by the first contains(): the BSP tree of a closed mesh, the far-field winding
+    /// data of an open one (a copy of Data starts with an empty cache).
+    MeshPointCache point_cache;
   };
 
  private:
