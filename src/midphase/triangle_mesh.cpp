@@ -24,6 +24,7 @@
 #include <proxima/midphase/triangle_mesh.hpp>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -260,7 +261,7 @@ Result<TriangleMesh> TriangleMesh::create(IndexedMesh mesh, const MeshCreateOpti
   triangle_boxes(data->mesh, boxes, &centers);
   data->bvh = Bvh::build(boxes, centers, options.bvh);
   gather_leaf_triangles(data->mesh, data->bvh, data->leaf_triangles);
-  data->ray_bvh = std::make_shared<const detail::RayBvh>(detail::RayBvh::build(data->bvh));
+  data->ray_bvh = std::make_shared<const detail::RayBvh>(detail::RayBvh::build(data->bvh, data->leaf_triangles));
   compute_neighbors(data->mesh, data->neighbors);
   compute_active_edges(data->mesh, data->neighbors, options.flat_edge_angle, data->active_edges);
   data->flat_edge_angle = options.flat_edge_angle;
@@ -288,7 +289,7 @@ Result<TriangleMesh> TriangleMesh::deformed(std::span<const Vec3> vertices) cons
   triangle_boxes(data->mesh, boxes, nullptr);
   data->bvh.refit(boxes);
   gather_leaf_triangles(data->mesh, data->bvh, data->leaf_triangles);
-  data->ray_bvh = std::make_shared<const detail::RayBvh>(detail::RayBvh::build(data->bvh));
+  data->ray_bvh = std::make_shared<const detail::RayBvh>(detail::RayBvh::build(data->bvh, data->leaf_triangles));
   compute_active_edges(data->mesh, data->neighbors, data->flat_edge_angle, data->active_edges);
   // Volume and area follow the vertices (divergence theorem, as in the analysis).
   Real volume = Real(0);
@@ -318,19 +319,30 @@ namespace {
 /// A ray prepared once for the triangle tests of a mesh cast.
 struct MeshRay {
   geometry::TriangleRay tri;  ///< watertight test's permutation and shear
-  bool filter = false;        ///< may_hit applies
+  bool filter = false;        ///< may_hit (and filter_block) apply
   FaceCulling culling = FaceCulling::None;
+  detail::BlockRay block;  ///< the same permutation and shear for filter_block
 };
 
 inline MeshRay prepare_mesh_ray(const Ray& ray, FaceCulling culling) {
-  return {geometry::TriangleRay::prepare(ray), filter_applies(ray), culling};
+  MeshRay r{geometry::TriangleRay::prepare(ray), filter_applies(ray), culling, {}};
+  const int k[3] = {r.tri.kx, r.tri.ky, r.tri.kz};
+  for (int i = 0; i < 3; ++i) r.block.origin[i] = ray.origin[k[i]];
+  r.block.sx = r.tri.shear.x;
+  r.block.sy = r.tri.shear.y;
+  r.block.kx = r.tri.kx;
+  r.block.ky = r.tri.ky;
+  r.block.kz = r.tri.kz;
+  return r;
 }
 
 /// The exact test of one triangle in a mesh ray cast, shared by every cast and both
 /// traversals: the conservative rejection (when it applies), the watertight test within
 /// [0, limit], then the culling rule.
-inline std::optional<RayHit> cast_triangle(const MeshRay& r, Real limit, const std::array<Vec3, 3>& t) {
-  if (r.filter && !may_hit(r.tri, t[0], t[1], t[2])) return std::nullopt;
+/// `filtered`: the rejection was already applied (by filter_block).
+inline std::optional<RayHit> cast_triangle(const MeshRay& r, Real limit, const std::array<Vec3, 3>& t,
+                                           bool filtered = false) {
+  if (r.filter && !filtered && !may_hit(r.tri, t[0], t[1], t[2])) return std::nullopt;
   std::optional<RayHit> hit = geometry::ray_triangle(r.tri, limit, t[0], t[1], t[2]);
   if (hit && !passes_culling(r.culling, *hit, t[0], t[1], t[2])) return std::nullopt;
   return hit;
@@ -349,8 +361,9 @@ struct ClosestHit {
   /// reach the tie rule.
   Real limit() const { return best ? std::min(max_t, std::nextafter(best_t, kRealMax)) : max_t; }
 
-  void visit(const MeshRay& r, Real limit, const std::array<Vec3, 3>& corners, std::uint32_t tri) {
-    const std::optional<RayHit> hit = cast_triangle(r, limit, corners);
+  void visit(const MeshRay& r, Real limit, const std::array<Vec3, 3>& corners, std::uint32_t tri,
+             bool filtered = false) {
+    const std::optional<RayHit> hit = cast_triangle(r, limit, corners, filtered);
     if (!hit) return;
     if (best && (hit->t > best->hit.t || (hit->t == best->hit.t && tri > best->triangle))) return;
     best = MeshRayHit{*hit, tri};
@@ -364,27 +377,45 @@ inline const detail::RayBvh* wide_of(const TriangleMesh::Data& d, RayTraversal t
   return d.ray_bvh.get();
 }
 
-/// Calls `visit(corners, triangle) -> bool` (false stops) for every triangle of every leaf
+/// Calls `visit(slot, corners) -> bool` (false stops) for each triangle of the wide leaf starting at
+/// block `first` with `count` triangles that filter_block keeps (all of them when the
+/// rejection does not apply). Returns false when stopped.
+template <class Visit>
+bool visit_wide_leaf(const detail::RayBvh& wide, std::uint32_t first, std::uint32_t count, const MeshRay& r,
+                     Visit&& visit) {
+  for (std::uint32_t b = first; count != 0; ++b) {
+    const detail::TriangleBlock4& block = wide.blocks[b];
+    count -= block.count;
+    unsigned mask = r.filter ? detail::filter_block(block, r.block) : (1u << block.count) - 1u;
+    for (; mask != 0; mask &= mask - 1) {
+      const auto lane = static_cast<std::uint32_t>(std::countr_zero(mask));
+      const std::array<Vec3, 3> corners{Vec3(block.v[0][0][lane], block.v[0][1][lane], block.v[0][2][lane]),
+                                        Vec3(block.v[1][0][lane], block.v[1][1][lane], block.v[1][2][lane]),
+                                        Vec3(block.v[2][0][lane], block.v[2][1][lane], block.v[2][2][lane])};
+      if (!visit(block.slot + lane, corners)) return false;
+    }
+  }
+  return true;
+}
+
+/// Calls `visit(corners, triangle, filtered) -> bool` (false stops) for every triangle of every leaf
 /// whose box the ray meets within [0, max_t], through the chosen hierarchy, in no
 /// particular order. Returns false when stopped.
 template <class Visit>
-bool for_each_candidate(const TriangleMesh::Data& d, const Ray& ray, Real max_t, RayTraversal traversal,
-                        Visit&& visit) {
+bool for_each_candidate(const TriangleMesh::Data& d, const Ray& ray, const MeshRay& r, Real max_t,
+                        RayTraversal traversal, Visit&& visit) {
   if (const detail::RayBvh* wide = wide_of(d, traversal)) {
     const detail::WideRay w = detail::prepare_wide_ray(ray);
     if (w.valid) {
       const std::span<const std::uint32_t> prims = d.bvh.primitives();
       bool go_on = true;
-      detail::traverse_wide(*wide, w, detail::round_up_float(max_t),
-                            [&](std::uint32_t first, std::uint32_t count, float&) {
-                              for (std::uint32_t i = first; i != first + count; ++i) {
-                                if (!visit(d.leaf_triangles[i], prims[i])) {
-                                  go_on = false;
-                                  return false;
-                                }
-                              }
-                              return true;
-                            });
+      detail::traverse_wide(
+          *wide, w, detail::round_up_float(max_t), [&](std::uint32_t first, std::uint32_t count, float&) {
+            go_on = visit_wide_leaf(*wide, first, count, r, [&](std::uint32_t i, const std::array<Vec3, 3>& corners) {
+              return visit(corners, prims[i], true);
+            });
+            return go_on;
+          });
       return go_on;
     }
   }
@@ -394,7 +425,7 @@ bool for_each_candidate(const TriangleMesh::Data& d, const Ray& ray, Real max_t,
   return d.bvh.traverse([&](const BvhNode& node) { return slab(node, box_ray, max_t, t_near); },
                         [&](std::uint32_t tri) {
                           const TriangleIndices& t = d.mesh.triangles[tri];
-                          return visit(std::array<Vec3, 3>{verts[t[0]], verts[t[1]], verts[t[2]]}, tri);
+                          return visit(std::array<Vec3, 3>{verts[t[0]], verts[t[1]], verts[t[2]]}, tri, false);
                         });
 }
 
@@ -464,14 +495,16 @@ std::optional<MeshRayHit> TriangleMesh::raycast(const Ray& ray, Real max_t, Face
     const detail::WideRay w = detail::prepare_wide_ray(ray);
     if (w.valid) {
       const std::span<const std::uint32_t> prims = d.bvh.primitives();
-      detail::traverse_wide(*wide, w, detail::round_up_float(max_t),
-                            [&](std::uint32_t first, std::uint32_t count, float& t_max) {
-                              const Real limit = closest.limit();
-                              for (std::uint32_t i = first; i != first + count; ++i)
-                                closest.visit(r, limit, d.leaf_triangles[i], prims[i]);
-                              if (closest.best) t_max = detail::round_up_float(closest.best_t);
-                              return true;
-                            });
+      detail::traverse_wide(
+          *wide, w, detail::round_up_float(max_t), [&](std::uint32_t first, std::uint32_t count, float& t_max) {
+            const Real limit = closest.limit();
+            visit_wide_leaf(*wide, first, count, r, [&](std::uint32_t i, const std::array<Vec3, 3>& corners) {
+              closest.visit(r, limit, corners, prims[i], true);
+              return true;
+            });
+            if (closest.best) t_max = detail::round_up_float(closest.best_t);
+            return true;
+          });
       return closest.best;
     }
   }
@@ -484,9 +517,10 @@ bool TriangleMesh::raycast_any(const Ray& ray, Real max_t, FaceCulling culling, 
   if (d.bvh.empty() || !(max_t >= Real(0))) return false;
   const MeshRay r = prepare_mesh_ray(ray, culling);
   if (!r.tri.valid) return false;
-  return !for_each_candidate(d, ray, max_t, traversal, [&](const std::array<Vec3, 3>& corners, std::uint32_t) {
-    return !cast_triangle(r, max_t, corners).has_value();
-  });
+  return !for_each_candidate(d, ray, r, max_t, traversal,
+                             [&](const std::array<Vec3, 3>& corners, std::uint32_t, bool filtered) {
+                               return !cast_triangle(r, max_t, corners, filtered).has_value();
+                             });
 }
 
 void TriangleMesh::raycast_all(const Ray& ray, Real max_t, std::vector<MeshRayHit>& hits, FaceCulling culling,
@@ -496,10 +530,12 @@ void TriangleMesh::raycast_all(const Ray& ray, Real max_t, std::vector<MeshRayHi
   const MeshRay r = prepare_mesh_ray(ray, culling);
   if (!r.tri.valid) return;
   const std::size_t start = hits.size();
-  for_each_candidate(d, ray, max_t, traversal, [&](const std::array<Vec3, 3>& corners, std::uint32_t tri) {
-    if (const std::optional<RayHit> hit = cast_triangle(r, max_t, corners)) hits.push_back({*hit, tri});
-    return true;
-  });
+  for_each_candidate(d, ray, r, max_t, traversal,
+                     [&](const std::array<Vec3, 3>& corners, std::uint32_t tri, bool filtered) {
+                       if (const std::optional<RayHit> hit = cast_triangle(r, max_t, corners, filtered))
+                         hits.push_back({*hit, tri});
+                       return true;
+                     });
   std::sort(hits.begin() + static_cast<std::ptrdiff_t>(start), hits.end(),
             [](const MeshRayHit& x, const MeshRayHit& y) {
               return x.hit.t < y.hit.t || (x.hit.t == y.hit.t && x.triangle < y.triangle);

@@ -280,6 +280,85 @@ TEST(TriangleMeshRaycast, DegenerateRays) {
   EXPECT_EQ(grid.raycast(down, kRealMax)->triangle, std::min(all[0].triangle, all[1].triangle));
 }
 
+/// The 4-wide traversal against the binary reference: closest (same triangle, t, point and
+/// normal, bit for bit), any, and all (same list) agree. Returns whether the ray hit.
+bool expect_same_traversals(const TriangleMesh& mesh, const Ray& ray, Real max_t, FaceCulling culling) {
+  const std::optional<MeshRayHit> wide = mesh.raycast(ray, max_t, culling, RayTraversal::Wide);
+  const std::optional<MeshRayHit> binary = mesh.raycast(ray, max_t, culling, RayTraversal::Binary);
+  EXPECT_EQ(wide.has_value(), binary.has_value());
+  if (wide && binary) {
+    EXPECT_EQ(wide->triangle, binary->triangle);
+    EXPECT_EQ(wide->hit.t, binary->hit.t);
+    EXPECT_EQ(wide->hit.point, binary->hit.point);
+    EXPECT_EQ(wide->hit.normal, binary->hit.normal);
+  }
+  EXPECT_EQ(mesh.raycast_any(ray, max_t, culling, RayTraversal::Wide),
+            mesh.raycast_any(ray, max_t, culling, RayTraversal::Binary));
+  std::vector<MeshRayHit> all_wide, all_binary;
+  mesh.raycast_all(ray, max_t, all_wide, culling, RayTraversal::Wide);
+  mesh.raycast_all(ray, max_t, all_binary, culling, RayTraversal::Binary);
+  EXPECT_EQ(all_wide.size(), all_binary.size());
+  if (all_wide.size() == all_binary.size()) {
+    for (std::size_t i = 0; i < all_wide.size(); ++i) {
+      EXPECT_EQ(all_wide[i].triangle, all_binary[i].triangle);
+      EXPECT_EQ(all_wide[i].hit.t, all_binary[i].hit.t);
+    }
+  }
+  return binary.has_value();
+}
+
+TEST(TriangleMeshRaycast, WideTraversalEqualsBinaryReference) {
+  // Random rays (aimed and not, bounded and unbounded, every culling mode), rays from inside
+  // through every vertex and edge midpoint (watertightness: they must hit), grazing rays
+  // from outside through vertices, and rays the wide path hands to the binary one (zero,
+  // tiny and huge direction components, far origins); leaf sizes 1, 4, 8 and 13 (leaves of
+  // several four-triangle blocks).
+  test::Random rng(21);
+  int hits = 0, total = 0;
+  for (std::uint32_t leaf : {1u, 4u, 8u, 13u}) {
+    MeshCreateOptions opt;
+    opt.bvh.max_leaf_size = leaf;
+    std::vector<TriangleMesh> meshes;
+    for (IndexedMesh input : {test::torus_mesh(2, Real(0.6), 32, 16), test::icosphere_mesh(3, Real(1.5)),
+                              test::flat_grid(10, 10, Real(0.5), -2, -2), random_soup(rng, 200)}) {
+      opt.repair = input.triangles.size() != 200;
+      meshes.push_back(TriangleMesh::create(std::move(input), opt).value());
+    }
+    for (std::size_t m = 0; m < meshes.size(); ++m) {
+      const TriangleMesh& mesh = meshes[m];
+      for (int k = 0; k < 400; ++k) {
+        Ray ray{rng.vec3(-5, 5), rng.unit_vector() * rng.uniform(Real(0.2), Real(3))};
+        if (k % 2 == 0) ray.direction = rng.vec3(-1, 1) - ray.origin;
+        if (k % 40 == 0) ray.direction.x = 0;
+        if (k % 40 == 1) ray.direction.z = Real(1e-31);
+        if (k % 40 == 2) ray.direction *= Real(1e31);
+        if (k % 40 == 3) ray.origin.y = Real(1e20);
+        const Real max_t = k % 3 == 0 ? kRealMax : rng.uniform(0, 12);
+        const auto culling = static_cast<FaceCulling>(k % 3);
+        hits += expect_same_traversals(mesh, ray, max_t, culling) ? 1 : 0;
+        ++total;
+      }
+      if (m != 1) continue;  // the closed icosphere: rays through vertices and edges
+      for (std::uint32_t i = 0; i < mesh.triangle_count(); i += 3) {
+        const auto t = mesh.triangle(i);
+        for (int e = 0; e < 3; ++e) {
+          const Vec3 vertex = t[std::size_t(e)];
+          const Vec3 mid = (vertex + t[std::size_t((e + 1) % 3)]) * Real(0.5);
+          for (const Vec3& target : {vertex, mid}) {
+            const Vec3 origin = rng.in_ball(Real(0.5));
+            EXPECT_TRUE(expect_same_traversals(mesh, {origin, target - origin}, kRealMax, FaceCulling::None));
+            EXPECT_TRUE(expect_same_traversals(mesh, {origin, target - origin}, kRealMax, FaceCulling::Front));
+            expect_same_traversals(mesh, {target * Real(2) + rng.vec3(-1, 1), target - origin}, kRealMax,
+                                   FaceCulling::Back);
+          }
+        }
+      }
+    }
+  }
+  EXPECT_GT(hits, total / 5);
+  EXPECT_LT(hits, total);
+}
+
 TEST(TriangleMeshDeform, RefittedRaysMatchBruteForce) {
   test::Random rng(13);
   const TriangleMesh mesh = make(test::tessellate_sphere(1, 24, 12));
