@@ -49,8 +49,8 @@ struct PairSetup {
   Vec3 translation{Real(0)};  ///< B's origin in A's frame
   Real radius_a = Real(0);
   Real radius_b = Real(0);
-  Real scale = Real(1);      ///< size of the pair (length)
-  Real tolerance = Real(0);  ///< resolved absolute tolerance
+  Real scale = Real(1);      ///< size of the pair in A's frame: shapes and B's offset (length)
+  Real tolerance = Real(0);  ///< resolved absolute tolerance (world scale: positions included)
   Vec3 axis{Real(0)};        ///< initial direction A to B (A's frame)
 
   PairSetup(const A& a, const Transform& pose_a, const B& b, const Transform& pose_b, const PairRequest& request,
@@ -65,9 +65,10 @@ struct PairSetup {
     translation = rel.position;
     radius_a = a.core_radius();
     radius_b = b.core_radius();
-    scale = std::max(
-        {shape_size(a), shape_size(b), max_abs3(pose_a.position), max_abs3(pose_b.position), max_abs3(translation)});
-    tolerance = resolve_tolerance(request, scale);
+    // The solve runs in A's frame, where only the shapes and B's offset set the size; far
+    // from the origin the world coordinates add rounding to the answer's status only.
+    scale = std::max({shape_size(a), shape_size(b), max_abs3(translation)});
+    tolerance = resolve_tolerance(request, std::max({scale, max_abs3(pose_a.position), max_abs3(pose_b.position)}));
     axis = cache && cache->valid ? cache->axis : translation;
   }
 
@@ -245,8 +246,28 @@ LocalAnswer solve(const A& a, const B& b, PairSetup<A, B>& setup, const PairRequ
     (void)a;
     (void)b;
   }
-  // GJK's core contact: the cores touch (distance ~0); depth = radii along the best axis.
-  const Vec3 n = unit_or(-g.v, setup.axis);
+  // GJK's core contact: the cores touch (distance ~0) and D = core A - core B, holding the
+  // origin, is too thin for EPA (a point against a segment, coincident segments). The depth
+  // is radii plus min over n of D's support distance, 0 along D's normals at the origin:
+  // descend the support function from GJK's last direction to such a normal.
+  Vec3 n = unit_or(-g.v, setup.axis);
+  {
+    const epa::Refinement f =
+        epa::refine(setup.support_a, setup.support_b, n, setup.scale, std::clamp(request.max_iterations, 1, 96));
+    ans.iterations += f.iterations;
+    // Its support distance is an upper bound of the core depth (0 in exact arithmetic).
+    const Real reach = std::max(setup.tolerance, kSqrtEpsilon * setup.scale);
+    if (f.depth <= reach && f.witness_gap <= reach) {
+      n = f.normal;
+      ans.normal = n;
+      ans.signed_distance = -std::max(f.depth, Real(0)) - radii;
+      ans.point_a = f.support_a + setup.radius_a * n;
+      ans.point_b = ans.point_a + ans.signed_distance * n;
+      ans.method = PairMethod::Epa;
+      ans.status = status_from_distance(ans.signed_distance, setup.tolerance);
+      return ans;
+    }
+  }
   ans.normal = n;
   ans.signed_distance = g.distance - radii;
   ans.point_a = g.point_a + setup.radius_a * n;

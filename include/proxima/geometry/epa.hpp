@@ -301,7 +301,7 @@ Result penetration(SupportA& support_a, SupportB& support_b, const gjk::Simplex&
     // coplanar triangles: the witness comes from the one that holds the projection.
     detail::Face f = nearest;
     Vec3 lam = barycentric(f);
-    const Real inside = -Real(1e-4);
+    const Real inside = -Real(64) * kEpsilon;
     if (std::min({lam.x, lam.y, lam.z}) < inside) {
       const Real slack = std::max(Real(64) * kEpsilon * scale, settings.abs_tolerance);
       for (int g = 0; g < p.nf; ++g) {
