@@ -55,10 +55,20 @@ struct ReferenceDistance {
 };
 
 /// Signed distance from the support functions (see the file comment). `samples` directions
-/// seed the search; the best `starts` of them are refined.
+/// seed the search; the best `starts` of them are refined. `extra_seeds` (any length, zero
+/// vectors ignored) are further candidate directions, e.g. the normals the contestants
+/// answered: each is only evaluated by the support functions here, so a wrong one cannot
+/// raise the answer above the true maximum, while a right one on a narrow ridge of the
+/// support function (where the pattern search may stall short of it) is found.
 inline ReferenceDistance reference_signed_distance(const Shape& a, const Transform& pa, const Shape& b,
-                                                   const Transform& pb, int samples = 1500, int starts = 8) {
+                                                   const Transform& pb, int samples = 1500, int starts = 8,
+                                                   const std::vector<D3v>& extra_seeds = {}) {
   std::vector<std::pair<double, D3v>> seeds;
+  for (const D3v& e : extra_seeds) {
+    if (!(norm(e) > 0) || !std::isfinite(norm(e))) continue;
+    const D3v u = unit(e);
+    seeds.emplace_back(support_gap(a, pa, b, pb, u), u);
+  }
   const double golden = 3.883222077450933;  // pi (3 - sqrt 5)
   for (int i = 0; i < samples; ++i) {
     const double z = 1.0 - (2.0 * i + 1.0) / samples;
@@ -265,7 +275,8 @@ inline double polytope_distance_brute(const WorldPolytope& a, const WorldPolytop
 }
 
 /// The deciding reference: exact for two polytopes, support-function search otherwise.
-inline double decide_signed_distance(const Shape& a, const Transform& pa, const Shape& b, const Transform& pb) {
+inline double decide_signed_distance(const Shape& a, const Transform& pa, const Shape& b, const Transform& pb,
+                                     const std::vector<D3v>& extra_seeds = {}) {
   const auto wa = world_polytope(a, pa);
   const auto wb = world_polytope(b, pb);
   if (wa && wb) {
@@ -273,7 +284,7 @@ inline double decide_signed_distance(const Shape& a, const Transform& pa, const 
     if (depth > 0) return -depth;
     return polytope_distance_brute(*wa, *wb);
   }
-  return reference_signed_distance(a, pa, b, pb).signed_distance;
+  return reference_signed_distance(a, pa, b, pb, 1500, 8, extra_seeds).signed_distance;
 }
 
 }  // namespace proxima::test

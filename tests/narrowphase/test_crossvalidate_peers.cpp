@@ -87,7 +87,9 @@ struct Case {
   mutable std::optional<double> reference;  // decided once, on the first disagreement
 
   double decided() const {
-    if (!reference) reference = test::decide_signed_distance(a, pa, b, pb);
+    // Our normal is one more candidate direction for the reference's search (see
+    // reference_signed_distance: it is evaluated there, not trusted).
+    if (!reference) reference = test::decide_signed_distance(a, pa, b, pb, {test::d3v(ours.normal)});
     return *reference;
   }
 };
