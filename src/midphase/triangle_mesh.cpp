@@ -488,15 +488,19 @@ std::optional<MeshRayHit> TriangleMesh::raycast(const Ray& ray, Real max_t, Face
                                                 RayTraversal traversal) const {
   const Data& d = *data_;
   if (d.bvh.empty() || !(max_t >= Real(0))) return std::nullopt;
-  const MeshRay r = prepare_mesh_ray(ray, culling);
-  if (!r.tri.valid) return std::nullopt;
   ClosestHit closest(max_t);
   if (const detail::RayBvh* wide = wide_of(d, traversal)) {
     const detail::WideRay w = detail::prepare_wide_ray(ray);
-    if (w.valid) {
+    if (w.valid) {  // then the triangle ray is valid too (finite origin, non-zero direction)
       const std::span<const std::uint32_t> prims = d.bvh.primitives();
+      MeshRay r{};
+      bool prepared = false;  // prepared at the first leaf: many rays reach none
       detail::traverse_wide(
           *wide, w, detail::round_up_float(max_t), [&](std::uint32_t first, std::uint32_t count, float& t_max) {
+            if (!prepared) {
+              r = prepare_mesh_ray(ray, culling);
+              prepared = true;
+            }
             const Real limit = closest.limit();
             visit_wide_leaf(*wide, first, count, r, [&](std::uint32_t i, const std::array<Vec3, 3>& corners) {
               closest.visit(r, limit, corners, prims[i], true);
@@ -508,6 +512,8 @@ std::optional<MeshRayHit> TriangleMesh::raycast(const Ray& ray, Real max_t, Face
       return closest.best;
     }
   }
+  const MeshRay r = prepare_mesh_ray(ray, culling);
+  if (!r.tri.valid) return std::nullopt;
   closest_binary(d, ray, r, closest);
   return closest.best;
 }
