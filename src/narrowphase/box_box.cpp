@@ -58,7 +58,7 @@ constexpr int kNext[3] = {1, 2, 0};
 constexpr int kPrev[3] = {2, 0, 1};
 
 // The pair in A's frame, with plain arrays (glm's operator[] with a run-time index is a
-// switch) and both world rotations as matrices (columns: the box's axes in the world).
+// switch) and both world rotations as rows of their axes.
 struct BoxPair {
   Real a[3];      // A's half extents
   Real b[3];      // B's half extents
@@ -66,38 +66,71 @@ struct BoxPair {
   Real ar[3][3];  // |r|
   Real t[3];      // B's centre in A's frame
   Real tb[3];     // the same vector in B's axes: tb[j] = B_j . t
-  Mat3 rot_a;
-  Mat3 rot_b;
+  Real ma[3][3];  // ma[i] = A_i in the world
+  Real mb[3][3];  // mb[j] = B_j in the world
   Real tol;       // distance tolerance of the pair
   Real rounding;  // a few rounding errors at the pair's own size (not clamped to 1)
 };
 
+// The axes of a unit quaternion's rotation: m[i] is the image of the unit vector e_i.
+void rotation_axes(const Quat& q, Real (&m)[3][3]) {
+  const Real x2 = q.x + q.x;
+  const Real y2 = q.y + q.y;
+  const Real z2 = q.z + q.z;
+  const Real xx = q.x * x2;
+  const Real yy = q.y * y2;
+  const Real zz = q.z * z2;
+  const Real xy = q.x * y2;
+  const Real xz = q.x * z2;
+  const Real yz = q.y * z2;
+  const Real wx = q.w * x2;
+  const Real wy = q.w * y2;
+  const Real wz = q.w * z2;
+  m[0][0] = Real(1) - (yy + zz);
+  m[0][1] = xy + wz;
+  m[0][2] = xz - wy;
+  m[1][0] = xy - wz;
+  m[1][1] = Real(1) - (xx + zz);
+  m[1][2] = yz + wx;
+  m[2][0] = xz + wy;
+  m[2][1] = yz - wx;
+  m[2][2] = Real(1) - (xx + yy);
+}
+
+Vec3 row(const Real (&m)[3][3], int i) { return Vec3(m[i][0], m[i][1], m[i][2]); }
+
+// m's rows taken as the axes of a frame: the world vector of local vector v.
+Vec3 to_world(const Real (&m)[3][3], const Vec3& v) {
+  return Vec3(m[0][0] * v.x + m[1][0] * v.y + m[2][0] * v.z, m[0][1] * v.x + m[1][1] * v.y + m[2][1] * v.z,
+              m[0][2] * v.x + m[1][2] * v.y + m[2][2] * v.z);
+}
+
 BoxPair make_pair(const Box& a, const Transform& pose_a, const Box& b, const Transform& pose_b,
                   const PairRequest& request) {
   BoxPair p;
-  const Vec3 ha = a.half_extents();
-  const Vec3 hb = b.half_extents();
+  const Vec3& ha = a.half_extents();
+  const Vec3& hb = b.half_extents();
   p.a[0] = ha.x;
   p.a[1] = ha.y;
   p.a[2] = ha.z;
   p.b[0] = hb.x;
   p.b[1] = hb.y;
   p.b[2] = hb.z;
-  p.rot_a = glm::mat3_cast(pose_a.rotation);
-  p.rot_b = glm::mat3_cast(pose_b.rotation);
-  const Vec3 d = pose_b.position - pose_a.position;
+  rotation_axes(pose_a.rotation, p.ma);
+  rotation_axes(pose_b.rotation, p.mb);
+  const Real dx = pose_b.position.x - pose_a.position.x;
+  const Real dy = pose_b.position.y - pose_a.position.y;
+  const Real dz = pose_b.position.z - pose_a.position.z;
   for (int i = 0; i < 3; ++i) {
-    const Vec3& ai = p.rot_a[i];
     for (int j = 0; j < 3; ++j) {
-      const Vec3& bj = p.rot_b[j];
-      p.r[i][j] = ai.x * bj.x + ai.y * bj.y + ai.z * bj.z;
+      p.r[i][j] = p.ma[i][0] * p.mb[j][0] + p.ma[i][1] * p.mb[j][1] + p.ma[i][2] * p.mb[j][2];
       p.ar[i][j] = std::abs(p.r[i][j]);
     }
-    p.t[i] = ai.x * d.x + ai.y * d.y + ai.z * d.z;
+    p.t[i] = p.ma[i][0] * dx + p.ma[i][1] * dy + p.ma[i][2] * dz;
   }
-  for (int j = 0; j < 3; ++j) p.tb[j] = p.t[0] * p.r[0][j] + p.t[1] * p.r[1][j] + p.t[2] * p.r[2][j];
-  Real scale = std::max({p.a[0], p.a[1], p.a[2], p.b[0], p.b[1], p.b[2]});
-  scale = std::max({scale, std::abs(p.t[0]), std::abs(p.t[1]), std::abs(p.t[2])});
+  for (int j = 0; j < 3; ++j) p.tb[j] = p.mb[j][0] * dx + p.mb[j][1] * dy + p.mb[j][2] * dz;
+  Real scale = std::max(std::max(std::max(p.a[0], p.a[1]), std::max(p.a[2], p.b[0])), std::max(p.b[1], p.b[2]));
+  scale = std::max(std::max(scale, std::abs(p.t[0])), std::max(std::abs(p.t[1]), std::abs(p.t[2])));
   p.tol = resolve_tolerance(request, scale);
   p.rounding = kRelativeTolerance * scale;
   return p;
@@ -155,9 +188,9 @@ Vec3 axis_normal(const BoxPair& p, int k) {
 
 // The world normal of axis k, A to B.
 Vec3 world_normal(const BoxPair& p, int k) {
-  if (k < 3) return p.t[k] >= Real(0) ? p.rot_a[k] : -p.rot_a[k];
-  if (k < 6) return p.tb[k - 3] >= Real(0) ? p.rot_b[k - 3] : -p.rot_b[k - 3];
-  return p.rot_a * axis_normal(p, k);
+  if (k < 3) return p.t[k] >= Real(0) ? row(p.ma, k) : -row(p.ma, k);
+  if (k < 6) return p.tb[k - 3] >= Real(0) ? row(p.mb, k - 3) : -row(p.mb, k - 3);
+  return to_world(p.ma, axis_normal(p, k));
 }
 
 struct SatResult {
@@ -354,25 +387,30 @@ ClosestFeatures closest_features(const BoxPair& p, const SatResult& s) {
 
 // ---- Face clipping in the reference box's 2D face frame -------------------------------
 
-// Candidate contacts on the reference face: 2D coordinates (u, v) along the reference
-// box's axes i1, i2, gap along the projection direction, feature ids. At most 8 after
-// clipping a quadrilateral by 4 sides, plus one slot for a distance witness. Plain arrays
-// without initialisers (the buffers stay raw).
+// A candidate contact on the reference face: 2D coordinates (u, v) along the reference
+// box's axes i1, i2, gap along the projection direction, and its feature: an incident
+// corner (sign bits) with side kCorner, or a crossing of an incident edge (hash) with the
+// side plane that made it. No default member initialisers (the buffers stay raw).
+struct ClipPoint {
+  Real u;
+  Real v;
+  Real gap;
+  std::uint16_t id;
+  std::uint16_t side;
+};
+
+constexpr std::uint16_t kCorner = 0xFFu;
+
+// Candidates: at most 8 after clipping a quadrilateral by 4 sides, plus one slot for a
+// distance witness.
 struct FacePoints {
-  Real u[9];
-  Real v[9];
-  Real gap[9];
-  std::uint32_t id[9];    // incident corner (sign bits) or crossing hash
-  std::uint32_t side[9];  // side plane that made a crossing, kCorner for an incident corner
+  ClipPoint p[9];
   int count;
 };
 
-constexpr std::uint32_t kCorner = 0xFFu;
-
 // The reference face and the projection: the reference box's face i on side s (normal
-// s e_i in its frame), the projection direction `dir` from the reference box towards the
-// incident one in the reference frame, the reference box's half extents, and where the
-// reference frame lies in the world.
+// s e_i in its frame), its half extents, whether it is A, and the projection direction
+// (from the reference box towards the incident one) in the world.
 struct Reference {
   int i;
   int i1;
@@ -380,54 +418,37 @@ struct Reference {
   Real s;
   Real h[3];
   bool is_a;
-  Vec3 dir_world;  // dir in the world
+  Vec3 dir_world;
 };
 
-constexpr std::uint32_t edge_hash(std::uint32_t a, std::uint32_t b, std::uint32_t side) {
+constexpr std::uint16_t edge_hash(std::uint32_t a, std::uint32_t b, std::uint32_t side) {
   const std::uint32_t lo = std::min(a, b);
   const std::uint32_t hi = std::max(a, b);
-  return (lo * 131u + hi * 7u + side * 977u) & 0x3FFFu;
+  return static_cast<std::uint16_t>((lo * 131u + hi * 7u + side * 977u) & 0x3FFFu);
 }
 
-// Keeps the part of polygon `in` (n points) where sign * coordinate <= limit (coordinate u
-// when `along_u`, else v); writes to `out`, returns the new count (<= n + 1). A crossing is
-// made only where the two ends lie strictly on opposite sides (an end on the side plane is
-// kept as it is, so no point is doubled). Returns -1 when no point lies outside (nothing to
-// clip, `out` untouched).
-int clip_side(const FacePoints& in, FacePoints& out, bool along_u, Real sign, Real limit, std::uint32_t side) {
-  const int n = in.count;
-  const Real* x = along_u ? in.u : in.v;
+// Keeps the part of polygon in[0..n) where sign * (u or v) <= limit; writes it to `out` and
+// returns its size (<= n + 1). A crossing is made only where the two ends lie strictly on
+// opposite sides (an end on the side plane is kept as it is, so no point is doubled).
+int clip_side(const ClipPoint* in, int n, ClipPoint* out, bool along_u, Real sign, Real limit, std::uint16_t side) {
   Real d[8];
-  bool any_out = false;
-  for (int k = 0; k < n; ++k) {
-    d[k] = sign * x[k] - limit;
-    any_out = any_out || d[k] > Real(0);
-  }
-  if (!any_out) return -1;
+  for (int k = 0; k < n; ++k) d[k] = sign * (along_u ? in[k].u : in[k].v) - limit;
   int m = 0;
   for (int k = 0; k < n; ++k) {
     const int q = k + 1 == n ? 0 : k + 1;
     const Real dc = d[k];
     const Real dx = d[q];
-    if (dc <= Real(0)) {
-      out.u[m] = in.u[k];
-      out.v[m] = in.v[k];
-      out.gap[m] = in.gap[k];
-      out.id[m] = in.id[k];
-      out.side[m] = in.side[k];
-      ++m;
-    }
+    if (dc <= Real(0)) out[m++] = in[k];
     if ((dc < Real(0) && dx > Real(0)) || (dc > Real(0) && dx < Real(0))) {
       const Real w = dc / (dc - dx);
-      out.u[m] = in.u[k] + (in.u[q] - in.u[k]) * w;
-      out.v[m] = in.v[k] + (in.v[q] - in.v[k]) * w;
-      out.gap[m] = in.gap[k] + (in.gap[q] - in.gap[k]) * w;
-      out.id[m] = edge_hash(in.id[k], in.id[q], side);
-      out.side[m] = side;
-      ++m;
+      ClipPoint& c = out[m++];
+      c.u = in[k].u + (in[q].u - in[k].u) * w;
+      c.v = in[k].v + (in[q].v - in[k].v) * w;
+      c.gap = in[k].gap + (in[q].gap - in[k].gap) * w;
+      c.id = edge_hash(in[k].id, in[q].id, side);
+      c.side = side;
     }
   }
-  out.count = m;
   return m;
 }
 
@@ -462,9 +483,9 @@ Incident incident_of_a(const BoxPair& p) {
 // Clips the incident box's face most opposed to `dir` (unit, reference frame, from the
 // reference box towards the incident one) against the reference face whose normal is
 // nearest `dir`, projecting along `dir`. Returns false when that face is tilted more than
-// acos(kReferenceFaceCosine) from `dir`; else fills `ref` and writes to `out` the points
-// whose gap is at most `contact_distance` (possibly none). For a face axis `dir` is a unit
-// coordinate vector and the projection is exact.
+// acos(kReferenceFaceCosine) from `dir`; else fills `ref` (but is_a and dir_world) and
+// writes to `out` the points whose gap is at most `contact_distance` (possibly none). For
+// a face axis `dir` is a unit coordinate vector and the projection is exact.
 bool clip_box_faces(const Real (&h)[3], const Incident& f, const Vec3& dir, Real contact_distance, Reference& ref,
                     FacePoints& out) {
   out.count = 0;
@@ -482,7 +503,9 @@ bool clip_box_faces(const Real (&h)[3], const Incident& f, const Vec3& dir, Real
   ref.i1 = i1;
   ref.i2 = i2;
   ref.s = s;
-  for (int c = 0; c < 3; ++c) ref.h[c] = h[c];
+  ref.h[0] = h[0];
+  ref.h[1] = h[1];
+  ref.h[2] = h[2];
   // Incident face: the incident axis most parallel to dir, on the side facing the reference.
   const Real dd[3] = {f.m[0][0] * dv[0] + f.m[0][1] * dv[1] + f.m[0][2] * dv[2],
                       f.m[1][0] * dv[0] + f.m[1][1] * dv[1] + f.m[1][2] * dv[2],
@@ -493,50 +516,70 @@ bool clip_box_faces(const Real (&h)[3], const Incident& f, const Vec3& dir, Real
   const int j1 = kNext[j];
   const int j2 = kPrev[j];
   const Real sj = dd[j] <= Real(0) ? Real(1) : Real(-1);  // the face of the incident box facing back
-  // Corners centre +- e1 +- e2, in the coordinates i, i1, i2 of the reference frame.
+  // Corners centre +- e1 +- e2 in the reference frame's coordinates i, i1, i2.
   const Real cj = sj * f.g[j];
-  const Real centre[3] = {f.c[0] + cj * f.m[j][0], f.c[1] + cj * f.m[j][1], f.c[2] + cj * f.m[j][2]};
-  const Real e1[3] = {f.g[j1] * f.m[j1][i], f.g[j1] * f.m[j1][i1], f.g[j1] * f.m[j1][i2]};
-  const Real e2[3] = {f.g[j2] * f.m[j2][i], f.g[j2] * f.m[j2][i1], f.g[j2] * f.m[j2][i2]};
-  static constexpr Real kS1[4] = {1, -1, -1, 1};
-  static constexpr Real kS2[4] = {1, 1, -1, -1};
-  // Corner ids (sign bits on the incident box's axes): bit j from sj, bits j1, j2 from kS1, kS2.
-  const std::uint32_t base_bits = sj > Real(0) ? (1u << j) : 0u;
-  FacePoints buf;
-  buf.count = 4;
+  const Real c0 = f.c[i] + cj * f.m[j][i];
+  const Real c1 = f.c[i1] + cj * f.m[j][i1];
+  const Real c2 = f.c[i2] + cj * f.m[j][i2];
+  const Real e10 = f.g[j1] * f.m[j1][i];
+  const Real e11 = f.g[j1] * f.m[j1][i1];
+  const Real e12 = f.g[j1] * f.m[j1][i2];
+  const Real e20 = f.g[j2] * f.m[j2][i];
+  const Real e21 = f.g[j2] * f.m[j2][i1];
+  const Real e22 = f.g[j2] * f.m[j2][i2];
+  // Corner ids (sign bits on the incident box's axes): bit j from sj, bits j1, j2 from the
+  // signs of e1, e2: + +, - +, - -, + -.
+  const unsigned base_bits = sj > Real(0) ? (1u << j) : 0u;
+  const unsigned b1 = 1u << j1;
+  const unsigned b2 = 1u << j2;
+  ClipPoint buf0[8];
+  ClipPoint buf1[8];
+  const Real pi[4] = {c0 + e10 + e20, c0 - e10 + e20, c0 - e10 - e20, c0 + e10 - e20};
+  const Real p1[4] = {c1 + e11 + e21, c1 - e11 + e21, c1 - e11 - e21, c1 + e11 - e21};
+  const Real p2[4] = {c2 + e12 + e22, c2 - e12 + e22, c2 - e12 - e22, c2 + e12 - e22};
+  const unsigned ids[4] = {base_bits | b1 | b2, base_bits | b2, base_bits, base_bits | b1};
+  const Real hi = h[i];
+  const Real h1 = h[i1];
+  const Real h2 = h[i2];
+  const Real du = dv[i1];
+  const Real dw = dv[i2];
+  unsigned outside = 0;  // sides some corner lies beyond (bit side)
   for (int v = 0; v < 4; ++v) {
-    const Real qi = centre[i] + kS1[v] * e1[0] + kS2[v] * e2[0];
-    const Real q1 = centre[i1] + kS1[v] * e1[1] + kS2[v] * e2[1];
-    const Real q2 = centre[i2] + kS1[v] * e1[2] + kS2[v] * e2[2];
-    const Real gap = (s * qi - h[i]) * inv_cos;
-    buf.u[v] = q1 - gap * dv[i1];
-    buf.v[v] = q2 - gap * dv[i2];
-    buf.gap[v] = gap;
-    buf.id[v] = base_bits | (kS1[v] > Real(0) ? (1u << j1) : 0u) | (kS2[v] > Real(0) ? (1u << j2) : 0u);
-    buf.side[v] = kCorner;
+    const Real gap = (s * pi[v] - hi) * inv_cos;
+    ClipPoint& c = buf0[v];
+    c.u = p1[v] - gap * du;
+    c.v = p2[v] - gap * dw;
+    c.gap = gap;
+    c.id = static_cast<std::uint16_t>(ids[v]);
+    c.side = kCorner;
+    outside |= (c.u > h1 ? 1u : 0u) | (c.v > h2 ? 2u : 0u) | (-c.u > h1 ? 4u : 0u) | (-c.v > h2 ? 8u : 0u);
   }
-  // Two buffers alternate; a side that clips nothing leaves the polygon where it is.
-  FacePoints tmp;
-  FacePoints* cur = &buf;
-  FacePoints* other = &tmp;
-  const Real lim[4] = {h[i1], h[i2], h[i1], h[i2]};
-  for (int side = 0; side < 4 && cur->count > 0; ++side) {
-    if (clip_side(*cur, *other, side % 2 == 0, side < 2 ? Real(1) : Real(-1), lim[side],
-                  static_cast<std::uint32_t>(side)) >= 0) {
-      std::swap(cur, other);
-    }
+  // Sutherland-Hodgman over the sides some corner lies beyond (a side no corner crosses
+  // cuts nothing: the polygon stays in the hull of the corners).
+  ClipPoint* cur = buf0;
+  ClipPoint* other = buf1;
+  int n = 4;
+  if (outside & 1u) {
+    n = clip_side(cur, n, other, true, Real(1), h1, 0);
+    std::swap(cur, other);
   }
-  int n = 0;
-  for (int k = 0; k < cur->count; ++k) {
-    if (!(cur->gap[k] <= contact_distance)) continue;
-    out.u[n] = cur->u[k];
-    out.v[n] = cur->v[k];
-    out.gap[n] = cur->gap[k];
-    out.id[n] = cur->id[k];
-    out.side[n] = cur->side[k];
-    ++n;
+  if ((outside & 2u) && n > 0) {
+    n = clip_side(cur, n, other, false, Real(1), h2, 1);
+    std::swap(cur, other);
   }
-  out.count = n;
+  if ((outside & 4u) && n > 0) {
+    n = clip_side(cur, n, other, true, Real(-1), h1, 2);
+    std::swap(cur, other);
+  }
+  if ((outside & 8u) && n > 0) {
+    n = clip_side(cur, n, other, false, Real(-1), h2, 3);
+    std::swap(cur, other);
+  }
+  int kept = 0;
+  for (int k = 0; k < n; ++k) {
+    if (cur[k].gap <= contact_distance) out.p[kept++] = cur[k];
+  }
+  out.count = kept;
   return true;
 }
 
@@ -546,9 +589,10 @@ bool clip_box_faces(const Real (&h)[3], const Incident& f, const Vec3& dir, Real
 // how many.
 int choose_points(const FacePoints& fp, int k, bool always, std::array<int, 4>& chosen) {
   const int n = fp.count;
+  const ClipPoint* P = fp.p;
   int i0 = 0;
   for (int q = 1; q < n; ++q) {
-    if (fp.gap[q] < fp.gap[i0]) i0 = q;
+    if (P[q].gap < P[i0].gap) i0 = q;
   }
   if (n <= k && !always) {
     for (int q = 0; q < n; ++q) chosen[static_cast<std::size_t>(q)] = (i0 + q) % n;
@@ -556,17 +600,17 @@ int choose_points(const FacePoints& fp, int k, bool always, std::array<int, 4>& 
   }
   chosen[0] = i0;
   if (k == 1) return 1;
-  const Real u0 = fp.u[i0];
-  const Real v0 = fp.v[i0];
-  const Real g0 = fp.gap[i0];
+  const Real u0 = P[i0].u;
+  const Real v0 = P[i0].v;
+  const Real g0 = P[i0].gap;
   // Farthest from the deepest (positions: midpoints of the two surface points, so half the
   // gap lies along the normal).
   int i1 = -1;
   Real best = Real(0);
   for (int q = 0; q < n; ++q) {
-    const Real du = fp.u[q] - u0;
-    const Real dw = fp.v[q] - v0;
-    const Real dg = Real(0.5) * (fp.gap[q] - g0);
+    const Real du = P[q].u - u0;
+    const Real dw = P[q].v - v0;
+    const Real dg = Real(0.5) * (P[q].gap - g0);
     const Real d2 = du * du + dw * dw + dg * dg;
     if (q != i0 && d2 > best) {
       i1 = q;
@@ -576,15 +620,15 @@ int choose_points(const FacePoints& fp, int k, bool always, std::array<int, 4>& 
   if (i1 < 0) return 1;
   chosen[1] = i1;
   if (k == 2) return 2;
-  const Real eu = fp.u[i1] - u0;
-  const Real ev = fp.v[i1] - v0;
+  const Real eu = P[i1].u - u0;
+  const Real ev = P[i1].v - v0;
   // Largest triangle.
   int i2 = -1;
   best = Real(0);
   Real orientation = Real(0);
   for (int q = 0; q < n; ++q) {
     if (q == i0 || q == i1) continue;
-    const Real area = eu * (fp.v[q] - v0) - ev * (fp.u[q] - u0);
+    const Real area = eu * (P[q].v - v0) - ev * (P[q].u - u0);
     if (std::abs(area) > best) {
       i2 = q;
       best = std::abs(area);
@@ -596,8 +640,8 @@ int choose_points(const FacePoints& fp, int k, bool always, std::array<int, 4>& 
   if (k == 3) return 3;
   // Largest area added outside the triangle (i0, i1, i2), oriented like `orientation`.
   const Real sg = orientation > Real(0) ? Real(1) : Real(-1);
-  const Real pu[3] = {u0, fp.u[i1], fp.u[i2]};
-  const Real pv[3] = {v0, fp.v[i1], fp.v[i2]};
+  const Real pu[3] = {u0, P[i1].u, P[i2].u};
+  const Real pv[3] = {v0, P[i1].v, P[i2].v};
   int i3 = -1;
   best = Real(0);
   for (int q = 0; q < n; ++q) {
@@ -605,7 +649,7 @@ int choose_points(const FacePoints& fp, int k, bool always, std::array<int, 4>& 
     Real added = -kInfinity;
     for (int e = 0; e < 3; ++e) {
       const int f = e == 2 ? 0 : e + 1;
-      const Real area = (pu[f] - pu[e]) * (fp.v[q] - pv[e]) - (pv[f] - pv[e]) * (fp.u[q] - pu[e]);
+      const Real area = (pu[f] - pu[e]) * (P[q].v - pv[e]) - (pv[f] - pv[e]) * (P[q].u - pu[e]);
       added = std::max(added, -sg * area);
     }
     if (added > best) {
@@ -618,39 +662,40 @@ int choose_points(const FacePoints& fp, int k, bool always, std::array<int, 4>& 
   return 4;
 }
 
-// Writes the chosen candidates to `m` in the world frame. `pose_ref` and `rot_ref` place
-// the reference box; `normal` is the world normal A to B (m.normal). A candidate with index
-// `witness` takes the world points `witness_a`, `witness_b` instead and feature id 0.
-void write_points(const FacePoints& fp, const Reference& ref, const Vec3& pos_ref, const Mat3& rot_ref,
+// Writes the chosen candidates to `m` in the world frame. `pos_ref` and `axes_ref` (rows:
+// the reference box's axes in the world) place the reference box; `normal` is the world
+// normal A to B (m.normal). A candidate with index `witness` takes the world points
+// `witness_a`, `witness_b` instead and feature id 0.
+void write_points(const FacePoints& fp, const Reference& ref, const Vec3& pos_ref, const Real (&axes_ref)[3][3],
                   const Vec3& normal, int max_contacts, ContactManifold& m, int witness = -1,
                   const Vec3& witness_a = Vec3(0), const Vec3& witness_b = Vec3(0)) {
   std::array<int, 4> chosen;
   // A witness may coincide with a clipped point: the reduction drops such a double.
   const int n = choose_points(fp, std::clamp(max_contacts, 1, kMaxContactPoints), witness >= 0, chosen);
   const std::uint32_t ref_index = static_cast<std::uint32_t>(2 * ref.i + (ref.s > Real(0) ? 1 : 0));
-  const Vec3 base = pos_ref + (ref.s * ref.h[ref.i]) * rot_ref[ref.i];
-  const Vec3& eu = rot_ref[ref.i1];
-  const Vec3& ev = rot_ref[ref.i2];
+  const Vec3 base = pos_ref + (ref.s * ref.h[ref.i]) * row(axes_ref, ref.i);
+  const Vec3 eu = row(axes_ref, ref.i1);
+  const Vec3 ev = row(axes_ref, ref.i2);
   for (int q = 0; q < n; ++q) {
-    const int c = chosen[static_cast<std::size_t>(q)];
+    const ClipPoint& c = fp.p[chosen[static_cast<std::size_t>(q)]];
     ContactPoint& out = m.points[static_cast<std::size_t>(q)];
     out.normal = normal;
-    out.depth = -fp.gap[c];
-    if (c == witness) {
+    out.depth = -c.gap;
+    if (chosen[static_cast<std::size_t>(q)] == witness) {
       out.point_a = witness_a;
       out.point_b = witness_b;
       out.feature_id = 0;
       continue;
     }
-    const Vec3 on_ref = base + fp.u[c] * eu + fp.v[c] * ev;
-    const Vec3 on_inc = on_ref + fp.gap[c] * ref.dir_world;
+    const Vec3 on_ref = base + c.u * eu + c.v * ev;
+    const Vec3 on_inc = on_ref + c.gap * ref.dir_world;
     out.point_a = ref.is_a ? on_ref : on_inc;
     out.point_b = ref.is_a ? on_inc : on_ref;
-    const bool crossing = fp.side[c] != kCorner;
-    const std::uint32_t rid = crossing ? ((ref_index * 32u + fp.side[c]) & 0x3FFFu) : ref_index;
+    const bool crossing = c.side != kCorner;
+    const std::uint32_t rid = crossing ? ((ref_index * 32u + c.side) & 0x3FFFu) : ref_index;
     const FeatureKind rk = crossing ? FeatureKind::Edge : FeatureKind::Face;
     const FeatureKind ik = crossing ? FeatureKind::Edge : FeatureKind::Vertex;
-    out.feature_id = ref.is_a ? make_feature_id(rk, rid, ik, fp.id[c]) : make_feature_id(ik, fp.id[c], rk, rid);
+    out.feature_id = ref.is_a ? make_feature_id(rk, rid, ik, c.id) : make_feature_id(ik, c.id, rk, rid);
   }
   m.count = n;
 }
@@ -659,19 +704,19 @@ void write_points(const FacePoints& fp, const Reference& ref, const Vec3& pos_re
 // they lie. The reference is A for k < 3, else B; the projection is along the axis.
 void face_axis_points(const BoxPair& p, int k, Real contact_distance, Reference& ref, FacePoints& fp) {
   if (k < 3) {
-    Vec3 dir(Real(0));
-    dir[k] = p.t[k] >= Real(0) ? Real(1) : Real(-1);
+    const Real sd = p.t[k] >= Real(0) ? Real(1) : Real(-1);
+    const Vec3 dir(k == 0 ? sd : Real(0), k == 1 ? sd : Real(0), k == 2 ? sd : Real(0));
     static_cast<void>(clip_box_faces(p.a, incident_of_b(p), dir, contact_distance, ref, fp));
     ref.is_a = true;
-    ref.dir_world = p.rot_a[k] * dir[k];
+    ref.dir_world = sd * row(p.ma, k);
   } else {
     // The normal is s B_j (s the sign of tb[j]); from B towards A it is -s e_j in B's frame.
     const int j = k - 3;
-    Vec3 dir(Real(0));
-    dir[j] = p.tb[j] >= Real(0) ? Real(-1) : Real(1);
+    const Real sd = p.tb[j] >= Real(0) ? Real(-1) : Real(1);
+    const Vec3 dir(j == 0 ? sd : Real(0), j == 1 ? sd : Real(0), j == 2 ? sd : Real(0));
     static_cast<void>(clip_box_faces(p.b, incident_of_a(p), dir, contact_distance, ref, fp));
     ref.is_a = false;
-    ref.dir_world = p.rot_b[j] * dir[j];
+    ref.dir_world = sd * row(p.mb, j);
   }
 }
 
@@ -690,8 +735,8 @@ void edge_manifold(const BoxPair& p, const Transform& pose_a, int k, Real sep, c
   closest_edge_points(p, i, j, ca, cb, eb, on_a, on_b);
   m.count = 1;
   ContactPoint& c = m.points[0];
-  c.point_a = pose_a.position + p.rot_a * on_a;
-  c.point_b = pose_a.position + p.rot_a * on_b;
+  c.point_a = pose_a.position + to_world(p.ma, on_a);
+  c.point_b = pose_a.position + to_world(p.ma, on_b);
   c.normal = m.normal;
   c.depth = -sep;
   // Edge ids: the axis and which of the four parallel edges (sign bits of the normal).
@@ -720,8 +765,8 @@ void support_point(const BoxPair& p, const Transform& pose_a, const Vec3& n_loca
     pb += (glm::dot(n_local, bj) <= Real(0) ? p.b[j] : -p.b[j]) * bj;
   }
   m.count = 1;
-  m.points[0] =
-      ContactPoint{pose_a.position + p.rot_a * (pb - sep * n_local), pose_a.position + p.rot_a * pb, m.normal, -sep, 0};
+  m.points[0] = ContactPoint{pose_a.position + to_world(p.ma, pb - sep * n_local), pose_a.position + to_world(p.ma, pb),
+                             m.normal, -sep, 0};
 }
 
 // Manifold of an overlapping pair along axis k (exact separation sep): clipped faces for a
@@ -736,7 +781,7 @@ ContactManifold& overlap_on_axis(const BoxPair& p, const Transform& pose_a, cons
     FacePoints fp;
     face_axis_points(p, k, request.contact_distance, ref, fp);
     if (fp.count > 0) {
-      write_points(fp, ref, ref.is_a ? pose_a.position : pose_b.position, ref.is_a ? p.rot_a : p.rot_b, m.normal,
+      write_points(fp, ref, ref.is_a ? pose_a.position : pose_b.position, ref.is_a ? p.ma : p.mb, m.normal,
                    request.max_contacts, m);
     } else {
       support_point(p, pose_a, n_local, sep, m);
@@ -758,10 +803,10 @@ ContactManifold& near_manifold(const BoxPair& p, const Transform& pose_a, const 
   Real len = Real(0);
   if (dist > kDirectionGap * p.tol && unit_and_length(cf.on_b - cf.on_a, unit, len)) n_local = unit;
   const Real sd = std::max(dist, s.max_sep);
-  m.normal = p.rot_a * n_local;
+  m.normal = to_world(p.ma, n_local);
   m.status = status_from_distance(sd, p.tol);
-  const Vec3 world_a = pose_a.position + p.rot_a * cf.on_a;
-  const Vec3 world_b = pose_a.position + p.rot_a * cf.on_b;
+  const Vec3 world_a = pose_a.position + to_world(p.ma, cf.on_a);
+  const Vec3 world_b = pose_a.position + to_world(p.ma, cf.on_b);
   if (!(sd <= request.contact_distance)) return m;
   const Vec3 n_b = -Vec3(glm::dot(n_local, b_axis(p, 0)), glm::dot(n_local, b_axis(p, 1)),
                          glm::dot(n_local, b_axis(p, 2)));  // -n in B's frame
@@ -776,7 +821,7 @@ ContactManifold& near_manifold(const BoxPair& p, const Transform& pose_a, const 
     // The pair's own closest points, kept when every clipped point is shallower (tilted
     // reference face).
     Real smallest_gap = kInfinity;
-    for (int q = 0; q < fp.count; ++q) smallest_gap = std::min(smallest_gap, fp.gap[q]);
+    for (int q = 0; q < fp.count; ++q) smallest_gap = std::min(smallest_gap, fp.p[q].gap);
     int witness = -1;
     if (smallest_gap > sd) {
       // Its position for the reduction: the reference-side witness in the reference frame.
@@ -786,14 +831,15 @@ ContactManifold& near_manifold(const BoxPair& p, const Transform& pose_a, const 
                                       glm::dot(on_ref - Vec3(p.t[0], p.t[1], p.t[2]), b_axis(p, 1)),
                                       glm::dot(on_ref - Vec3(p.t[0], p.t[1], p.t[2]), b_axis(p, 2)));
       witness = fp.count++;
-      fp.u[witness] = local[ref.i1];
-      fp.v[witness] = local[ref.i2];
-      fp.gap[witness] = sd;
-      fp.id[witness] = 0;
-      fp.side[witness] = kCorner;
+      ClipPoint& w = fp.p[witness];
+      w.u = local[ref.i1];
+      w.v = local[ref.i2];
+      w.gap = sd;
+      w.id = 0;
+      w.side = kCorner;
     }
     if (fp.count > 0) {
-      write_points(fp, ref, use_a ? pose_a.position : pose_b.position, use_a ? p.rot_a : p.rot_b, m.normal,
+      write_points(fp, ref, use_a ? pose_a.position : pose_b.position, use_a ? p.ma : p.mb, m.normal,
                    request.max_contacts, m, witness, world_a, world_b);
       return m;
     }
@@ -838,9 +884,9 @@ DistanceResult pair_distance(const Box& a, const Transform& pose_a, const Box& b
     Real len = Real(0);
     if (dist > kDirectionGap * p.tol && unit_and_length(f.on_b - f.on_a, unit, len)) n = unit;
     r.signed_distance = std::max(dist, s.max_sep);
-    r.point_a = pose_a.position + p.rot_a * f.on_a;
-    r.point_b = pose_a.position + p.rot_a * f.on_b;
-    r.normal = p.rot_a * n;
+    r.point_a = pose_a.position + to_world(p.ma, f.on_a);
+    r.point_b = pose_a.position + to_world(p.ma, f.on_b);
+    r.normal = to_world(p.ma, n);
     r.status = status_from_distance(r.signed_distance, p.tol);
     return r;
   }
@@ -858,7 +904,7 @@ DistanceResult pair_distance(const Box& a, const Transform& pose_a, const Box& b
     FacePoints fp;
     face_axis_points(p, s.max_axis, kInfinity, ref, fp);
     if (fp.count > 0) {
-      write_points(fp, ref, ref.is_a ? pose_a.position : pose_b.position, ref.is_a ? p.rot_a : p.rot_b, r.normal, 1, m);
+      write_points(fp, ref, ref.is_a ? pose_a.position : pose_b.position, ref.is_a ? p.ma : p.mb, r.normal, 1, m);
     } else {
       support_point(p, pose_a, max_normal, s.max_sep, m);
     }
@@ -911,12 +957,12 @@ ContactManifold pair_collide(const Box& a, const Transform& pose_a, const Box& b
     if (fp.count > 0) {
       // A preferred (not deepest-separating) face axis is kept only while no point goes
       // deeper than the pair's exact depth; else the exact axis decides.
-      Real smallest_gap = fp.gap[0];
-      for (int q = 1; q < fp.count; ++q) smallest_gap = std::min(smallest_gap, fp.gap[q]);
+      Real smallest_gap = fp.p[0].gap;
+      for (int q = 1; q < fp.count; ++q) smallest_gap = std::min(smallest_gap, fp.p[q].gap);
       if (k == s.max_axis || -smallest_gap <= -s.max_sep + p.tol) {
         m.status = status_from_distance(sep, p.tol);
         m.normal = ref.is_a ? ref.dir_world : -ref.dir_world;
-        write_points(fp, ref, ref.is_a ? pose_a.position : pose_b.position, ref.is_a ? p.rot_a : p.rot_b, m.normal,
+        write_points(fp, ref, ref.is_a ? pose_a.position : pose_b.position, ref.is_a ? p.ma : p.mb, m.normal,
                      request.max_contacts, m);
         return m;
       }
@@ -928,9 +974,10 @@ ContactManifold pair_collide(const Box& a, const Transform& pose_a, const Box& b
   if (k != s.max_axis && -sep > -s.max_sep + p.tol) {
     return overlap_on_axis(p, pose_a, pose_b, s.max_axis, s.max_sep, request, m);
   }
+  const Vec3 n_local = axis_normal(p, k);
   m.status = status_from_distance(sep, p.tol);
-  m.normal = world_normal(p, k);
-  edge_manifold(p, pose_a, k, sep, axis_normal(p, k), m);
+  m.normal = to_world(p.ma, n_local);
+  edge_manifold(p, pose_a, k, sep, n_local, m);
   return m;
 }
 
