@@ -10,9 +10,11 @@
 // Real-Time Collision Detection, 4.4.1).
 
 #include <proxima/core/math.hpp>
+#include <proxima/core/tolerance.hpp>
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace proxima::detail {
 
@@ -77,7 +79,10 @@ inline bool boxes_within(const BoxPairFrame& f, const Vec3& ea, const Vec3& eb, 
 /// projections over the 15 candidate axes (each edge axis normalised; axes of nearly
 /// parallel edges, shorter than 1e-3, skipped) and the axis through the centres; 0 when no
 /// axis separates them. Exact when the nearest features are face-vertex or edge-edge.
-inline Real boxes_gap(const BoxPairFrame& f, const Vec3& ea, const Vec3& eb) {
+/// Returns as soon as a gap reaches `enough` (the caller only needs to know that much):
+/// face axes first, then the centre axis, then the edge axes.
+inline Real boxes_gap(const BoxPairFrame& f, const Vec3& ea, const Vec3& eb,
+                      Real enough = std::numeric_limits<Real>::infinity()) {
   const auto& r = f.r;
   const auto& abs_r = f.abs_r;
   const auto& t = f.t;
@@ -90,6 +95,18 @@ inline Real boxes_gap(const BoxPairFrame& f, const Vec3& ea, const Vec3& eb) {
     const Real ra = abs_r[0][j] * ea[0] + abs_r[1][j] * ea[1] + abs_r[2][j] * ea[2];
     const Real tj = t[0] * r[0][j] + t[1] * r[1][j] + t[2] * r[2][j];
     gap = std::max(gap, std::abs(tj) - ra - eb[j]);
+  }
+  if (gap >= enough) return gap;
+  const Real tt = t[0] * t[0] + t[1] * t[1] + t[2] * t[2];
+  if (tt > Real(0)) {
+    const Real len = std::sqrt(tt);
+    const Real u[3] = {t[0] / len, t[1] / len, t[2] / len};
+    const Real ra = ea[0] * std::abs(u[0]) + ea[1] * std::abs(u[1]) + ea[2] * std::abs(u[2]);
+    Real rb = Real(0);
+    for (int j = 0; j < 3; ++j) rb += eb[j] * (std::abs(u[0] * r[0][j] + u[1] * r[1][j] + u[2] * r[2][j]));
+    // |u . b_j| is bounded as abs_r bounds |r|: a few epsilons of slack keep the gap low.
+    gap = std::max(gap, len - ra - rb * (Real(1) + Real(8) * kEpsilon));
+    if (gap >= enough) return gap;
   }
   for (int i = 0; i < 3; ++i) {
     const int i1 = (i + 1) % 3;
@@ -106,15 +123,6 @@ inline Real boxes_gap(const BoxPairFrame& f, const Vec3& ea, const Vec3& eb) {
       if (len2 < Real(1e-6) || g * g <= gap * gap * len2) continue;
       gap = g / std::sqrt(len2);
     }
-  }
-  const Real tt = t[0] * t[0] + t[1] * t[1] + t[2] * t[2];
-  if (tt > Real(0)) {
-    const Real len = std::sqrt(tt);
-    const Real u[3] = {t[0] / len, t[1] / len, t[2] / len};
-    const Real ra = ea[0] * std::abs(u[0]) + ea[1] * std::abs(u[1]) + ea[2] * std::abs(u[2]);
-    Real rb = Real(0);
-    for (int j = 0; j < 3; ++j) rb += eb[j] * std::abs(u[0] * r[0][j] + u[1] * r[1][j] + u[2] * r[2][j]);
-    gap = std::max(gap, len - ra - rb);
   }
   return gap;
 }

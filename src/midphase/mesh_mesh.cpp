@@ -140,41 +140,78 @@ inline Real extent_sum(const BvhNode& n) {
 }
 
 /// The axis-aligned node test (the reference path): A's boxes in A's frame against B's boxes
-/// as oriented boxes mapped by f.
+/// as oriented boxes mapped by f. A node test offers, for a pair (A node, B node): the
+/// overlap within a margin and a squared distance lower bound, each with one side fixed
+/// (fix_a / fix_b prepare that side once for both children of the other).
 struct AabbNodes {
   const BvhNode* na;
   const BvhNode* nb;
   const RelativeFrame* f;
 
-  bool overlap(std::uint32_t ia, std::uint32_t ib, Real margin) const {
-    return boxes_overlap(*f, node_box(na[ia]), node_box(nb[ib]), margin);
+  NodeBox fix_a(std::uint32_t ia) const { return node_box(na[ia]); }
+  NodeBox fix_b(std::uint32_t ib) const { return node_box(nb[ib]); }
+  bool overlap(std::uint32_t ia, const NodeBox& b, Real margin) const {
+    return boxes_overlap(*f, node_box(na[ia]), b, margin);
   }
-  Real lower_bound2(std::uint32_t ia, std::uint32_t ib, Real prune2) const {
-    return box_distance_lower_bound_squared(*f, node_box(na[ia]), node_box(nb[ib]), prune2);
+  bool overlap(const NodeBox& a, std::uint32_t ib, Real margin) const {
+    return boxes_overlap(*f, a, node_box(nb[ib]), margin);
+  }
+  Real lower_bound2(std::uint32_t ia, const NodeBox& b, Real prune2) const {
+    return box_distance_lower_bound_squared(*f, node_box(na[ia]), b, prune2);
+  }
+  Real lower_bound2(const NodeBox& a, std::uint32_t ib, Real prune2) const {
+    return box_distance_lower_bound_squared(*f, a, node_box(nb[ib]), prune2);
   }
   Real size_a(std::uint32_t ia) const { return extent_sum(na[ia]); }
   Real size_b(std::uint32_t ib) const { return extent_sum(nb[ib]); }
 };
 
-/// The oriented node test: both meshes' OrientedTree boxes, B's mapped into A's frame per
-/// pair (36 multiplications) and then the shared separating-axis test.
+/// The oriented node test: both meshes' OrientedTree boxes and the shared separating-axis
+/// test. The fixed side is mapped into the other mesh's frame once (A's box into B's frame
+/// by the inverse of f, B's into A's by f).
 struct OrientedNodes {
   const OrientedNode* oa;
   const OrientedNode* ob;
   const RelativeFrame* f;
 
-  detail::BoxPairFrame pair(std::uint32_t ia, std::uint32_t ib) const {
+  /// A box's axes and centre mapped into the other mesh's frame.
+  struct Mapped {
+    Vec3 axis[3];
+    Vec3 center;
+    Vec3 half;
+  };
+  Mapped fix_a(std::uint32_t ia) const {
     const OrientedNode& a = oa[ia];
+    const Mat3 inv = glm::transpose(f->rotation);
+    return {{inv * a.axis[0], inv * a.axis[1], inv * a.axis[2]}, inv * (a.center - f->t), a.half};
+  }
+  Mapped fix_b(std::uint32_t ib) const {
     const OrientedNode& b = ob[ib];
-    const Vec3 axes_b[3] = {f->rotation * b.axis[0], f->rotation * b.axis[1], f->rotation * b.axis[2]};
-    return detail::box_pair_frame(a.axis, a.center, axes_b, f->rotation * b.center + f->t, Real(8) * kEpsilon);
+    const Mat3& r = f->rotation;
+    return {{r * b.axis[0], r * b.axis[1], r * b.axis[2]}, r * b.center + f->t, b.half};
   }
-  bool overlap(std::uint32_t ia, std::uint32_t ib, Real margin) const {
-    return detail::boxes_within(pair(ia, ib), oa[ia].half, ob[ib].half, margin);
+  static constexpr Real kParallel = Real(8) * kEpsilon;
+  detail::BoxPairFrame pair(std::uint32_t ia, const Mapped& b) const {
+    return detail::box_pair_frame(oa[ia].axis, oa[ia].center, b.axis, b.center, kParallel);
   }
-  Real lower_bound2(std::uint32_t ia, std::uint32_t ib, Real /*prune2*/) const {
-    const Real g = detail::boxes_gap(pair(ia, ib), oa[ia].half, ob[ib].half);
+  detail::BoxPairFrame pair(const Mapped& a, std::uint32_t ib) const {
+    return detail::box_pair_frame(a.axis, a.center, ob[ib].axis, ob[ib].center, kParallel);
+  }
+  bool overlap(std::uint32_t ia, const Mapped& b, Real margin) const {
+    return detail::boxes_within(pair(ia, b), oa[ia].half, b.half, margin);
+  }
+  bool overlap(const Mapped& a, std::uint32_t ib, Real margin) const {
+    return detail::boxes_within(pair(a, ib), a.half, ob[ib].half, margin);
+  }
+  static Real squared_gap(const detail::BoxPairFrame& p, const Vec3& ea, const Vec3& eb, Real prune2) {
+    const Real g = detail::boxes_gap(p, ea, eb, std::sqrt(prune2));
     return g * g;
+  }
+  Real lower_bound2(std::uint32_t ia, const Mapped& b, Real prune2) const {
+    return squared_gap(pair(ia, b), oa[ia].half, b.half, prune2);
+  }
+  Real lower_bound2(const Mapped& a, std::uint32_t ib, Real prune2) const {
+    return squared_gap(pair(a, ib), a.half, ob[ib].half, prune2);
   }
   Real size_a(std::uint32_t ia) const { return oa[ia].half.x + oa[ia].half.y + oa[ia].half.z; }
   Real size_b(std::uint32_t ib) const { return ob[ib].half.x + ob[ib].half.y + ob[ib].half.z; }
@@ -237,6 +274,82 @@ inline Real triangle_gap_squared(const std::array<Vec3, 3>& a, const Vec3& na, c
   return gap > Real(0) ? gap * gap : Real(0);
 }
 
+/// Keeps in `best` the nearer of it and the closest points of segments p0p1 (on A) and q0q1
+/// (on B): the clamped parameters of Ericson 5.1.9. For nearly parallel segments the
+/// parameter is ill-conditioned, but the distance then varies by at most sin^2 of their
+/// angle times the squared length over it, so the distance stays within rounding.
+inline void nearer_segment_pair(const Vec3& p0, const Vec3& p1, const Vec3& q0, const Vec3& q1,
+                                geometry::ClosestPair& best) {
+  const Vec3 d1 = p1 - p0;
+  const Vec3 d2 = q1 - q0;
+  const Vec3 r = p0 - q0;
+  const Real a = glm::dot(d1, d1);
+  const Real e = glm::dot(d2, d2);
+  const Real f = glm::dot(d2, r);
+  Real s = Real(0);
+  Real t = Real(0);
+  if (!(a > Real(0))) {
+    if (e > Real(0)) t = std::clamp(f / e, Real(0), Real(1));
+  } else {
+    const Real c = glm::dot(d1, r);
+    if (!(e > Real(0))) {
+      s = std::clamp(-c / a, Real(0), Real(1));
+    } else {
+      const Real b = glm::dot(d1, d2);
+      const Real denom = a * e - b * b;
+      s = denom > Real(0) ? std::clamp((b * f - c * e) / denom, Real(0), Real(1)) : Real(0);
+      const Real tn = b * s + f;
+      if (tn < Real(0)) {
+        s = std::clamp(-c / a, Real(0), Real(1));
+      } else if (tn > e) {
+        t = Real(1);
+        s = std::clamp((b - c) / a, Real(0), Real(1));
+      } else {
+        t = tn / e;
+      }
+    }
+  }
+  const Vec3 on_a = p0 + d1 * s;
+  const Vec3 on_b = q0 + d2 * t;
+  const Vec3 d = on_b - on_a;
+  const Real d2_ab = glm::dot(d, d);
+  if (d2_ab < best.distance_squared) best = {on_a, on_b, d2_ab};
+}
+
+/// Keeps in `best` the nearer of it and the vertex-face pair of point p and triangle t
+/// (unit normal n, zero when degenerate) when p projects inside t (else an edge pair is
+/// nearer). `p_on_a`: p belongs to A (the pair is stored as (p, foot)), else to B.
+inline void nearer_vertex_face(const Vec3& p, const std::array<Vec3, 3>& t, const Vec3& n, bool p_on_a,
+                               geometry::ClosestPair& best) {
+  const Real h = glm::dot(n, p - t[0]);
+  if (!(h * h < best.distance_squared) || glm::dot(n, n) == Real(0)) return;
+  const Vec3 foot = p - h * n;
+  for (int k = 0; k < 3; ++k) {
+    const Vec3& u = t[k];
+    const Vec3& v = t[(k + 1) % 3];
+    if (glm::dot(glm::cross(v - u, foot - u), n) < Real(0)) return;
+  }
+  best = p_on_a ? geometry::ClosestPair{p, foot, h * h} : geometry::ClosestPair{foot, p, h * h};
+}
+
+/// Closest points of two triangles known to be apart (the overlap descent found no pair
+/// within tolerance, so the nearest features are a vertex and a face or two edges: Ericson
+/// 5.1.10): the six vertex-face and nine edge-edge candidates, no crossing search. Unit
+/// normals na, nb (zero when degenerate). Coordinates in the range where no rescaling is
+/// needed (geometry::detail::rescale_exponent == 0).
+inline geometry::ClosestPair separated_triangles(const std::array<Vec3, 3>& ta, const Vec3& na,
+                                                 const std::array<Vec3, 3>& tb, const Vec3& nb) {
+  geometry::ClosestPair best{ta[0], tb[0], std::numeric_limits<Real>::infinity()};
+  for (int k = 0; k < 3; ++k) {
+    for (int l = 0; l < 3; ++l) nearer_segment_pair(ta[k], ta[(k + 1) % 3], tb[l], tb[(l + 1) % 3], best);
+  }
+  for (int k = 0; k < 3; ++k) {
+    nearer_vertex_face(ta[k], tb, nb, true, best);
+    nearer_vertex_face(tb[k], ta, na, false, best);
+  }
+  return best;
+}
+
 /// Unit normal of a triangle, zero when degenerate.
 inline Vec3 unit_normal(const std::array<Vec3, 3>& t) {
   const Vec3 n = glm::cross(t[1] - t[0], t[2] - t[0]);
@@ -284,7 +397,7 @@ bool descend_overlapping(const Bvh& ba, const Bvh& bb, const Nodes& nodes, Real 
   const auto nb = bb.nodes();
   std::uint32_t stack[kPairStackSize][2];
   std::uint32_t top = 0;
-  if (!nodes.overlap(0, 0, margin)) return true;
+  if (!nodes.overlap(0, nodes.fix_b(0), margin)) return true;
   stack[top][0] = 0;
   stack[top][1] = 0;
   ++top;
@@ -300,8 +413,9 @@ bool descend_overlapping(const Bvh& ba, const Bvh& bb, const Nodes& nodes, Real 
     }
     const bool split_a = b.is_leaf() || (!a.is_leaf() && nodes.size_a(ia) >= nodes.size_b(ib));
     if (split_a) {
+      const auto fixed = nodes.fix_b(ib);
       for (std::uint32_t c = a.first + 1;; --c) {
-        if (nodes.overlap(c, ib, margin)) {
+        if (nodes.overlap(c, fixed, margin)) {
           stack[top][0] = c;
           stack[top][1] = ib;
           ++top;
@@ -309,8 +423,9 @@ bool descend_overlapping(const Bvh& ba, const Bvh& bb, const Nodes& nodes, Real 
         if (c == a.first) break;
       }
     } else {
+      const auto fixed = nodes.fix_a(ia);
       for (std::uint32_t c = b.first + 1;; --c) {
-        if (nodes.overlap(ia, c, margin)) {
+        if (nodes.overlap(fixed, c, margin)) {
           stack[top][0] = ia;
           stack[top][1] = c;
           ++top;
@@ -471,7 +586,7 @@ GeometryDistance distance_descent(const TriangleMesh& a, const Transform& pose_a
   };
   Entry stack[kPairStackSize];
   std::uint32_t top = 0;
-  stack[top++] = {0, 0, nodes.lower_bound2(0, 0, std::numeric_limits<Real>::infinity())};
+  stack[top++] = {0, 0, nodes.lower_bound2(0, nodes.fix_b(0), std::numeric_limits<Real>::infinity())};
   LeafTriangles leaf_b;
   std::uint32_t loaded = kNoIndex;
   bool touching = false;
@@ -493,6 +608,8 @@ GeometryDistance distance_descent(const TriangleMesh& a, const Transform& pose_a
       touching = true;
     }
   }
+  // Apart meshes in the plain coordinate range take the short triangle distance.
+  const bool plain_range = geometry::detail::rescale_exponent(scale) == 0;
   while (top != 0 && !touching) {
     const Entry e = stack[--top];
     if (e.lb2 >= best2) continue;
@@ -523,7 +640,8 @@ GeometryDistance distance_descent(const TriangleMesh& a, const Transform& pose_a
             if (triangle_gap_squared(ta, na_unit, tb, leaf_b.normal[k], dc / std::sqrt(dc2)) >= best2) continue;
           }
           const geometry::ClosestPair cp =
-              geometry::closest_points_triangle_triangle(ta[0], ta[1], ta[2], tb[0], tb[1], tb[2]);
+              plain_range ? separated_triangles(ta, na_unit, tb, leaf_b.normal[k])
+                          : geometry::closest_points_triangle_triangle(ta[0], ta[1], ta[2], tb[0], tb[1], tb[2]);
           if (cp.distance_squared < best2) {
             best2 = cp.distance_squared;
             best_pair = cp;
@@ -544,11 +662,13 @@ GeometryDistance distance_descent(const TriangleMesh& a, const Transform& pose_a
     Entry c0;
     Entry c1;
     if (split_a) {
-      c0 = {nda.first, e.b, nodes.lower_bound2(nda.first, e.b, best2)};
-      c1 = {nda.first + 1, e.b, nodes.lower_bound2(nda.first + 1, e.b, best2)};
+      const auto fixed = nodes.fix_b(e.b);
+      c0 = {nda.first, e.b, nodes.lower_bound2(nda.first, fixed, best2)};
+      c1 = {nda.first + 1, e.b, nodes.lower_bound2(nda.first + 1, fixed, best2)};
     } else {
-      c0 = {e.a, ndb.first, nodes.lower_bound2(e.a, ndb.first, best2)};
-      c1 = {e.a, ndb.first + 1, nodes.lower_bound2(e.a, ndb.first + 1, best2)};
+      const auto fixed = nodes.fix_a(e.a);
+      c0 = {e.a, ndb.first, nodes.lower_bound2(fixed, ndb.first, best2)};
+      c1 = {e.a, ndb.first + 1, nodes.lower_bound2(fixed, ndb.first + 1, best2)};
     }
     if (c1.lb2 < c0.lb2) std::swap(c0, c1);  // c0 nearer: pushed last, popped first
     if (c1.lb2 < best2) stack[top++] = c1;
