@@ -137,22 +137,34 @@ Real touch() { return Real(8) * kRelativeTolerance * Real(4); }
 /// Agreement of distances between a float or double Proxima and FCL in double.
 Real distance_tolerance() { return sizeof(Real) == 4 ? Real(2e-5) : Real(1e-9); }
 
+/// Calls `check(k, pose_b, fcl_a, fcl_b)` for every 4th W4 pose k, with FCL's objects
+/// placed (A at the identity, B at pose_b).
+template <class Check>
+void for_each_pose(const W4& w, Check&& check) {
+  fcl::CollisionObjectd oa(w.fcl_a, fcl::Transform3d::Identity());
+  fcl::CollisionObjectd ob(w.fcl_b, fcl::Transform3d::Identity());
+  for (std::size_t k = 0; k < w.poses.size(); k += 4) {
+    SCOPED_TRACE(k);
+    const Transform pose_b = pb::to_transform(w.poses[k]);
+    ob.setTransform(fcl_transform(pose_b));
+    ob.computeAABB();
+    check(k, pose_b, oa, ob);
+  }
+}
+
+#define PROXIMA_LOAD_W4_OR_SKIP(w) \
+  const W4* w = load();            \
+  if (w == nullptr) GTEST_SKIP() << "W4 workload not readable, or the mesh was changed by repair"
+
 TEST(MeshMeshPeers, BooleanAndContactsAgainstFcl) {
-  const W4* w = load();
-  if (w == nullptr) GTEST_SKIP() << "W4 workload not readable, or the mesh was changed by repair";
+  PROXIMA_LOAD_W4_OR_SKIP(w);
   int cases = 0;
   int hits = 0;
   int fcl_wrong_boolean = 0;
   int fcl_missing_pairs = 0;
   int fcl_extra_pairs = 0;
   int ambiguous = 0;
-  fcl::CollisionObjectd oa(w->fcl_a, fcl::Transform3d::Identity());
-  fcl::CollisionObjectd ob(w->fcl_b, fcl::Transform3d::Identity());
-  for (std::size_t k = 0; k < w->poses.size(); k += 4) {
-    SCOPED_TRACE(k);
-    const Transform pose_b = pb::to_transform(w->poses[k]);
-    ob.setTransform(fcl_transform(pose_b));
-    ob.computeAABB();
+  for_each_pose(*w, [&](std::size_t k, const Transform& pose_b, fcl::CollisionObjectd& oa, fcl::CollisionObjectd& ob) {
     fcl::CollisionRequestd request;
     request.num_max_contacts = 1000000;
     fcl::CollisionResultd result;
@@ -209,7 +221,7 @@ TEST(MeshMeshPeers, BooleanAndContactsAgainstFcl) {
       std::printf("pose %zu: FCL boolean %d, Proxima %d (pairs: FCL %zu, Proxima %zu)\n", k,
                   static_cast<int>(result.isCollision()), static_cast<int>(mine), fcl_pairs.size(), my_pairs.size());
     }
-  }
+  });
   std::printf(
       "W4 boolean/contacts vs FCL OBBRSS: %d poses, %d intersecting; FCL wrong booleans %d, FCL extra pairs %d, "
       "FCL missing pairs %d, pairs within rounding of touching %d\n",
@@ -218,18 +230,11 @@ TEST(MeshMeshPeers, BooleanAndContactsAgainstFcl) {
 }
 
 TEST(MeshMeshPeers, DistanceAgainstFcl) {
-  const W4* w = load();
-  if (w == nullptr) GTEST_SKIP() << "W4 workload not readable, or the mesh was changed by repair";
+  PROXIMA_LOAD_W4_OR_SKIP(w);
   int cases = 0;
   int disagreements = 0;
   int fcl_wrong = 0;
-  fcl::CollisionObjectd oa(w->fcl_a, fcl::Transform3d::Identity());
-  fcl::CollisionObjectd ob(w->fcl_b, fcl::Transform3d::Identity());
-  for (std::size_t k = 0; k < w->poses.size(); k += 4) {
-    SCOPED_TRACE(k);
-    const Transform pose_b = pb::to_transform(w->poses[k]);
-    ob.setTransform(fcl_transform(pose_b));
-    ob.computeAABB();
+  for_each_pose(*w, [&](std::size_t k, const Transform& pose_b, fcl::CollisionObjectd& oa, fcl::CollisionObjectd& ob) {
     fcl::DistanceRequestd request;
     request.enable_nearest_points = true;
     fcl::DistanceResultd result;
@@ -243,7 +248,7 @@ TEST(MeshMeshPeers, DistanceAgainstFcl) {
     const Real mine_pair = pair_distance(*w, pose_b, mine.a.triangle, mine.b.triangle);
     EXPECT_NEAR(mine_pair, mine.result.signed_distance, touch());
     const Real fcl_d = std::max(Real(0), static_cast<Real>(result.min_distance));
-    if (std::abs(fcl_d - mine.result.signed_distance) <= distance_tolerance()) continue;
+    if (std::abs(fcl_d - mine.result.signed_distance) <= distance_tolerance()) return;
     ++disagreements;
     // FCL's named pair decides: if it realises a smaller distance than Proxima's, Proxima
     // missed it.
@@ -259,7 +264,7 @@ TEST(MeshMeshPeers, DistanceAgainstFcl) {
     std::printf("pose %zu: FCL distance %.9g (its pair %u,%u at %.9g), Proxima %.9g (pair %u,%u)\n", k,
                 static_cast<double>(fcl_d), fa, fb, static_cast<double>(fcl_pair),
                 static_cast<double>(mine.result.signed_distance), mine.a.triangle, mine.b.triangle);
-  }
+  });
   std::printf("W4 distance vs FCL OBBRSS: %d poses, %d disagreements beyond %g, FCL wrong %d\n", cases, disagreements,
               static_cast<double>(distance_tolerance()), fcl_wrong);
 }
