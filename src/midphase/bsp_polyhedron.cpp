@@ -9,7 +9,7 @@
 //     for a node's polygon list, score up to max_candidates face planes and (nodes of at
 //     least 8 polygons) six axis-aligned planes, the median and the middle of the polygon
 //     centroids on each axis, by k * splits + (1 - k) * |front - back| - consumed (counted
-//     over at most 256 of the node's polygons; consumed: polygons coplanar with a face plane),
+//     over at most 64 of the node's polygons; consumed: polygons coplanar with a face plane),
 //     and take the cheapest. Face planes alone (pure autopartition) give a chain of depth n on
 //     a convex solid, since every face plane leaves all other faces behind it; the
 //     axis-aligned planes are what balances such trees (Naylor 1993 on splitting planes not
@@ -179,7 +179,7 @@ struct Builder {
 
 // Candidate planes are scored against at most this many polygons of the node (evenly spread),
 // so that choosing a plane costs O(max_candidates) per node rather than O(n max_candidates).
-constexpr std::size_t kScoredPolygons = 256;
+constexpr std::size_t kScoredPolygons = 64;
 // Axis-aligned candidate planes are scored only for nodes with at least this many polygons
 // (below it a chain of face planes is as short as anything an axis split leaves).
 constexpr std::size_t kAxisMinPolygons = 8;

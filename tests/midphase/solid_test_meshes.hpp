@@ -52,6 +52,25 @@ inline IndexedMesh translated(IndexedMesh m, const Vec3& offset) {
   return m;
 }
 
+/// The mesh with exactly equal vertices merged (e.g. tessellate_box, whose faces have their
+/// own vertices), so that it is closed without repair_mesh.
+inline IndexedMesh welded(const IndexedMesh& m) {
+  std::map<std::tuple<Real, Real, Real>, std::uint32_t> index;
+  IndexedMesh out;
+  std::vector<std::uint32_t> remap(m.vertices.size());
+  for (std::size_t i = 0; i < m.vertices.size(); ++i) {
+    const Vec3& v = m.vertices[i];
+    const auto [it, fresh] = index.emplace(std::make_tuple(v.x, v.y, v.z), std::uint32_t(out.vertices.size()));
+    if (fresh) out.vertices.push_back(v);
+    remap[i] = it->second;
+  }
+  for (TriangleIndices t : m.triangles) {
+    for (std::uint32_t& k : t) k = remap[k];
+    out.triangles.push_back(t);
+  }
+  return out;
+}
+
 /// Axis-aligned box [lo, hi], 12 triangles.
 inline IndexedMesh box_mesh(const Vec3& lo, const Vec3& hi) {
   IndexedMesh m;

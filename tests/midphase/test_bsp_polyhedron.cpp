@@ -9,6 +9,11 @@
 // the expected answer); OnBoundary is never given farther than a few tolerances from the
 // surface; points on faces, edges and vertices are OnBoundary; the inside intervals of random
 // segments agree with dense sampling of the winding number; invalid meshes are rejected.
+// Tree quality: on convex solids (icosphere, UV sphere, tessellated box) pure autopartition
+// (axis_planes = false) gives a chain as deep as the number of face planes, while the
+// default (axis-aligned candidate planes) stays within a small multiple of log2(n), and both
+// classify alike. Coplanar faces facing each other (two boxes touching face to face) keep the
+// right inside/outside on both sides.
 #include <gtest/gtest.h>
 
 #include <proxima/core/tolerance.hpp>
@@ -20,6 +25,7 @@
 
 #include "solid_test_meshes.hpp"
 #include "support/random.hpp"
+#include "tessellation.hpp"
 
 namespace proxima {
 namespace {
@@ -297,6 +303,80 @@ TEST(BspPolyhedron, SplitWeightExtremesStayCorrect) {
       EXPECT_EQ(c == PointClass::Inside, test::winding_number(mesh, p) > 0.5) << "k " << k;
     }
   }
+}
+
+TEST(BspPolyhedron, AxisPlanesBalanceConvexSolids) {
+  struct Convex {
+    std::string name;
+    IndexedMesh mesh;
+    std::uint32_t planes;  // distinct face planes
+  };
+  std::vector<Convex> convex;
+  convex.push_back({"icosphere", test::icosphere_mesh(4, Real(1)), 5120u});
+  convex.push_back({"uv_sphere", test::tessellate_sphere(Real(1), 32, 16), 32u * 16u});  // planar quads, cap fans
+  test::Random rng(606);
+  for (const Convex& c : convex) {
+    SCOPED_TRACE(c.name);
+    BspBuildOptions chain_options;
+    chain_options.axis_planes = false;
+    const BspPolyhedron chain = BspPolyhedron::create(c.mesh, chain_options).value();
+    const BspPolyhedron balanced = BspPolyhedron::create(c.mesh).value();
+    // Every face plane leaves all other faces behind it: a chain of one node per plane
+    // (nearly flat neighbours within the plane thickness are consumed with it).
+    EXPECT_EQ(chain.stats().depth, chain.stats().node_count);
+    EXPECT_LE(chain.stats().node_count, c.planes);
+    EXPECT_GE(chain.stats().node_count, c.planes * 9 / 10);
+    // Balanced: a few times log2(n) (the cap fans of the UV sphere, whose triangles all meet
+    // at the pole, still take a short chain of face planes each).
+    const double log_n = std::log2(double(c.mesh.triangles.size()));
+    EXPECT_LE(double(balanced.stats().depth), 6 * log_n) << "nodes " << balanced.stats().node_count;
+    EXPECT_LE(balanced.stats().depth * 8, chain.stats().depth);
+    EXPECT_LE(balanced.stats().node_count, 4 * c.mesh.triangles.size());
+    for (int i = 0; i < 500; ++i) {
+      const Vec3 p = rng.vec3(Real(-1.2), Real(1.2));
+      const PointClass a = chain.classify(p);
+      const PointClass b = balanced.classify(p);
+      if (a == PointClass::OnBoundary || b == PointClass::OnBoundary) continue;
+      EXPECT_EQ(a, b);
+      EXPECT_EQ(b == PointClass::Inside, test::winding_number(c.mesh, p) > 0.5);
+    }
+  }
+  // A box whose faces are 8 x 8 grids: the six face planes (each consuming 128 coplanar
+  // triangles) beat every axis plane, as with autopartition.
+  const BspPolyhedron box = BspPolyhedron::create(test::welded(test::tessellate_box(Vec3(1, 2, 3), 8))).value();
+  EXPECT_EQ(box.stats().node_count, 6u);
+  EXPECT_EQ(box.stats().split_faces, 0u);
+}
+
+TEST(BspPolyhedron, FacesTouchingFaceToFace) {
+  // Two boxes touching along z = 0 (separate vertices): the top face of the lower one and the
+  // bottom face of the upper one are coplanar and face each other.
+  IndexedMesh two = test::box_mesh(Vec3(-1, -1, -1), Vec3(1, 1, 0));
+  const IndexedMesh upper = test::box_mesh(Vec3(-0.5f, -0.5f, 0), Vec3(0.5f, 0.5f, 1));
+  const auto base = static_cast<std::uint32_t>(two.vertices.size());
+  two.vertices.insert(two.vertices.end(), upper.vertices.begin(), upper.vertices.end());
+  for (TriangleIndices t : upper.triangles) {
+    for (std::uint32_t& i : t) i += base;
+    two.triangles.push_back(t);
+  }
+  const BspPolyhedron bsp = BspPolyhedron::create(two).value();
+  test::Random rng(31337);
+  int inside = 0;
+  for (int i = 0; i < 2000; ++i) {
+    const Vec3 p = rng.vec3(Real(-1.3), Real(1.3));
+    const PointClass c = bsp.classify(p);
+    if (c == PointClass::OnBoundary) {
+      EXPECT_LE(test::surface_distance(two, p).first, 4 * double(bsp.tolerance()));
+      continue;
+    }
+    // The winding number is 1 in either box, 0 outside (and 1/2 + 1/2 on the shared patch).
+    EXPECT_EQ(c == PointClass::Inside, test::winding_number(two, p) > 0.5) << p.x << " " << p.y << " " << p.z;
+    inside += c == PointClass::Inside;
+  }
+  EXPECT_GT(inside, 200);
+  EXPECT_EQ(bsp.classify(Vec3(0.2f, 0.1f, 0.3f)), PointClass::Inside);
+  EXPECT_EQ(bsp.classify(Vec3(0.2f, 0.1f, -0.3f)), PointClass::Inside);
+  EXPECT_EQ(bsp.classify(Vec3(0.8f, 0.8f, 0.3f)), PointClass::Outside);
 }
 
 }  // namespace

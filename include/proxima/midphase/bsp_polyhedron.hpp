@@ -39,9 +39,9 @@ struct BspBuildOptions {
   /// cost k * splits + (1 - k) * |front - back| (Ericson 8.3.2 suggests 0.8), in [0, 1].
   Real split_weight = Real(0.8);
   /// At most this many candidate face planes (faces spread evenly over the node's polygons)
-  /// are scored per node, each against at most 256 of the node's polygons, so choosing a
+  /// are scored per node, each against at most 64 of the node's polygons, so choosing a
   /// plane costs O(max_candidates) per node (>= 1).
-  std::uint32_t max_candidates = 32;
+  std::uint32_t max_candidates = 16;
   /// Also score six axis-aligned planes per node of at least 8 polygons (on each axis the
   /// median and the middle of the sampled polygon centroids). Such a plane is taken only when
   /// it leaves polygons on both sides (a face-free plane cannot tell an empty side's inside
