@@ -21,9 +21,6 @@
 #include <proxima/midphase/ray_batch.hpp>
 #include <proxima/midphase/triangle_mesh.hpp>
 
-#if PROXIMA_HAVE_EMBREE
-#include <embree3/rtcore.h>
-#endif
 #if PROXIMA_HAVE_BULLET
 #include <BulletCollision/CollisionShapes/btBvhTriangleMeshShape.h>
 #include <BulletCollision/CollisionShapes/btTriangleIndexVertexArray.h>
@@ -38,6 +35,9 @@
 #include <vector>
 
 #include "support/bench_main.hpp"
+#if PROXIMA_HAVE_EMBREE
+#include "support/embree_scene.hpp"
+#endif
 #include "support/workloads.hpp"
 
 namespace pb = proxima::bench;
@@ -142,59 +142,13 @@ void BM_RaysProximaBatch(benchmark::State& state) {
 }
 
 #if PROXIMA_HAVE_EMBREE
-struct Embree {
-  RTCDevice device = nullptr;
-  RTCScene scene = nullptr;
-  explicit Embree(const proxima::TriangleMesh& mesh) {
-    device = rtcNewDevice("threads=1");
-    scene = rtcNewScene(device);
-    rtcSetSceneFlags(scene, RTC_SCENE_FLAG_ROBUST);
-    rtcSetSceneBuildQuality(scene, RTC_BUILD_QUALITY_HIGH);
-    RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-    auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                                                          3 * sizeof(float), mesh.vertices().size()));
-    for (std::size_t i = 0; i < mesh.vertices().size(); ++i)
-      for (int a = 0; a < 3; ++a) v[3 * i + std::size_t(a)] = static_cast<float>(mesh.vertices()[i][a]);
-    auto* ix = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                                                              3 * sizeof(unsigned), mesh.triangle_count()));
-    for (std::size_t i = 0; i < mesh.triangle_count(); ++i)
-      for (std::size_t k = 0; k < 3; ++k) ix[3 * i + k] = mesh.triangles()[i][k];
-    rtcCommitGeometry(geom);
-    rtcAttachGeometry(scene, geom);
-    rtcReleaseGeometry(geom);
-    rtcCommitScene(scene);
-  }
-  ~Embree() {
-    rtcReleaseScene(scene);
-    rtcReleaseDevice(device);
-  }
-  Embree(const Embree&) = delete;
-  Embree& operator=(const Embree&) = delete;
-  bool intersect(const pb::RayQuery& q) const {
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
-    RTCRayHit rh{};
-    rh.ray.org_x = float(q.origin.x);
-    rh.ray.org_y = float(q.origin.y);
-    rh.ray.org_z = float(q.origin.z);
-    rh.ray.dir_x = float(q.direction.x);
-    rh.ray.dir_y = float(q.direction.y);
-    rh.ray.dir_z = float(q.direction.z);
-    rh.ray.tnear = 0.0f;
-    rh.ray.tfar = float(q.max_t);
-    rh.ray.mask = 0xffffffffu;
-    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-    rtcIntersect1(scene, &context, &rh);
-    return rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
-  }
-};
-std::unique_ptr<Embree> g_embree;
+std::unique_ptr<pb::EmbreeScene> g_embree;
 
 void BM_RaysEmbree(benchmark::State& state) {
   std::size_t hits = 0;
   for (auto _ : state) {
     hits = 0;
-    for (const pb::RayQuery& q : g_rays) hits += g_embree->intersect(q) ? 1 : 0;
+    for (const pb::RayQuery& q : g_rays) hits += g_embree->intersect(q).has_value() ? 1 : 0;
     benchmark::DoNotOptimize(hits);
   }
   state.counters["hits"] = double(hits);
@@ -288,7 +242,7 @@ bool register_mesh(const std::string& dir) {
       ->Unit(benchmark::kMillisecond)
       ->UseRealTime();
 #if PROXIMA_HAVE_EMBREE
-  g_embree = std::make_unique<Embree>(*g_ray_mesh);
+  g_embree = std::make_unique<pb::EmbreeScene>(*g_ray_mesh);
   benchmark::RegisterBenchmark("BM_Rays/Embree", BM_RaysEmbree)->Unit(benchmark::kMillisecond);
 #endif
 #if PROXIMA_HAVE_BULLET

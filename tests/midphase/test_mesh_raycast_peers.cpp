@@ -1,5 +1,5 @@
-// TriangleMesh::raycast against Embree 3 (rtcIntersect1, robust scene) on the shared W5 ray
-// workload (shared/bench/data/rays.txt against mesh_torusknot.obj): same hit/miss and the
+// TriangleMesh::raycast (4-wide traversal, checked against the binary one too) against Embree 3 (rtcIntersect1, robust
+// scene) on the shared W5 ray workload (shared/bench/data/rays.txt against mesh_torusknot.obj): same hit/miss and the
 // same t within tolerance. Every disagreement is decided by brute force over all triangles
 // (Proxima's own answer must equal it exactly; the count of rays where Embree differs is
 // printed and bounded).
@@ -20,8 +20,7 @@
 #include "support/random.hpp"
 
 #if PROXIMA_HAVE_EMBREE && defined(PROXIMA_DEFAULT_WORKLOAD_DIR)
-#include <embree3/rtcore.h>
-
+#include "support/embree_scene.hpp"
 #include "support/workloads.hpp"
 
 namespace proxima {
@@ -40,59 +39,7 @@ std::optional<MeshRayHit> brute_closest(const TriangleMesh& mesh, const Ray& ray
   return best;
 }
 
-/// An Embree scene holding one mesh (float vertices), robust traversal, one thread.
-class EmbreeScene {
- public:
-  explicit EmbreeScene(const TriangleMesh& mesh) {
-    device_ = rtcNewDevice("threads=1");
-    scene_ = rtcNewScene(device_);
-    rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
-    rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_HIGH);
-    RTCGeometry geom = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
-    auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                                                          3 * sizeof(float), mesh.vertices().size()));
-    for (std::size_t i = 0; i < mesh.vertices().size(); ++i)
-      for (int a = 0; a < 3; ++a) v[3 * i + std::size_t(a)] = static_cast<float>(mesh.vertices()[i][a]);
-    auto* ix = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                                                              3 * sizeof(unsigned), mesh.triangle_count()));
-    for (std::size_t i = 0; i < mesh.triangle_count(); ++i)
-      for (std::size_t k = 0; k < 3; ++k) ix[3 * i + k] = mesh.triangles()[i][k];
-    rtcCommitGeometry(geom);
-    rtcAttachGeometry(scene_, geom);
-    rtcReleaseGeometry(geom);
-    rtcCommitScene(scene_);
-  }
-  ~EmbreeScene() {
-    rtcReleaseScene(scene_);
-    rtcReleaseDevice(device_);
-  }
-  EmbreeScene(const EmbreeScene&) = delete;
-  EmbreeScene& operator=(const EmbreeScene&) = delete;
-
-  /// Closest hit: t and triangle, or nothing.
-  std::optional<std::pair<float, unsigned>> intersect(const pb::RayQuery& q) const {
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
-    RTCRayHit rh{};
-    rh.ray.org_x = float(q.origin.x);
-    rh.ray.org_y = float(q.origin.y);
-    rh.ray.org_z = float(q.origin.z);
-    rh.ray.dir_x = float(q.direction.x);
-    rh.ray.dir_y = float(q.direction.y);
-    rh.ray.dir_z = float(q.direction.z);
-    rh.ray.tnear = 0.0f;
-    rh.ray.tfar = float(q.max_t);
-    rh.ray.mask = 0xffffffffu;
-    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-    rtcIntersect1(scene_, &context, &rh);
-    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
-    return std::make_pair(rh.ray.tfar, rh.hit.primID);
-  }
-
- private:
-  RTCDevice device_ = nullptr;
-  RTCScene scene_ = nullptr;
-};
+using pb::EmbreeScene;
 
 TEST(MeshRaycastPeers, SharedRayWorkloadMatchesEmbree) {
   const std::string dir = PROXIMA_DEFAULT_WORKLOAD_DIR;
@@ -120,6 +67,13 @@ TEST(MeshRaycastPeers, SharedRayWorkloadMatchesEmbree) {
     batch.push_back({ray, max_t});
     const std::optional<MeshRayHit> mine = mesh.raycast(ray, max_t);
     ours.push_back(mine);
+    // The binary reference traversal gives the same hit, bit for bit.
+    const std::optional<MeshRayHit> binary = mesh.raycast(ray, max_t, FaceCulling::None, RayTraversal::Binary);
+    ASSERT_EQ(binary.has_value(), mine.has_value());
+    if (mine) {
+      ASSERT_EQ(binary->triangle, mine->triangle);
+      ASSERT_EQ(binary->hit.t, mine->hit.t);
+    }
     const auto theirs = embree.intersect(q);
     hits += mine ? 1 : 0;
     bool disagree = false;
