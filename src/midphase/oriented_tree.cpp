@@ -7,8 +7,9 @@
 //  2. Moments of each leaf's corners (count, sum, sum of outer products, in double); an
 //     inner node's moments are its children's summed (children follow their parent in the
 //     node array, so one reverse pass does it).
-//  3. Per node: axes = eigenvectors of the covariance (Jacobi, bounds/fit_util), extents =
-//     minimum and maximum of the range's corners projected on them.
+//  3. Per node: axes = eigenvectors of the covariance (Jacobi, bounds/fit_util); for a leaf
+//     (a nearly flat patch of a few triangles) its summed normal and longest edge instead;
+//     extents = minimum and maximum of the range's corners projected on the axes.
 // Cost: O(1) per node for steps 2 and the eigen solve, O(corners) per tree level for the
 // projections: O(n log n) in all, built once per mesh on the first mesh-mesh query.
 #include "midphase/oriented_tree.hpp"
@@ -16,6 +17,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <limits>
+#include <span>
 
 #include "bounds/fit_util.hpp"
 
@@ -64,6 +66,38 @@ struct Moments {
   }
 };
 
+/// Axes of a leaf from its triangles: the summed (area-weighted) normal as the third axis,
+/// the longest edge of the leaf made orthogonal to it as the first. False when the normal
+/// or the edge vanishes (the covariance decides then). Leaves are nearly flat patches, for
+/// which this frame is as tight as the covariance one and far cheaper.
+bool leaf_frame(std::span<const Vec3> corners, OrientedNode& o) {
+  Vec3 normal(Real(0));
+  Vec3 edge(Real(0));
+  Real edge2 = Real(0);
+  for (std::size_t t = 0; t + 2 < corners.size(); t += 3) {
+    normal += glm::cross(corners[t + 1] - corners[t], corners[t + 2] - corners[t]);
+    for (std::size_t c = 0; c < 3; ++c) {
+      const Vec3 e = corners[t + (c + 1) % 3] - corners[t + c];
+      const Real l2 = glm::dot(e, e);
+      if (l2 > edge2) {
+        edge2 = l2;
+        edge = e;
+      }
+    }
+  }
+  const Real n2 = glm::dot(normal, normal);
+  if (!(n2 > Real(0)) || !(edge2 > Real(0))) return false;
+  const Vec3 z = normal / std::sqrt(n2);
+  Vec3 x = edge - glm::dot(edge, z) * z;
+  const Real x2 = glm::dot(x, x);
+  if (!(x2 > Real(1e-4) * edge2)) return false;
+  x /= std::sqrt(x2);
+  o.axis[0] = x;
+  o.axis[1] = glm::cross(z, x);
+  o.axis[2] = z;
+  return true;
+}
+
 }  // namespace
 
 OrientedTree build_oriented_tree(const Bvh& bvh, std::span<const Vec3> vertices,
@@ -98,10 +132,12 @@ OrientedTree build_oriented_tree(const Bvh& bvh, std::span<const Vec3> vertices,
 
   out.nodes.resize(n);
   for (std::size_t k = 0; k < n; ++k) {
-    glm::dvec3 values;
-    const glm::dmat3 frame = detail::symmetric_eigen(moments[k].covariance(), values);
     OrientedNode& o = out.nodes[k];
-    for (int i = 0; i < 3; ++i) o.axis[i] = Vec3(frame[i]);
+    if (!(nodes[k].is_leaf() && leaf_frame(std::span(corners).subspan(3 * begin[k], 3 * (end[k] - begin[k])), o))) {
+      glm::dvec3 values;
+      const glm::dmat3 frame = detail::symmetric_eigen(moments[k].covariance(), values);
+      for (int i = 0; i < 3; ++i) o.axis[i] = Vec3(frame[i]);
+    }
     Vec3 lo(std::numeric_limits<Real>::max());
     Vec3 hi(std::numeric_limits<Real>::lowest());
     for (std::uint32_t c = 3 * begin[k]; c != 3 * end[k]; ++c) {
