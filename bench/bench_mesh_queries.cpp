@@ -30,7 +30,7 @@
 #include <vector>
 
 #include "../src/midphase/mesh_point_queries.hpp"
-#include "../tests/midphase/tessellation.hpp"
+#include "../tests/midphase/solid_test_meshes.hpp"
 #include "support/bench_main.hpp"
 #include "support/workloads.hpp"
 

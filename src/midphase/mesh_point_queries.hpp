@@ -69,10 +69,11 @@ struct WindingNode {
 std::vector<WindingNode> build_winding_nodes(const MeshView& mesh, const Bvh& bvh);
 
 /// Winding number by BVH descent: leaves exactly, inner nodes farther than `beta` radii
-/// (> 1) by their expansion. `error_bound` gets a bound on |result - exact| (the Taylor
-/// remainder of the far nodes; rounding aside). Non-empty bvh and `nodes` only.
+/// (> 1) whose Taylor remainder bound is at most `node_error` by their expansion.
+/// `error_bound` gets the sum of those bounds, a bound on |result - exact| (rounding aside).
+/// Non-empty bvh and `nodes` only.
 double mesh_fast_winding_number(const MeshView& mesh, const Bvh& bvh, std::span<const WindingNode> nodes,
-                                const Vec3& point, double beta, double& error_bound);
+                                const Vec3& point, double beta, double node_error, double& error_bound);
 
 /// TriangleMesh::contains on an open mesh: the fast winding number compared with 1/2 when
 /// its error bound settles it, else the exact sum (mesh_winding_number) compared with 1/2.

@@ -27,9 +27,10 @@
 //     numbers", SIGGRAPH 2013; triangle solid angle by Van Oosterom and Strackee 1983). Exact:
 //     a linear scan. Fast (Barill, Dickson, Schmidt, Levin, Jacobson, "Fast winding numbers
 //     for soups and clouds", SIGGRAPH 2018): BVH descent, leaves exact, nodes beyond beta
-//     radii by the Taylor expansion of their solid angle to first order (dipole plus the
-//     area-weighted normal-position moment) with a rigorous remainder bound; when the bound
-//     cannot decide w >= 1/2, a larger beta, then the linear scan.
+//     radii whose remainder bound is below a per-node budget by the Taylor expansion of their
+//     solid angle to first order (dipole plus the area-weighted normal-position moment); the
+//     sum of those bounds bounds the error. When it cannot decide w >= 1/2: a finer budget,
+//     then the linear scan.
 //  5. Mass properties: divergence theorem over the tetrahedra joining each triangle to the
 //     mean vertex (Tonon 2004; Eberly, "Polyhedral Mass Properties (Revisited)" 2009), in
 //     double, as ConvexHull does.
@@ -350,7 +351,7 @@ std::vector<WindingNode> build_winding_nodes(const MeshView& mesh, const Bvh& bv
 }
 
 double mesh_fast_winding_number(const MeshView& mesh, const Bvh& bvh, std::span<const WindingNode> wnodes,
-                                const Vec3& point, double beta, double& error_bound) {
+                                const Vec3& point, double beta, double node_error, double& error_bound) {
   const std::span<const BvhNode> nodes = bvh.nodes();
   const std::span<const std::uint32_t> prims = bvh.primitives();
   const double p[3] = {double(point.x), double(point.y), double(point.z)};
@@ -372,7 +373,9 @@ double mesh_fast_winding_number(const MeshView& mesh, const Bvh& bvh, std::span<
     const double r[3] = {w.center[0] - p[0], w.center[1] - p[1], w.center[2] - p[2]};
     const double d2 = r[0] * r[0] + r[1] * r[1] + r[2] * r[2];
     const double d = std::sqrt(d2);
-    if (d > beta * w.radius) {
+    const double gap = d - w.radius;
+    const double node_bound = gap > 0 ? w.area * 3 * w.radius * w.radius / (gap * gap * gap * gap) : kRealMax;
+    if (d > beta * w.radius && node_bound <= 4 * kPi * node_error) {
       // Solid angle = integral of n . (x - p) / |x - p|^3 over the triangles; expanded about
       // the centre c: N . r / d^3 + J : T with J = I / d^3 - 3 r r^T / d^5 (the Jacobian of
       // the kernel) and T = sum area n (c_t - c)^T. Remainder (Taylor, third derivatives of
@@ -387,8 +390,7 @@ double mesh_fast_winding_number(const MeshView& mesh, const Bvh& bvh, std::span<
       }
       omega -= 3 * rtr * inv5;
       sum += omega;
-      const double gap = d - w.radius;
-      error += w.area * 3 * w.radius * w.radius / (gap * gap * gap * gap);
+      error += node_bound;
       continue;
     }
     stack[top++] = node.first;
@@ -401,11 +403,11 @@ double mesh_fast_winding_number(const MeshView& mesh, const Bvh& bvh, std::span<
 bool mesh_contains_open(const MeshView& mesh, const Bvh& bvh, std::span<const WindingNode> nodes, const Vec3& point) {
   if (!is_finite(point) || mesh.triangles.empty()) return false;
   if (!bvh.empty() && nodes.size() == bvh.nodes().size()) {
-    // Coarse then finer expansions; each answer stands when its error bound (plus a rounding
+    // A coarse then a fine error budget per node; each answer stands when its error bound (plus a rounding
     // margin) cannot move the winding number across 1/2.
-    for (const double beta : {3.0, 8.0}) {
+    for (const double node_error : {1e-3, 1e-6}) {
       double bound = 0;
-      const double w = mesh_fast_winding_number(mesh, bvh, nodes, point, beta, bound);
+      const double w = mesh_fast_winding_number(mesh, bvh, nodes, point, 2.0, node_error, bound);
       if (std::abs(w - 0.5) > bound + 1e-9) return w > 0.5;
     }
   }

@@ -25,7 +25,6 @@
 
 #include "solid_test_meshes.hpp"
 #include "support/random.hpp"
-#include "tessellation.hpp"
 
 namespace proxima {
 namespace {

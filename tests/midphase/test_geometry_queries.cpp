@@ -17,8 +17,8 @@
 #include <utility>
 #include <vector>
 
+#include "solid_test_meshes.hpp"
 #include "support/random.hpp"
-#include "tessellation.hpp"
 
 namespace proxima {
 namespace {

@@ -23,8 +23,8 @@
 #include <variant>
 #include <vector>
 
+#include "solid_test_meshes.hpp"
 #include "support/random.hpp"
-#include "tessellation.hpp"
 
 namespace proxima {
 namespace {

@@ -8,15 +8,26 @@
 // sphere (within the tessellation's own error). The same checks run on the internal routines
 // with a linear scan (no BVH) and on TriangleMesh (with its BVH), seeded sweeps of thousands
 // of points.
+//
+// Containment through the BSP (closed meshes): TriangleMesh::contains equals the reference
+// detail::mesh_contains (pseudo-normal at the nearest point) on every point, random ones and
+// ones placed at multiples of the tolerance off faces, edges and vertices, and equals the
+// winding number wherever the point is farther than the tolerance from the surface; the lazy
+// build is raced from several threads. Open meshes: the fast winding number stays within its
+// own error bound of the exact sum, and contains equals (exact winding number >= 1/2) on every
+// point.
 #include <gtest/gtest.h>
 
 #include <proxima/core/tolerance.hpp>
 #include <proxima/midphase/triangle_mesh.hpp>
 #include <proxima/shapes/sphere.hpp>
 
+#include <atomic>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <string>
+#include <thread>
 #include <utility>
 #include <vector>
 
@@ -305,6 +316,160 @@ TEST(TriangleMeshPointQueries, PrunedDescentEqualsLinearScan) {
     const SurfacePoint b = detail::mesh_closest_point(view, Bvh{}, p);
     EXPECT_EQ(a.signed_distance, b.signed_distance);
     EXPECT_EQ(mesh.contains(p), detail::mesh_contains(view, Bvh{}, p));
+  }
+}
+
+// ---- containment through the BSP (closed) and the fast winding number (open) --------------
+
+// Points on and near the surface: on faces, edges and vertices, pushed off them by a few
+// multiples of the tolerance in random directions, and random points in the padded box.
+std::vector<Vec3> probe_points(const IndexedMesh& m, const Aabb& box, Real tol, test::Random& rng, int count) {
+  std::vector<Vec3> out;
+  for (int i = 0; i < count; ++i) {
+    const TriangleIndices& t = m.triangles[std::size_t(rng.integer(0, int(m.triangles.size()) - 1))];
+    const Vec3 a = m.vertices[t[0]];
+    const Vec3 b = m.vertices[t[1]];
+    const Vec3 c = m.vertices[t[2]];
+    Vec3 base;
+    switch (i % 4) {
+      case 0: base = a; break;
+      case 1: base = a + rng.uniform(Real(0), Real(1)) * (b - a); break;
+      case 2: {
+        Real u = rng.uniform(Real(0), Real(1));
+        Real v = rng.uniform(Real(0), Real(1));
+        if (u + v > Real(1)) {
+          u = Real(1) - u;
+          v = Real(1) - v;
+        }
+        base = a + u * (b - a) + v * (c - a);
+        break;
+      }
+      default: out.push_back(random_point_near(rng, box)); continue;
+    }
+    const Real scale = i % 3 == 0 ? Real(0) : tol * rng.uniform(Real(-8), Real(8));
+    out.push_back(base + scale * rng.unit_vector());
+  }
+  return out;
+}
+
+TEST(TriangleMeshContains, BspAnswersEqualTheReference) {
+  test::Random rng(4711);
+  std::vector<Prepared> meshes = closed_meshes();
+  meshes.push_back(prepare("uv_sphere", test::tessellate_sphere(Real(1), 24, 12)));
+  meshes.push_back(prepare("grid_box", test::welded(test::tessellate_box(Vec3(1, 0.5f, 2), 6))));
+  meshes.push_back(
+      prepare("far_torus", test::translated(test::torus_mesh(Real(1), Real(0.35), 16, 10), Vec3(50, -20, 9))));
+  for (const Prepared& m : meshes) {
+    SCOPED_TRACE(m.name);
+    MeshCreateOptions options;
+    options.repair = false;
+    const TriangleMesh mesh = TriangleMesh::create(m.mesh, options).value();
+    ASSERT_TRUE(mesh.is_closed());
+    const detail::MeshView view = m.view(true);
+    const Real tol = linear_tolerance(max_abs_component(m.box.extents()));
+    int far_checked = 0;
+    for (const Vec3& p : probe_points(m.mesh, m.box, tol, rng, 1200)) {
+      const bool got = mesh.contains(p);
+      ASSERT_EQ(got, detail::mesh_contains(view, Bvh{}, p)) << p.x << " " << p.y << " " << p.z;
+      const double d = test::surface_distance(m.mesh, p).first;
+      if (d > 2 * double(tol)) {
+        EXPECT_EQ(got, test::winding_number(m.mesh, p) > 0.5);
+        ++far_checked;
+      } else if (d < 0.5 * double(tol)) {
+        EXPECT_TRUE(got) << "on the surface, distance " << d;
+      }
+    }
+    EXPECT_GT(far_checked, 300);
+  }
+}
+
+TEST(TriangleMeshContains, LazyBuildFromManyThreads) {
+  const Prepared m = prepare("torus", test::torus_mesh(Real(1), Real(0.35), 48, 24));
+  const TriangleMesh mesh = TriangleMesh::create(m.mesh).value();
+  test::Random rng(17);
+  std::vector<Vec3> points;
+  for (int i = 0; i < 400; ++i) points.push_back(random_point_near(rng, m.box));
+  std::vector<std::vector<char>> answers(4, std::vector<char>(points.size()));
+  {
+    std::vector<std::thread> threads;
+    for (std::size_t k = 0; k < answers.size(); ++k) {
+      threads.emplace_back([&, k] {
+        for (std::size_t i = 0; i < points.size(); ++i) answers[k][i] = mesh.contains(points[i]) ? 1 : 0;
+      });
+    }
+    for (std::thread& t : threads) t.join();
+  }
+  const detail::MeshView view = m.view(true);
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const bool want = detail::mesh_contains(view, Bvh{}, points[i]);
+    for (const auto& a : answers) EXPECT_EQ(a[i] != 0, want);
+  }
+  // A deformed copy builds its own tree for its own vertices (here: moved by +3 along x).
+  std::vector<Vec3> moved(mesh.vertices().begin(), mesh.vertices().end());
+  for (Vec3& v : moved) v.x += Real(3);
+  const TriangleMesh shifted = mesh.deformed(moved).value();
+  EXPECT_TRUE(mesh.contains(Vec3(1, 0, 0)));
+  EXPECT_FALSE(shifted.contains(Vec3(1, 0, 0)));
+  EXPECT_TRUE(shifted.contains(Vec3(4, 0, 0)));
+}
+
+// Open meshes: the shared-style icosphere without its top cap, a torus with a slot cut out,
+// a flat grid (winding number 0 off the sheet) and an open box (five faces).
+std::vector<Prepared> open_meshes() {
+  std::vector<Prepared> v;
+  auto without = [](IndexedMesh m, auto drop) {
+    std::vector<TriangleIndices> kept;
+    for (const TriangleIndices& t : m.triangles) {
+      const Vec3 c = (m.vertices[t[0]] + m.vertices[t[1]] + m.vertices[t[2]]) / Real(3);
+      if (!drop(c)) kept.push_back(t);
+    }
+    m.triangles = kept;
+    return m;
+  };
+  v.push_back(prepare("capless_sphere",
+                      without(test::icosphere_mesh(4, Real(1)), [](const Vec3& c) { return c.z > Real(0.6); })));
+  v.push_back(prepare("slotted_torus", without(test::torus_mesh(Real(1), Real(0.4), 48, 24), [](const Vec3& c) {
+                        return c.x > Real(0.9) && std::abs(c.y) < Real(0.2);
+                      })));
+  v.push_back(prepare("grid", test::flat_grid(12, 12, Real(0.25), Real(-1.5), Real(-1.5))));
+  v.push_back(prepare("open_box", without(test::welded(test::tessellate_box(Vec3(1), 8)),
+                                          [](const Vec3& c) { return c.z > Real(0.99); })));
+  return v;
+}
+
+TEST(TriangleMeshContains, OpenMeshesFastWindingNumberIsExactWhereDefined) {
+  test::Random rng(1234);
+  for (const Prepared& m : open_meshes()) {
+    SCOPED_TRACE(m.name);
+    const TriangleMesh mesh = TriangleMesh::create(m.mesh).value();
+    ASSERT_FALSE(mesh.is_closed());
+    detail::MeshView view = m.view(false);
+    view.vertices = mesh.vertices();
+    view.triangles = mesh.triangles();
+    const std::vector<detail::WindingNode> nodes = detail::build_winding_nodes(view, mesh.bvh());
+    int undecided = 0;
+    double worst = 0;
+    const int n = 600;
+    for (int i = 0; i < n; ++i) {
+      const Vec3 p = i % 5 == 0 ? rng.vec3(Real(-4), Real(4)) : random_point_near(rng, m.box);
+      const double exact = detail::mesh_winding_number(view, p);
+      double bound = 0;
+      const double fast = detail::mesh_fast_winding_number(view, mesh.bvh(), nodes, p, 2.0, 1e-3, bound);
+      EXPECT_LE(std::abs(fast - exact), bound + 1e-9) << p.x << " " << p.y << " " << p.z;
+      worst = std::max(worst, std::abs(fast - exact));
+      // Left to the finer passes although well away from 1/2 (a flat sheet gives w near 1/2
+      // close to it, where any method must look closely).
+      undecided += std::abs(fast - 0.5) <= bound + 1e-9 && std::abs(exact - 0.5) > 0.02;
+      // Exact agreement with the brute-force decision (a tie within rounding of 1/2 aside).
+      if (std::abs(exact - 0.5) > 1e-9) {
+        EXPECT_EQ(mesh.contains(p), exact >= 0.5) << "w " << exact;
+        EXPECT_EQ(detail::mesh_contains_open(view, mesh.bvh(), nodes, p), exact >= 0.5);
+      }
+    }
+    EXPECT_LT(worst, 0.05);
+    EXPECT_LE(undecided, n / 20) << "points left to the finer passes";
+    std::printf("%s: worst error %.2e, %d of %d points with |w - 1/2| > 0.02 left to the finer passes\n",
+                m.name.c_str(), worst, undecided, n);
   }
 }
 
