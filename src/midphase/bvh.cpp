@@ -10,9 +10,11 @@
 ///     primitives is a leaf; every larger node is split (so the SAH cost only ranks the
 ///     planes, and the traversal/primitive cost options do not change the tree). Bin the
 ///     centres into bin_count bins spanning the node's centroid bounds (on the widest
-///     centroid axis for nodes of more than 32 primitives, on all three below), sweep the
-///     bins to evaluate A_L N_L + A_R N_R of every bin plane, and take the cheapest.
-///  3. Partition the working range in place in one pass (Hoare style), collecting the
+///     centroid axis for nodes of more than 32 primitives, on all three below, with
+///     max(4, n / 2) bins for those small nodes), remembering each primitive's bin, sweep
+///     the bins to evaluate A_L N_L + A_R N_R of every bin plane, and take the cheapest.
+///  3. Partition the working range in place in one pass (Hoare style) by the remembered
+///     bins (no recomputation, so exactly the binning pass's decision), collecting the
 ///     children's centroid bounds on the way; the children's boxes are the unions of their
 ///     bins' boxes, so no further pass over the primitives is needed.
 ///  4. Fallback to an object-median split on the widest centroid axis (nth_element; by
@@ -67,7 +69,7 @@ inline std::uint32_t ceil_log2(std::uint32_t n) {
 class Builder {
  public:
   Builder(std::vector<BuildRef>& refs, std::vector<BvhNode>& nodes, const BvhBuildOptions& options)
-      : refs_(refs), nodes_(nodes) {
+      : refs_(refs), nodes_(nodes), bin_of_(refs.size()) {
     max_leaf_ = std::clamp<std::uint32_t>(options.max_leaf_size, 1u, 255u);
     bins_ = std::clamp<std::uint32_t>(options.bin_count, 2u, kMaxBins);
   }
@@ -115,7 +117,10 @@ class Builder {
                  Vec3& left_lo, Vec3& left_hi, Vec3& right_lo, Vec3& right_hi, Vec3& left_clo, Vec3& left_chi,
                  Vec3& right_clo, Vec3& right_chi) {
     auto& bins = bins_storage_;  // reused by every node (no per-node initialisation of 192 bins)
-    const std::uint32_t k = bins_;
+    // Small nodes get fewer bins (about one per two primitives, at least 4): the sweep over
+    // 3 x bins planes would otherwise cost more than binning their few primitives.
+    const std::uint32_t count = end - begin;
+    const std::uint32_t k = count <= kAllAxesBelow ? std::min(bins_, std::max(4u, count / 2)) : bins_;
     // Bin index = floor((c - clo) * scale), clamped: scale maps the centroid range onto
     // [0, k) (a flat axis gets scale 0: everything in bin 0, never chosen).
     const Vec3 cext = chi - clo;
@@ -128,7 +133,7 @@ class Builder {
     int widest = 0;
     if (cext.y > cext[widest]) widest = 1;
     if (cext.z > cext[widest]) widest = 2;
-    const bool all_axes = end - begin <= kAllAxesBelow;
+    const bool all_axes = count <= kAllAxesBelow;
     const int axis_lo = all_axes ? 0 : widest;
     const int axis_hi = all_axes ? 2 : widest;
     for (int a = axis_lo; a <= axis_hi; ++a)
@@ -139,6 +144,7 @@ class Builder {
         const Vec3 f = (r.center - clo) * scale;
         for (int a = 0; a < 3; ++a) {
           const int b = std::min(static_cast<int>(f[a]), max_bin);
+          bin_of_[i][std::size_t(a)] = static_cast<std::uint8_t>(b);
           Bin& bin = bins[std::size_t(a)][static_cast<std::size_t>(b)];
           bin.min = glm::min(bin.min, r.min);
           bin.max = glm::max(bin.max, r.max);
@@ -152,6 +158,7 @@ class Builder {
       for (std::uint32_t i = begin; i != end; ++i) {
         const BuildRef& r = refs_[i];
         const int b = std::min(static_cast<int>((r.center[widest] - o) * s), max_bin);
+        bin_of_[i][std::size_t(widest)] = static_cast<std::uint8_t>(b);
         Bin& bin = axis_bins[static_cast<std::size_t>(b)];
         bin.min = glm::min(bin.min, r.min);
         bin.max = glm::max(bin.max, r.max);
@@ -207,14 +214,10 @@ class Builder {
         right_hi = glm::max(right_hi, axis_bins[b].max);
       }
     }
-    // In-place partition by the same bin computation (bit-identical to the binning pass).
-    const Real s = scale[best_axis];
-    const Real o = clo[best_axis];
-    const int plane = static_cast<int>(best_plane);
-    const int axis = best_axis;
-    auto goes_left = [&](const BuildRef& r) {
-      return std::min(static_cast<int>((r.center[axis] - o) * s), max_bin) < plane;
-    };
+    // In-place partition by the bin indices stored in the binning pass.
+    const auto plane = static_cast<std::uint8_t>(best_plane);
+    const auto axis = static_cast<std::size_t>(best_axis);
+    auto goes_left = [&](std::uint32_t i) { return bin_of_[i][axis] < plane; };
     left_clo = Vec3(kRealMax);
     left_chi = Vec3(-kRealMax);
     right_clo = Vec3(kRealMax);
@@ -222,18 +225,19 @@ class Builder {
     std::uint32_t i = begin;
     std::uint32_t j = end;
     while (true) {
-      while (i < j && goes_left(refs_[i])) {
+      while (i < j && goes_left(i)) {
         left_clo = glm::min(left_clo, refs_[i].center);
         left_chi = glm::max(left_chi, refs_[i].center);
         ++i;
       }
-      while (i < j && !goes_left(refs_[j - 1])) {
+      while (i < j && !goes_left(j - 1)) {
         --j;
         right_clo = glm::min(right_clo, refs_[j].center);
         right_chi = glm::max(right_chi, refs_[j].center);
       }
       if (i >= j) break;
       std::swap(refs_[i], refs_[j - 1]);
+      std::swap(bin_of_[i], bin_of_[j - 1]);
     }
     mid = i;
     assert(mid != begin && mid != end);
@@ -273,6 +277,9 @@ class Builder {
   std::uint32_t max_leaf_ = 4;
   std::uint32_t bins_ = 16;
   std::array<std::array<Bin, kMaxBins>, 3> bins_storage_;
+  /// Bin of each primitive (by position in refs_) on each axis binned for the current node,
+  /// so the partition reads it instead of recomputing it.
+  std::vector<std::array<std::uint8_t, 3>> bin_of_;
 };
 
 }  // namespace
