@@ -10,14 +10,19 @@
 /// flat_edge_angle of flat or concavely (the internal-edge idea of Bullet's
 /// btInternalEdgeUtility and of Jolt's active edges).
 ///
-/// Ray casts traverse the BVH front to back (the nearer child by slab entry first, subtrees
-/// beyond the best hit so far skipped) with the robust slab test of Ize ("Robust BVH Ray
-/// Traversal", JCGT 2013: the exit distance widened by 1 + 2 gamma(3) so that rounding
-/// never culls a box the ray touches) and the watertight triangle test of Woop, Benthin and
-/// Wald (JCGT 2013) on a TriangleRay prepared once per ray, behind an inline conservative
-/// rejection (the same edge functions in Real with a rounding-error bound) that only skips
-/// triangles the exact test would miss. Leaves read the triangle corners from a copy stored
-/// in leaf order.
+/// Ray casts traverse by default the 4-wide hierarchy of ray_bvh.hpp (collapsed from the
+/// binary BVH at creation: float child boxes rounded outward, four slab tests at once,
+/// nearest child first, leaves as four-triangle blocks with a SIMD conservative rejection),
+/// and otherwise (RayTraversal::Binary, or rays and meshes the float layout cannot bound)
+/// the binary BVH front to back (the nearer child by slab entry first, subtrees beyond the
+/// best hit so far skipped) with the robust slab test of Ize ("Robust BVH Ray Traversal",
+/// JCGT 2013: the exit distance widened by 1 + 2 gamma(3) so that rounding never culls a box
+/// the ray touches). Both end in the same per-triangle step (cast_triangle): an inline
+/// conservative rejection (the edge functions of Woop, Benthin and Wald in Real with a
+/// rounding-error bound, so it only skips triangles the exact test would miss), then the
+/// watertight test of Woop, Benthin and Wald (JCGT 2013) on a TriangleRay prepared once per
+/// ray, then the culling rule; so both traversals give the same hits, bit for bit. Leaves
+/// read the triangle corners from copies stored in leaf order.
 
 #include <proxima/core/tolerance.hpp>
 #include <proxima/geometry/raycast.hpp>
