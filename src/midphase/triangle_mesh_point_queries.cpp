@@ -29,7 +29,7 @@
 //     for soups and clouds", SIGGRAPH 2018): BVH descent, leaves exact, nodes beyond beta
 //     radii whose remainder bound is below a per-node budget by the Taylor expansion of their
 //     solid angle to first order (dipole plus the area-weighted normal-position moment); the
-//     sum of those bounds bounds the error. When it cannot decide w >= 1/2: a finer budget,
+//     sum of those bounds bounds the error. When it cannot decide w >= 1/2: finer budgets,
 //     then the linear scan.
 //  5. Mass properties: divergence theorem over the tetrahedra joining each triangle to the
 //     mean vertex (Tonon 2004; Eberly, "Polyhedral Mass Properties (Revisited)" 2009), in
@@ -403,9 +403,10 @@ double mesh_fast_winding_number(const MeshView& mesh, const Bvh& bvh, std::span<
 bool mesh_contains_open(const MeshView& mesh, const Bvh& bvh, std::span<const WindingNode> nodes, const Vec3& point) {
   if (!is_finite(point) || mesh.triangles.empty()) return false;
   if (!bvh.empty() && nodes.size() == bvh.nodes().size()) {
-    // A coarse then a fine error budget per node; each answer stands when its error bound (plus a rounding
-    // margin) cannot move the winding number across 1/2.
-    for (const double node_error : {1e-3, 1e-6}) {
+    // Per-node error budgets of 1e-3, 1e-5, 1e-7 in turn (measured on the capless shared
+    // icosphere: 21 us per point against 32 us for two passes and 270 us for the scan); each answer stands when its
+    // error bound (plus a rounding margin) cannot move the winding number across 1/2.
+    for (const double node_error : {1e-3, 1e-5, 1e-7}) {
       double bound = 0;
       const double w = mesh_fast_winding_number(mesh, bvh, nodes, point, 2.0, node_error, bound);
       if (std::abs(w - 0.5) > bound + 1e-9) return w > 0.5;
