@@ -404,8 +404,9 @@ bool mesh_contains_open(const MeshView& mesh, const Bvh& bvh, std::span<const Wi
   if (!is_finite(point) || mesh.triangles.empty()) return false;
   if (!bvh.empty() && nodes.size() == bvh.nodes().size()) {
     // Per-node error budgets of 1e-3, 1e-5, 1e-7 in turn (measured on the capless shared
-    // icosphere: 21 us per point against 32 us for two passes and 270 us for the scan); each answer stands when its
-    // error bound (plus a rounding margin) cannot move the winding number across 1/2.
+    // icosphere: 21 us per point against 32 us for two passes and 270 us for the scan);
+    // each answer stands when its error bound (plus a rounding margin) cannot move the
+    // winding number across 1/2.
     for (const double node_error : {1e-3, 1e-5, 1e-7}) {
       double bound = 0;
       const double w = mesh_fast_winding_number(mesh, bvh, nodes, point, 2.0, node_error, bound);
