@@ -56,7 +56,7 @@ Vec3 closest_on_segment(const Vec3& p, const Vec3& a, const Vec3& b) {
 // Index of the first vertex of largest dot product with d (0 when no dot product is larger
 // than -infinity, e.g. for a NaN direction). v holds n >= 1 tightly packed vertices. The
 // reference path: the vectorised scan below must return the same index.
-[[maybe_unused]] std::uint32_t scan_support(const Vec3* v, std::uint32_t n, const Vec3& d) {
+std::uint32_t scan_support(const Vec3* v, std::uint32_t n, const Vec3& d) {
   std::uint32_t best = 0;
   Real best_dot = -std::numeric_limits<Real>::infinity();
   for (std::uint32_t i = 0; i < n; ++i) {
@@ -70,32 +70,38 @@ Vec3 closest_on_segment(const Vec3& p, const Vec3& a, const Vec3& b) {
 }
 
 #if PROXIMA_HULL_SCAN_SSE2
-// The same answer from the blocks of four (ConvexHull::Data::scan_blocks, n <= the scan's
-// limit): pass 1 takes every dot product, (x dx + y dy) + z dz as glm::dot does, keeps them
-// on the stack and the lane-wise maximum (maxps drops NaN products); pass 2 returns the
-// first vertex whose product equals the maximum. Padding repeats vertex 0, so it can only
-// tie behind it.
+// Dot products of one block of four vertices with (dx, dy, dz): (x dx + y dy) + z dz, the
+// operations of glm::dot in its order, so every product equals the scalar one.
+inline __m128 block_dots(const float* p, __m128 dx, __m128 dy, __m128 dz) {
+  const __m128 x = _mm_loadu_ps(p);
+  const __m128 y = _mm_loadu_ps(p + 4);
+  const __m128 z = _mm_loadu_ps(p + 8);
+  return _mm_add_ps(_mm_add_ps(_mm_mul_ps(x, dx), _mm_mul_ps(y, dy)), _mm_mul_ps(z, dz));
+}
+
+// The same answer from the blocks of four (ConvexHull::Data::scan_blocks): pass 1 keeps the
+// lane-wise maximum of the products (maxps drops NaN products), pass 2 recomputes them
+// block by block and returns the first vertex whose product equals the maximum. Padding
+// repeats vertex 0, so it can only tie behind it.
 std::uint32_t scan_support_blocks(const float* blocks, std::uint32_t n, const Vec3& d) {
-  constexpr std::uint32_t kMaxBlocks = (ConvexHull::kLinearScanMaxVertices + 3) / 4;
-  alignas(16) float dots[kMaxBlocks * 4];
   const std::uint32_t nb = (n + 3) / 4;
   const __m128 dx = _mm_set1_ps(d.x);
   const __m128 dy = _mm_set1_ps(d.y);
   const __m128 dz = _mm_set1_ps(d.z);
-  __m128 best = _mm_set1_ps(-std::numeric_limits<float>::infinity());
-  const float* p = blocks;
-  for (std::uint32_t b = 0; b < nb; ++b, p += 12) {
-    const __m128 x = _mm_loadu_ps(p);
-    const __m128 y = _mm_loadu_ps(p + 4);
-    const __m128 z = _mm_loadu_ps(p + 8);
-    const __m128 dot = _mm_add_ps(_mm_add_ps(_mm_mul_ps(x, dx), _mm_mul_ps(y, dy)), _mm_mul_ps(z, dz));
-    _mm_store_ps(dots + 4 * b, dot);
-    best = _mm_max_ps(dot, best);  // NaN in dot: keeps best
+  // Two running maxima break the dependency chain of the max.
+  __m128 best0 = _mm_set1_ps(-std::numeric_limits<float>::infinity());
+  __m128 best1 = best0;
+  std::uint32_t b = 0;
+  for (; b + 2 <= nb; b += 2) {
+    best0 = _mm_max_ps(block_dots(blocks + 12 * b, dx, dy, dz), best0);  // NaN product: keeps best
+    best1 = _mm_max_ps(block_dots(blocks + 12 * b + 12, dx, dy, dz), best1);
   }
+  if (b < nb) best0 = _mm_max_ps(block_dots(blocks + 12 * b, dx, dy, dz), best0);
+  __m128 best = _mm_max_ps(best0, best1);
   best = _mm_max_ps(best, _mm_shuffle_ps(best, best, _MM_SHUFFLE(2, 3, 0, 1)));
   best = _mm_max_ps(best, _mm_shuffle_ps(best, best, _MM_SHUFFLE(1, 0, 3, 2)));
-  for (std::uint32_t b = 0; b < nb; ++b) {
-    const int mask = _mm_movemask_ps(_mm_cmpeq_ps(_mm_load_ps(dots + 4 * b), best));
+  for (b = 0; b < nb; ++b) {
+    const int mask = _mm_movemask_ps(_mm_cmpeq_ps(block_dots(blocks + 12 * b, dx, dy, dz), best));
     if (mask != 0) return 4 * b + static_cast<std::uint32_t>(std::countr_zero(static_cast<unsigned>(mask)));
   }
   return 0;  // every product NaN
@@ -105,17 +111,30 @@ std::uint32_t scan_support_blocks(const float* blocks, std::uint32_t n, const Ve
 }  // namespace
 
 std::uint32_t ConvexHull::support_index(const Vec3& direction, std::uint32_t start_vertex) const {
+  if (data_->shifted_vertices.size() <= kLinearScanMaxVertices) return scan_support_index(direction);
+  return climb_support_index(direction, start_vertex);
+}
+
+std::uint32_t ConvexHull::scan_support_index(const Vec3& direction) const {
+#if PROXIMA_HULL_SCAN_SSE2
+  return scan_support_blocks(data_->scan_blocks.data(), static_cast<std::uint32_t>(data_->shifted_vertices.size()),
+                             direction);
+#else
+  return scan_support(data_->shifted_vertices.data(), static_cast<std::uint32_t>(data_->shifted_vertices.size()),
+                      direction);
+#endif
+}
+
+std::uint32_t ConvexHull::scalar_support_index(const Vec3& direction) const {
+  return scan_support(data_->shifted_vertices.data(), static_cast<std::uint32_t>(data_->shifted_vertices.size()),
+                      direction);
+}
+
+std::uint32_t ConvexHull::climb_support_index(const Vec3& direction, std::uint32_t start_vertex) const {
   // Relative to the box centre: for a hull far from the origin the differences are exact
   // and the dot products keep the hull's own resolution.
   const std::vector<Vec3>& v = data_->shifted_vertices;
   const auto n = static_cast<std::uint32_t>(v.size());
-  if (n <= kLinearScanMaxVertices) {
-#if PROXIMA_HULL_SCAN_SSE2
-    return scan_support_blocks(data_->scan_blocks.data(), n, direction);
-#else
-    return scan_support(v.data(), n, direction);
-#endif
-  }
   std::uint32_t current = start_vertex < n ? start_vertex : 0;
   Real current_dot = glm::dot(v[current], direction);
   // Steepest ascent: each pass moves to the best strictly better neighbour. The dot

@@ -111,6 +111,17 @@ class ConvexHull {
   /// than only along edges keeps it exact on faces that merging left slightly bent.
   /// O(V) worst case, O(1) amortised when coherent.
   std::uint32_t support_index(const Vec3& direction, std::uint32_t start_vertex = 0) const;
+  /// The linear scan of support_index at any size: the first (lowest index) vertex of
+  /// largest dot product with `direction` (local frame), 0 for a NaN direction. In float
+  /// with SSE2, four vertices per step over the x/y/z blocks of Data::scan_blocks; exactly
+  /// the index of scalar_support_index. O(V), no branch on the data but the last block.
+  std::uint32_t scan_support_index(const Vec3& direction) const;
+  /// The scalar reference of scan_support_index (one vertex per step, same answer).
+  std::uint32_t scalar_support_index(const Vec3& direction) const;
+  /// The hill-climb of support_index at any size, from `start_vertex` (clamped): a vertex
+  /// of largest dot product, not necessarily the first one on ties. O(1) amortised when
+  /// the start is the answer to a nearby direction, O(V) worst case.
+  std::uint32_t climb_support_index(const Vec3& direction, std::uint32_t start_vertex) const;
 
   /// Farthest point of the hull in `direction` (local frame): a vertex. Dot products are
   /// taken relative to the centre of the box, so ties are resolved at the hull's own
