@@ -14,34 +14,17 @@
 #include <fstream>
 #include <sstream>
 #include <string>
-#include <sys/wait.h>
 #include <vector>
 
+#include "cli_run.hpp"
 #include "json_expect.hpp"
 
 namespace proxima {
 namespace {
 
-struct CliRun {
-  int status = -1;     // exit status of the program
-  std::string output;  // its standard output
-};
-
-// Runs `arguments` (shell syntax) with the built proxima executable.
-CliRun run_cli(const std::string& arguments) {
-  const std::string command = std::string("'") + PROXIMA_CLI_PATH + "' " + arguments;
-  CliRun run;
-  FILE* pipe = popen(command.c_str(), "r");
-  if (pipe == nullptr) return run;
-  std::array<char, 4096> buffer{};
-  std::size_t n = 0;
-  while ((n = std::fread(buffer.data(), 1, buffer.size(), pipe)) > 0) run.output.append(buffer.data(), n);
-  const int raw = pclose(pipe);
-  run.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-  return run;
-}
-
-std::string data_file(const std::string& name) { return std::string(PROXIMA_TOOLS_TEST_DATA) + "/" + name; }
+using test::CliRun;
+using test::data_file;
+using test::run_cli;
 
 std::vector<std::string> lines_of(const std::string& text) {
   std::vector<std::string> lines;

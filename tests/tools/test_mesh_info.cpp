@@ -14,31 +14,16 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
-#include <sys/wait.h>
 #include <unistd.h>
+
+#include "cli_run.hpp"
 
 namespace proxima {
 namespace {
 
-struct CliRun {
-  int status = -1;
-  std::string output;
-};
-
-CliRun run_cli(const std::string& arguments) {
-  const std::string command = std::string("'") + PROXIMA_CLI_PATH + "' " + arguments;
-  CliRun run;
-  FILE* pipe = popen(command.c_str(), "r");
-  if (pipe == nullptr) return run;
-  std::array<char, 4096> buffer{};
-  std::size_t n = 0;
-  while ((n = std::fread(buffer.data(), 1, buffer.size(), pipe)) > 0) run.output.append(buffer.data(), n);
-  const int raw = pclose(pipe);
-  run.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-  return run;
-}
-
-std::string data_file(const std::string& name) { return std::string(PROXIMA_TOOLS_TEST_DATA) + "/" + name; }
+using test::CliRun;
+using test::data_file;
+using test::run_cli;
 
 TEST(CliMeshInfo, TetrahedronText) {
   const CliRun run = run_cli("mesh-info '" + data_file("tetrahedron.stl") + "'");
