@@ -1,8 +1,8 @@
 // Oriented node boxes of a mesh (src/midphase/oriented_tree.cpp): every node's box holds
 // every corner of every triangle of its subtree (checked by walking the Bvh, not through
 // the builder's corner ranges), the axes are orthonormal and right-handed, and a deformed
-// mesh gets boxes around its new vertices. Meshes: random triangle soups (seeded), a
-// fine torus, a flat grid (a degenerate covariance) and a single triangle.
+// mesh gets boxes around its new vertices; threads racing on the first use get one tree. Meshes: random triangle soups
+// (seeded), a fine torus, a flat grid (a degenerate covariance) and a single triangle.
 #include <gtest/gtest.h>
 
 #include <proxima/core/tolerance.hpp>
@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <thread>
 #include <vector>
 
 #include "../../src/midphase/oriented_tree.hpp"
@@ -171,6 +172,22 @@ TEST(OrientedTree, DeformedMeshGetsItsOwnBoxes) {
   // The copy shares the original's boxes.
   const TriangleMesh copy = mesh;
   EXPECT_EQ(&before, &copy.oriented_tree());
+}
+
+TEST(OrientedTree, FirstUseFromManyThreadsBuildsOnce) {
+  const TriangleMesh mesh = make(torus(Real(1), Real(0.25), 64, 16));
+  constexpr int kThreads = 8;
+  std::vector<const midphase::OrientedTree*> seen(kThreads, nullptr);
+  std::vector<std::thread> threads;
+  for (int i = 0; i < kThreads; ++i) {
+    threads.emplace_back([&mesh, &seen, i] {
+      const TriangleMesh copy = mesh;  // copies share the data, as objects sharing a mesh do
+      seen[static_cast<std::size_t>(i)] = &copy.oriented_tree();
+    });
+  }
+  for (std::thread& t : threads) t.join();
+  for (const midphase::OrientedTree* p : seen) EXPECT_EQ(p, seen[0]);
+  expect_bounds(mesh);
 }
 
 }  // namespace
