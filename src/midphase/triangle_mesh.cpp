@@ -69,35 +69,57 @@ void gather_leaf_triangles(const IndexedMesh& m, const Bvh& bvh, std::vector<std
   }
 }
 
-/// Triangle across each edge (kNoIndex for boundary and non-manifold edges).
+/// Triangle across each edge (kNoIndex for boundary and non-manifold edges). The 3n edge
+/// uses are bucketed by their smaller vertex (counting sort, in slot order), each bucket is
+/// ordered by the larger vertex (then slot), and a (smaller, larger) pair used exactly twice
+/// joins two triangles. O(n + V) apart from the small per-vertex sorts.
 void compute_neighbors(const IndexedMesh& m, std::vector<std::array<std::uint32_t, 3>>& neighbors) {
   const std::size_t n = m.triangles.size();
+  const std::size_t nv = m.vertices.size();
   neighbors.assign(n, {kNoIndex, kNoIndex, kNoIndex});
   struct EdgeUse {
-    std::uint64_t key;   // (smaller vertex << 32) | larger vertex
-    std::uint32_t slot;  // 3 * triangle + edge
+    std::uint32_t larger;  // larger vertex of the edge
+    std::uint32_t slot;    // 3 * triangle + edge
   };
+  std::vector<std::uint32_t> start(nv + 1, 0);
+  for (const TriangleIndices& t : m.triangles)
+    for (std::size_t e = 0; e < 3; ++e) ++start[std::min(t[e], t[(e + 1) % 3]) + 1];
+  for (std::size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
   std::vector<EdgeUse> uses(3 * n);
-  for (std::size_t i = 0; i < n; ++i) {
-    const TriangleIndices& t = m.triangles[i];
-    for (std::size_t e = 0; e < 3; ++e) {
-      const std::uint64_t u = t[e];
-      const std::uint64_t v = t[(e + 1) % 3];
-      uses[3 * i + e] = {u < v ? (u << 32) | v : (v << 32) | u, static_cast<std::uint32_t>(3 * i + e)};
+  {
+    std::vector<std::uint32_t> cursor(start.begin(), start.end() - 1);
+    for (std::size_t i = 0; i < n; ++i) {
+      const TriangleIndices& t = m.triangles[i];
+      for (std::size_t e = 0; e < 3; ++e) {
+        const std::uint32_t u = t[e];
+        const std::uint32_t v = t[(e + 1) % 3];
+        uses[cursor[std::min(u, v)]++] = {std::max(u, v), static_cast<std::uint32_t>(3 * i + e)};
+      }
     }
   }
-  std::sort(uses.begin(), uses.end(),
-            [](const EdgeUse& a, const EdgeUse& b) { return a.key < b.key || (a.key == b.key && a.slot < b.slot); });
-  for (std::size_t i = 0; i < uses.size();) {
-    std::size_t j = i + 1;
-    while (j < uses.size() && uses[j].key == uses[i].key) ++j;
-    if (j - i == 2) {
-      const std::uint32_t s0 = uses[i].slot;
-      const std::uint32_t s1 = uses[i + 1].slot;
-      neighbors[s0 / 3][s0 % 3] = s1 / 3;
-      neighbors[s1 / 3][s1 % 3] = s0 / 3;
+  const auto before = [](const EdgeUse& a, const EdgeUse& b) {
+    return a.larger < b.larger || (a.larger == b.larger && a.slot < b.slot);
+  };
+  for (std::size_t v = 0; v < nv; ++v) {
+    EdgeUse* first = uses.data() + start[v];
+    EdgeUse* last = uses.data() + start[v + 1];
+    if (last - first <= 16) {
+      for (EdgeUse* p = first + 1; p < last; ++p)  // insertion sort (buckets are tiny)
+        for (EdgeUse* q = p; q > first && before(*q, *(q - 1)); --q) std::swap(*q, *(q - 1));
+    } else {
+      std::sort(first, last, before);
     }
-    i = j;
+    for (EdgeUse* p = first; p < last;) {
+      EdgeUse* q = p + 1;
+      while (q < last && q->larger == p->larger) ++q;
+      if (q - p == 2) {
+        const std::uint32_t s0 = p[0].slot;
+        const std::uint32_t s1 = p[1].slot;
+        neighbors[s0 / 3][s0 % 3] = s1 / 3;
+        neighbors[s1 / 3][s1 % 3] = s0 / 3;
+      }
+      p = q;
+    }
   }
 }
 
