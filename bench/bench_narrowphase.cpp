@@ -15,6 +15,8 @@
 //        poses without a cache (cold).
 //   2. W3 box pairs (box_pairs.txt): the full contact manifold (up to 4 points): Proxima
 //      collide, ODE dCollide (dBoxBox), Bullet btBoxBoxDetector, FCL fcl::collide on fcl::Box.
+//      Warm start: pose B moves along the same small periodic path as W2's, Proxima collide
+//      with a PairCache kept per pair against the same poses without a cache (cold).
 //   3. W7 sphere and capsule pairs: Proxima intersect / distance / collide over the
 //      1,000,000 materialised query records (streamed from memory) and over the 25,000
 //      distinct pairs (in cache), the memory-bound floor of bench_floor on the same records,
@@ -806,6 +808,43 @@ void proxima_boxes(benchmark::State& state) {
 }
 #endif
 
+#if PROXIMA_BENCH_NARROWPHASE
+/// Warm start on W3: pass p moves every pair's pose B to frame p mod kWarmFrames (warm_pose);
+/// `warm` keeps one PairCache per pair across passes, cold passes none. Full manifold.
+void proxima_boxes_warm(benchmark::State& state, bool warm) {
+  const std::size_t n = g_boxes.size();
+  std::vector<proxima::Box> a, b;
+  std::vector<Transform> pose_a, frames(kWarmFrames * n);
+  for (std::size_t k = 0; k < n; ++k) {
+    const pb::BoxPair& p = g_boxes[k];
+    a.push_back(*proxima::Box::create(pb::to_vec3(p.half_extents_a)));
+    b.push_back(*proxima::Box::create(pb::to_vec3(p.half_extents_b)));
+    pose_a.push_back(pb::to_transform(p.pose_a));
+    for (int f = 0; f < kWarmFrames; ++f)
+      frames[static_cast<std::size_t>(f) * n + k] = warm_pose(pb::to_transform(p.pose_b), f);
+  }
+  std::vector<proxima::PairCache> caches(n);
+  const proxima::PairRequest request;  // up to 4 contacts
+  std::uint64_t hits = 0, contacts = 0, pass = 0;
+  for (auto _ : state) {
+    const Transform* frame_b = &frames[(pass++ % kWarmFrames) * n];
+    hits = 0;
+    contacts = 0;
+    for (std::size_t k = 0; k < n; ++k) {
+      const proxima::ContactManifold m =
+          proxima::collide(a[k], pose_a[k], b[k], frame_b[k], request, warm ? &caches[k] : nullptr);
+      hits += m.count > 0 ? 1u : 0u;
+      contacts += static_cast<std::uint64_t>(m.count);
+    }
+    benchmark::DoNotOptimize(hits);
+    benchmark::DoNotOptimize(contacts);
+  }
+  state.counters["per_query"] = pb::time_per_item(n);
+  state.counters["hits"] = static_cast<double>(hits);
+  state.counters["contacts"] = static_cast<double>(contacts);
+}
+#endif
+
 #if PROXIMA_HAVE_ODE
 void ode_set_pose(dGeomID g, const pb::Pose& pose) {
   dGeomSetPosition(g, pose.position.x, pose.position.y, pose.position.z);
@@ -1288,6 +1327,8 @@ bool register_narrowphase(const std::string& dir) {
 
 #if PROXIMA_BENCH_NARROWPHASE
   add("NP/BoxBox/Manifold/proxima", proxima_boxes);
+  add("NP/BoxBox/Manifold/proxima_cold", proxima_boxes_warm, false);
+  add("NP/BoxBox/Manifold/proxima_warm", proxima_boxes_warm, true);
 #endif
 #if PROXIMA_HAVE_ODE
   add("NP/BoxBox/Manifold/ode", ode_boxes);

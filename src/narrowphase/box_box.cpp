@@ -222,9 +222,14 @@ void face_separations(const BoxPair& p, SatResult& s) {
   s.edges_done = false;
 }
 
-// Separations along the 9 edge axes, straight-line, then the best edge axis and the
-// largest axis overall.
-void edge_separations(const BoxPair& p, SatResult& s) {
+// Separations along the 9 edge axes, then the best edge axis and the largest axis overall.
+// An axis whose separation cannot exceed `floor` is skipped (-infinity) without its square
+// root and division: with len = |A_i x B_j|, sep = e / len > floor is decided on e and
+// floor^2 len^2. `floor` = -infinity computes every axis (then edges_done).
+void edge_separations(const BoxPair& p, SatResult& s, Real floor = -kInfinity) {
+  const bool all = floor == -kInfinity;
+  const Real floor2 = all ? Real(0) : floor * floor;  // (never infinity times a zero length)
+  const bool below = floor < Real(0);
   for (int i = 0; i < 3; ++i) {
     const int i1 = kNext[i];
     const int i2 = kPrev[i];
@@ -235,7 +240,12 @@ void edge_separations(const BoxPair& p, SatResult& s) {
       const Real ra = p.a[i1] * p.ar[i2][j] + p.a[i2] * p.ar[i1][j];
       const Real rb = p.b[j1] * p.ar[i][j2] + p.b[j2] * p.ar[i][j1];
       const Real tl = p.t[i2] * p.r[i1][j] - p.t[i1] * p.r[i2][j];
-      s.sep[6 + 3 * i + j] = len2 > kParallelSine2 ? (std::abs(tl) - (ra + rb)) / std::sqrt(len2) : -kInfinity;
+      const Real e = std::abs(tl) - (ra + rb);
+      // Non-short-circuit tests: the outcome is data-dependent, branches would mispredict.
+      const Real ee = e * e;
+      const Real ff = floor2 * len2;
+      const bool may_exceed = all | (below ? ((e >= Real(0)) | (ee < ff)) : ((e > Real(0)) & (ee > ff)));
+      s.sep[6 + 3 * i + j] = (len2 > kParallelSine2) & may_exceed ? e / std::sqrt(len2) : -kInfinity;
     }
   }
   Real edge_sep = -kInfinity;
@@ -253,7 +263,7 @@ void edge_separations(const BoxPair& p, SatResult& s) {
     s.max_sep = edge_sep;
     s.max_axis = s.edge_axis;
   }
-  s.edges_done = true;
+  s.edges_done = all;
 }
 
 // The full SAT (no early out).
@@ -932,7 +942,16 @@ ContactManifold pair_collide(const Box& a, const Transform& pose_a, const Box& b
   }
   SatResult s;
   face_separations(p, s);
-  if (s.max_sep <= limit) edge_separations(p, s);
+  if (s.max_sep <= limit) {
+    // Only edge axes that may separate, be the largest or be preferred (below) count:
+    // those that cannot exceed every threshold, less the rounding, are skipped.
+    const Real bias = Real(1e-3) * p.tol;
+    Real chosen = s.sep[s.face_a_axis];
+    if (s.sep[s.face_b_axis] > kFaceRelative * chosen + bias) chosen = s.sep[s.face_b_axis];
+    const Real floor = std::min(std::min(kEdgeRelative * chosen + bias, s.max_sep + p.rounding), limit) - p.rounding;
+    edge_separations(p, s, floor);
+  }
+  if (s.max_sep > Real(0) && s.max_sep <= limit) s = full_sat(p);  // the near path needs every axis
   store_cache(cache, p, s.max_axis);
   if (s.max_sep > limit || request.max_contacts < 1) {
     m.normal = world_normal(p, s.max_axis);

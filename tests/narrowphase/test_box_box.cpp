@@ -255,6 +255,108 @@ TEST(BoxBox, IntersectAgreesWithDistanceAndCache) {
   }
 }
 
+TEST(BoxBox, FlushEdgesGiveNoDoubledPoint) {
+  // The top box's side faces lie exactly in the ground's side planes (x = 2, y = 2): its
+  // bottom corners sit on the reference face's boundary. Four distinct points, the exact
+  // rectangle, whatever the contact count asked for (deepest first).
+  const Box ground = make_box(Vec3(2, 2, Real(0.5)));
+  const Box top = make_box(Vec3(Real(0.5), Real(0.5), Real(0.25)));
+  Transform pb;
+  pb.position = Vec3(Real(1.5), Real(1.5), Real(0.74));
+  const ContactManifold m = narrow::pair_collide(ground, {}, top, pb, {}, nullptr);
+  ASSERT_EQ(m.count, 4);
+  EXPECT_NEAR(manifold_area(m), 1, Real(1e-5));
+  for (int i = 0; i < 4; ++i) {
+    EXPECT_NEAR(m.points[i].depth, Real(0.01), Real(1e-5));
+    for (int j = 0; j < i; ++j) EXPECT_GT(glm::length(m.points[i].point_a - m.points[j].point_a), Real(0.5));
+  }
+  for (int k = 1; k <= 3; ++k) {
+    PairRequest req;
+    req.max_contacts = k;
+    const ContactManifold mk = narrow::pair_collide(ground, {}, top, pb, req, nullptr);
+    EXPECT_EQ(mk.count, k);
+  }
+}
+
+TEST(BoxBox, FewerContactsKeepTheDeepestAndTheLargestArea) {
+  // A slightly tilted box across the ground's edges: its clipped bottom face has up to 8
+  // points. Every manifold starts with the deepest point, and asking for one point gives
+  // exactly that point (same feature).
+  Random rng(404);
+  const Box ground = make_box(Vec3(1, 1, Real(0.5)));
+  for (int n = 0; n < 300; ++n) {
+    const Box top = make_box(rng.vec3(Real(0.3), Real(1.2)));
+    Transform pb;
+    pb.rotation = glm::normalize(glm::angleAxis(rng.uniform(-kPi, kPi), Vec3(0, 0, 1)) *
+                                 glm::angleAxis(rng.uniform(Real(-0.05), Real(0.05)), Vec3(1, 0, 0)));
+    pb.position = Vec3(rng.uniform(-1, 1), rng.uniform(-1, 1), Real(0.5) + top.half_extents().z - Real(0.02));
+    const DistanceResult d = narrow::pair_distance(ground, {}, top, pb, {}, nullptr);
+    if (d.signed_distance > 0) continue;
+    SCOPED_TRACE(n);
+    PairRequest one;
+    one.max_contacts = 1;
+    const ContactManifold m1 = narrow::pair_collide(ground, {}, top, pb, one, nullptr);
+    const ContactManifold m4 = narrow::pair_collide(ground, {}, top, pb, {}, nullptr);
+    ASSERT_GE(m4.count, 1);
+    ASSERT_EQ(m1.count, 1);
+    Real deepest = m4.points[0].depth;
+    for (int i = 1; i < m4.count; ++i) deepest = std::max(deepest, m4.points[i].depth);
+    EXPECT_EQ(m4.points[0].depth, deepest);
+    EXPECT_EQ(m1.points[0].depth, deepest);
+    EXPECT_EQ(m1.points[0].feature_id, m4.points[0].feature_id);
+  }
+}
+
+TEST(BoxBox, WarmCacheGivesTheColdManifold) {
+  // One cache per pair along a coherent path: every frame's manifold equals the cold one
+  // (the cache only reorders the work).
+  Random rng(31);
+  for (int n = 0; n < 200; ++n) {
+    const Box a = make_box(rng.vec3(Real(0.2), Real(1)));
+    const Box b = make_box(rng.vec3(Real(0.2), Real(1)));
+    const Transform pa = rng.pose(Real(1));
+    Transform pb = rng.pose(Real(1));
+    const Vec3 step = Real(0.02) * rng.unit_vector();
+    PairCache cache;
+    for (int f = 0; f < 20; ++f) {
+      pb.position += step;
+      const ContactManifold cold = narrow::pair_collide(a, pa, b, pb, {}, nullptr);
+      const ContactManifold warm = narrow::pair_collide(a, pa, b, pb, {}, &cache);
+      SCOPED_TRACE(::testing::Message() << n << " frame " << f);
+      ASSERT_EQ(warm.count, cold.count);
+      for (int i = 0; i < cold.count; ++i) {
+        EXPECT_EQ(warm.points[i].feature_id, cold.points[i].feature_id);
+        EXPECT_EQ(warm.points[i].point_a, cold.points[i].point_a);
+        EXPECT_EQ(warm.points[i].depth, cold.points[i].depth);
+      }
+      if (cold.count > 0) {
+        EXPECT_EQ(warm.normal, cold.normal);
+      }
+    }
+  }
+}
+
+TEST(BoxBox, TouchingWithinRoundingMovesApartAlongTheNormal) {
+  // Regression: boxes touching up to rounding (closest points 2e-7 apart in float): the
+  // normal must come from the separating axis, not from the rounding noise between the
+  // closest points, so that moving B along it separates them by the same amount.
+  const Box a = make_box(Vec3(Real(1.04345608), Real(1.09040022), Real(1.06865835)));
+  const Box b = make_box(Vec3(Real(0.395174176), Real(0.204760864), Real(0.509271026)));
+  Transform pa;
+  pa.position = Vec3(Real(-0.260697097), Real(0.343845308), Real(0.361797392));
+  pa.rotation = Quat(Real(-0.220952362), Real(-0.609135032), Real(0.690012932), Real(0.322516233));
+  Transform pb;
+  pb.position = Vec3(Real(-2.12500286), Real(1.41939569), Real(0.109485209));
+  pb.rotation = Quat(Real(0.651645541), Real(0.342311412), Real(-0.635220051), Real(0.233829871));
+  const DistanceResult d = narrow::pair_distance(a, pa, b, pb, {}, nullptr);
+  ASSERT_NEAR(d.signed_distance, 0, Real(1e-5));
+  const Real eps = Real(1e-3);
+  Transform apart = pb;
+  apart.position += eps * d.normal;
+  EXPECT_NEAR(narrow::pair_distance(a, pa, b, apart, {}, nullptr).signed_distance, d.signed_distance + eps,
+              Real(0.05) * eps);
+}
+
 TEST(BoxBox, NonFinitePose) {
   const Box a = make_box(Vec3(1));
   Transform bad;
