@@ -311,7 +311,7 @@ TEST(BspPolyhedron, AxisPlanesBalanceConvexSolids) {
     std::uint32_t planes;  // distinct face planes
   };
   std::vector<Convex> convex;
-  convex.push_back({"icosphere", test::icosphere_mesh(4, Real(1)), 5120u});
+  convex.push_back({"icosphere", test::icosphere_mesh(3, Real(1)), 1280u});
   convex.push_back({"uv_sphere", test::tessellate_sphere(Real(1), 32, 16), 32u * 16u});  // planar quads, cap fans
   test::Random rng(606);
   for (const Convex& c : convex) {
