@@ -333,6 +333,7 @@ TEST(TriangleMeshRaycast, WideTraversalEqualsBinaryReference) {
         if (k % 40 == 1) ray.direction.z = Real(1e-31);
         if (k % 40 == 2) ray.direction *= Real(1e31);
         if (k % 40 == 3) ray.origin.y = Real(1e20);
+        if (k % 40 == 4) ray.origin.x = Real(1e35);
         const Real max_t = k % 3 == 0 ? kRealMax : rng.uniform(0, 12);
         const auto culling = static_cast<FaceCulling>(k % 3);
         hits += expect_same_traversals(mesh, ray, max_t, culling) ? 1 : 0;
@@ -357,6 +358,19 @@ TEST(TriangleMeshRaycast, WideTraversalEqualsBinaryReference) {
   }
   EXPECT_GT(hits, total / 5);
   EXPECT_LT(hits, total);
+#if PROXIMA_DOUBLE
+  {  // bounds beyond the float layout: the binary path serves
+    IndexedMesh huge = test::icosphere_mesh(2, Real(1.5));
+    for (Vec3& v : huge.vertices) v *= Real(1e40);
+    const TriangleMesh mesh = make(huge);
+    int huge_hits = 0;
+    for (int k = 0; k < 200; ++k) {
+      const Vec3 o = rng.vec3(-3, 3);
+      huge_hits += expect_same_traversals(mesh, {o * Real(1e40), rng.vec3(-1, 1) - o}, kRealMax, FaceCulling::None);
+    }
+    EXPECT_GT(huge_hits, 0);
+  }
+#endif
 }
 
 TEST(TriangleMeshDeform, RefittedRaysMatchBruteForce) {
