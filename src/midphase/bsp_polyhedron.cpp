@@ -314,10 +314,10 @@ Result<BspPolyhedron> BspPolyhedron::create(const IndexedMesh& mesh, const BspBu
             ++front;
             ++back;
             break;
-          case Side::On: ++on; break;
+          case Side::On: on += b.same_facing(pl, b.polygons[task.polys[si * np / scored]]) ? 1 : 0; break;
         }
       }
-      // Coplanar polygons are consumed by a face plane (never tested again below it): they
+      // Coplanar polygons facing its way are consumed by a face plane (never tested again below it): they
       // lower its cost, so that a box's face planes beat any axis plane.
       return k * double(splits) + (1.0 - k) * std::abs(double(front) - double(back)) - (face ? double(on) : 0.0);
     };

@@ -36,7 +36,8 @@ struct BspBuildOptions {
   /// times the largest extent of the mesh's box.
   Real plane_thickness = Real(-1);
   /// Weight of the number of split polygons against the front/back imbalance in the plane
-  /// cost k * splits + (1 - k) * |front - back| (Ericson 8.3.2 suggests 0.8), in [0, 1].
+  /// cost k * splits + (1 - k) * |front - back| - consumed (Ericson 8.3.2 suggests 0.8; consumed:
+  /// polygons coplanar with a face plane and facing its way), in [0, 1].
   Real split_weight = Real(0.8);
   /// At most this many candidate face planes (faces spread evenly over the node's polygons)
   /// are scored per node, each against at most 64 of the node's polygons, so choosing a
