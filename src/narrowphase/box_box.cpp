@@ -274,15 +274,20 @@ SatResult full_sat(const BoxPair& p) {
   return s;
 }
 
-void store_cache(PairCache* cache, const BoxPair& p, int axis) {
+// PairCache::sat_feature: the last largest-separation axis, with kOverlapFlag when it did
+// not separate the pair (by more than the query's limit).
+constexpr std::uint32_t kOverlapFlag = 0x100u;
+
+void store_cache(PairCache* cache, const BoxPair& p, int axis, bool separated) {
   if (cache == nullptr) return;
-  cache->sat_feature = static_cast<std::uint32_t>(axis);
+  cache->sat_feature = static_cast<std::uint32_t>(axis) | (separated ? 0u : kOverlapFlag);
   cache->axis = axis_normal(p, axis);
   cache->valid = true;
 }
 
-// The cached axis when it still separates the pair by more than `limit` (its A-frame
-// direction refreshed in the cache), else -1.
+// The cached axis when it separated the pair last time and still separates it by more than
+// `limit` (its A-frame direction refreshed in the cache), else -1. A pair that overlapped
+// last time starts cold: its axis would rarely separate it now.
 int cached_separating_axis(const BoxPair& p, Real limit, PairCache* cache) {
   if (cache == nullptr || !cache->valid || cache->sat_feature >= static_cast<std::uint32_t>(kAxes)) return -1;
   const int k = static_cast<int>(cache->sat_feature);
@@ -871,7 +876,7 @@ bool pair_intersect(const Box& a, const Transform& pose_a, const Box& b, const T
   SatResult s;
   face_separations(p, s);
   if (s.max_sep <= limit) edge_separations(p, s);
-  store_cache(cache, p, s.max_axis);
+  store_cache(cache, p, s.max_axis, s.max_sep > limit);
   if (s.max_sep > limit) return false;
   if (s.max_sep <= Real(0)) return true;
   return closest_features(p, s).d2 <= limit * limit;
@@ -882,7 +887,7 @@ DistanceResult pair_distance(const Box& a, const Transform& pose_a, const Box& b
   if (!finite_poses(pose_a, pose_b)) return invalid_distance();
   const BoxPair p = make_pair(a, pose_a, b, pose_b, request);
   const SatResult s = full_sat(p);
-  store_cache(cache, p, s.max_axis);
+  store_cache(cache, p, s.max_axis, s.max_sep > Real(0));
   const Vec3 max_normal = axis_normal(p, s.max_axis);
   DistanceResult r;
   r.method = PairMethod::Sat;
@@ -952,7 +957,7 @@ ContactManifold pair_collide(const Box& a, const Transform& pose_a, const Box& b
     edge_separations(p, s, floor);
   }
   if (s.max_sep > Real(0) && s.max_sep <= limit) s = full_sat(p);  // the near path needs every axis
-  store_cache(cache, p, s.max_axis);
+  store_cache(cache, p, s.max_axis, s.max_sep > limit);
   if (s.max_sep > limit || request.max_contacts < 1) {
     m.normal = world_normal(p, s.max_axis);
     return m;
