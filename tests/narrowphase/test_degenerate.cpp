@@ -443,5 +443,99 @@ TEST(DegenerateRegression, IdenticalSegmentsNormalOrthogonal) {
   }
 }
 
+// A point at the middle of a capsule's core: the cores touch and their Minkowski difference
+// is a segment through the origin, too thin for EPA. The depth is the radius, along a normal
+// across the axis (analytic); the witness on the capsule lies on its surface.
+TEST(DegenerateRegression, PointAtCapsuleCentreHasRadiusDepthAcrossTheAxis) {
+  test::Random rng(41);
+  for (int i = 0; i < 200; ++i) {
+    const Real r = rng.uniform(Real(0.05), Real(1));
+    const Real h = rng.uniform(Real(0.01), Real(1.5));
+    const Shape cap = Capsule::create(r, h).value();
+    const Shape pt = Point::create().value();
+    const Transform pc{rng.vec3(Real(-1), Real(1)), rng.rotation()};
+    const Transform pp{pc.position, rng.rotation()};
+    const Vec3 axis = pc.apply_vector(Vec3(Real(0), Real(0), Real(1)));
+    const Real tol = test::narrow_tolerance(Real(2));
+    for (int order = 0; order < 2; ++order) {
+      const DistanceResult d = order == 0 ? distance(cap, pc, pt, pp) : distance(pt, pp, cap, pc);
+      const std::string where = "case " + std::to_string(i) + " order " + std::to_string(order);
+      EXPECT_NEAR(d.signed_distance, -r, tol) << where;
+      EXPECT_LE(std::abs(glm::dot(d.normal, axis)), test::narrow_tolerance(Real(1)))
+          << where << " normal along the axis";
+      const Vec3& on_cap = order == 0 ? d.point_a : d.point_b;
+      EXPECT_NEAR(test::surface_distance(cap, pc, on_cap), Real(0), tol) << where;
+    }
+  }
+}
+
+// A point on a segment's interior touches it; the normal must lie across the segment, so
+// that moving the point by eps along it puts them eps apart (analytic).
+TEST(DegenerateRegression, PointOnSegmentTouchesAcrossIt) {
+  test::Random rng(43);
+  for (int i = 0; i < 200; ++i) {
+    const Shape seg = Segment::create(rng.vec3(Real(-1), Real(1)), rng.vec3(Real(-1), Real(1))).value();
+    const Segment& sg = std::get<Segment>(seg);
+    const Transform ps{rng.vec3(Real(-1), Real(1)), rng.rotation()};
+    const Real t = rng.uniform(Real(0.1), Real(0.9));
+    const Vec3 on = ps.apply(sg.a() + t * (sg.b() - sg.a()));
+    const Vec3 u = glm::normalize(ps.apply_vector(sg.b() - sg.a()));
+    const Shape pt = Point::create().value();
+    const Transform pp{on, rng.rotation()};
+    const Real tol = test::narrow_tolerance(Real(2));
+    const DistanceResult d = distance(seg, ps, pt, pp);
+    const std::string where = "case " + std::to_string(i);
+    EXPECT_NEAR(d.signed_distance, Real(0), tol) << where;
+    EXPECT_LE(std::abs(glm::dot(d.normal, u)), test::narrow_tolerance(Real(1))) << where << " normal along the segment";
+    const Real eps = Real(1e-2);
+    const Transform apart{on + eps * d.normal, pp.rotation};
+    EXPECT_NEAR(distance(seg, ps, pt, apart).signed_distance, eps, tol) << where;
+  }
+}
+
+// Coincident box and segment: EPA's nearest face did not hold the origin's projection (by
+// less than 1e-4 in barycentric terms) and clamping broke point_b = point_a + sd n by 2e-5.
+TEST(DegenerateRegression, BoxSegmentCoincidentKeepsTheWitnessRelation) {
+  const Shape box = Box::create(Vec3(Real(0.260667003), Real(0.233573666), Real(0.302929109))).value();
+  const Shape seg = Segment::create(Vec3(Real(-0.41089321), Real(0.634891011), Real(-0.397019046)),
+                                    Vec3(Real(0.392629666), Real(0.0568791072), Real(-0.257038096)))
+                        .value();
+  const Transform pose{Vec3(Real(0.930247806), Real(-0.923639132), Real(0.624902946)),
+                       quat_xyzw(Real(0.753680971), Real(-0.0947318618), Real(-0.649748261), Real(-0.0286018279))};
+  const DistanceResult d = distance(box, pose, seg, pose);
+  const Real tol = test::narrow_tolerance(Real(1));
+  EXPECT_LT(d.signed_distance, Real(0));
+  EXPECT_LE(glm::length(d.point_a + d.signed_distance * d.normal - d.point_b), tol);
+  EXPECT_NEAR(test::surface_distance(box, pose, d.point_a), Real(0), tol);
+  EXPECT_NEAR(test::surface_distance(seg, pose, d.point_b), Real(0), tol);
+}
+
+// Moving both shapes by the same far offset must not change the answer beyond the rounding
+// of the far coordinates (the solve is sized by the pair, not by its distance from the
+// origin): every generic-path pair of curved shapes, at the origin and 1e4 away.
+TEST(DegenerateRegression, FarOffsetKeepsTheAnswer) {
+  const ShapeType curved[] = {ShapeType::Segment,  ShapeType::Triangle, ShapeType::Box,       ShapeType::Capsule,
+                              ShapeType::Cylinder, ShapeType::Cone,     ShapeType::Ellipsoid, ShapeType::ConvexHull};
+  const Vec3 far(Real(1e4), Real(-1e4), Real(1e4));
+  for (ShapeType ta : curved) {
+    for (ShapeType tb : curved) {
+      test::Random rng(47 + std::uint64_t(ta) * 31u + std::uint64_t(tb));
+      for (int i = 0; i < 6; ++i) {
+        const Shape a = test::random_shape(rng, ta);
+        const Shape b = test::random_shape(rng, tb);
+        const Transform pa{rng.vec3(Real(-0.3), Real(0.3)), rng.rotation()};
+        const Transform pb{rng.vec3(Real(-0.3), Real(0.3)), rng.rotation()};
+        const DistanceResult d0 = distance(a, pa, b, pb);
+        const DistanceResult d1 =
+            distance(a, Transform{pa.position + far, pa.rotation}, b, Transform{pb.position + far, pb.rotation});
+        const Real tol = test::narrow_tolerance(Real(2)) + Real(256) * kEpsilon * Real(1e4);
+        EXPECT_NEAR(d1.signed_distance, d0.signed_distance, tol) << pair_label(ta, tb) << " case " << i;
+        EXPECT_NEAR(test::surface_distance(a, Transform{pa.position + far, pa.rotation}, d1.point_a), Real(0), tol)
+            << pair_label(ta, tb) << " case " << i;
+      }
+    }
+  }
+}
+
 }  // namespace
 }  // namespace proxima
