@@ -10,6 +10,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <unistd.h>
 
 #include "bench_command.hpp"
 
@@ -18,8 +19,12 @@ namespace {
 
 // A small W1 file: 300 boxes on a 0.25 lattice (half extents multiples of 0.25, so many
 // boxes touch exactly), velocities of +-0.25 so they stay on the lattice, 6 frames.
+// The file name holds the test's name and the process id: ctest runs the tests of this file
+// in parallel processes, which must not rewrite each other's input.
 std::string write_workload() {
-  const auto path = std::filesystem::temp_directory_path() / "proxima_test_bench_w1.txt";
+  const std::string test = ::testing::UnitTest::GetInstance()->current_test_info()->name();
+  const auto path = std::filesystem::temp_directory_path() /
+                    ("proxima_test_bench_w1_" + test + "_" + std::to_string(::getpid()) + ".txt");
   std::ofstream out(path);
   out << "broadphase 1 n=300 frames=6 dt=1 lo=0 hi=12.000 name=tiny_touching\n";
   std::uint64_t state = 12345;
@@ -74,7 +79,8 @@ TEST(BenchCommand, ReadsW1) {
   EXPECT_EQ(w.frames, 6);
   EXPECT_EQ(w.hi, 12.0);
   EXPECT_FALSE(read_w1(path + ".missing", w, error));
-  const auto bad = std::filesystem::temp_directory_path() / "proxima_test_bench_bad.txt";
+  const auto bad =
+      std::filesystem::temp_directory_path() / ("proxima_test_bench_bad_" + std::to_string(::getpid()) + ".txt");
   std::ofstream(bad) << "broadphase 1 n=2 frames=1\n1 2 3 4 5 6 7 8 9\n";
   EXPECT_FALSE(read_w1(bad.string(), w, error));
   EXPECT_NE(error.find("n=2"), std::string::npos) << error;
