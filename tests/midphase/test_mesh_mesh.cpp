@@ -333,13 +333,13 @@ TEST(MeshMesh, BoxBoxBruteForce) {
 // Axis-aligned boxes (common rotation) apart by a gap g along x: distance g exactly, witnesses
 // on the facing faces, no contact; touching (g = 0): boolean true, distance 0.
 TEST(MeshMesh, OrientedMatchesAabb) {
-  // Larger meshes than the brute-force sweeps (1,280 and 1,536 triangles), 300 poses with
+  // Larger meshes than the brute-force sweeps (1,280 and 1,536 triangles), 200 poses with
   // B's centre within reach of A's, half of them with a contact distance.
   const TriangleMesh a = make(icosphere(3, Real(0.6)));
   const TriangleMesh b = make(torus(Real(0.8), Real(0.2), 48, 16));
   test::Random rng(21);
   int hits = 0;
-  const int cases = 300;
+  const int cases = 200;
   for (int k = 0; k < cases; ++k) {
     SCOPED_TRACE(k);
     const Transform pose_a = rng.pose(Real(2));
