@@ -209,15 +209,24 @@ std::vector<std::uint32_t> weld(const std::vector<Vec3>& v, double distance) {
 
   // Grid cells keyed by clamped integer coordinates (clamping keeps neighbours adjacent).
   D3 lo = to_d3(v[0]);
+  D3 hi = lo;
   for (const Vec3& p : v) {
-    for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], double(p[a]));
+    for (int a = 0; a < 3; ++a) {
+      lo[a] = std::min(lo[a], double(p[a]));
+      hi[a] = std::max(hi[a], double(p[a]));
+    }
   }
   constexpr double kMaxCell = double(1 << 20) - 2;  // 21 bits per axis in a 64-bit key
+  // Cells no smaller than the weld distance (neighbours within it are in the 27 cells around)
+  // and no more than kMaxCell per axis: a tiny distance (double's default tolerance) would
+  // otherwise clamp most vertices into the last cell and make the search quadratic.
+  const double extent = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
+  const double cell_size = std::max(distance, extent / (kMaxCell - 1));
   using Cell = std::array<std::int64_t, 3>;
   auto cell_of = [&](const Vec3& p) {
     Cell c;
     for (int a = 0; a < 3; ++a) {
-      const double x = std::floor((double(p[a]) - lo[a]) / distance);
+      const double x = std::floor((double(p[a]) - lo[a]) / cell_size);
       c[a] = static_cast<std::int64_t>(std::clamp(x, 0.0, kMaxCell)) + 1;  // +1: room for -1
     }
     return c;
