@@ -178,12 +178,26 @@ bool axis_separation(const BoxPair& p, int k, Real& sep, Vec3& axis) {
   return true;
 }
 
-// The unit axis k in A's frame, A to B (k not a skipped edge axis).
+// The unit axis k in A's frame, A to B (k not a skipped edge axis; the same direction as
+// axis_separation's, without the separation).
 Vec3 axis_normal(const BoxPair& p, int k) {
-  Real sep = Real(0);
-  Vec3 axis(Real(0), Real(0), Real(1));
-  static_cast<void>(axis_separation(p, k, sep, axis));
-  return axis;
+  if (k < 3) {
+    const Real s = p.t[k] >= Real(0) ? Real(1) : Real(-1);
+    return Vec3(k == 0 ? s : Real(0), k == 1 ? s : Real(0), k == 2 ? s : Real(0));
+  }
+  if (k < 6) return (p.tb[k - 3] >= Real(0) ? Real(1) : Real(-1)) * b_axis(p, k - 3);
+  const int i = (k - 6) / 3;
+  const int j = (k - 6) % 3;
+  const int i1 = kNext[i];
+  const int i2 = kPrev[i];
+  const Real len2 = p.r[i1][j] * p.r[i1][j] + p.r[i2][j] * p.r[i2][j];
+  if (!(len2 > kParallelSine2)) return Vec3(Real(0), Real(0), Real(1));
+  const Real tl = p.t[i2] * p.r[i1][j] - p.t[i1] * p.r[i2][j];
+  const Real f = (tl < Real(0) ? Real(-1) : Real(1)) / std::sqrt(len2);
+  Real l[3] = {Real(0), Real(0), Real(0)};
+  l[i1] = -f * p.r[i2][j];
+  l[i2] = f * p.r[i1][j];
+  return Vec3(l[0], l[1], l[2]);
 }
 
 // The world normal of axis k, A to B.
