@@ -11,10 +11,12 @@
 ///     planes, and the traversal/primitive cost options do not change the tree). Bin the
 ///     centres into bin_count bins spanning the node's centroid bounds (on the widest
 ///     centroid axis for nodes of more than 32 primitives, on all three below, with
-///     max(4, n / 2) bins for those small nodes), remembering each primitive's bin, sweep
-///     the bins to evaluate A_L N_L + A_R N_R of every bin plane, and take the cheapest.
-///  3. Partition the working range in place in one pass (Hoare style) by the remembered
-///     bins (no recomputation, so exactly the binning pass's decision), collecting the
+///     max(4, n / 2) bins for those small nodes; bins are plain scalar arrays grown with
+///     branch-free min/max, the axis loops are compiled per axis), sweep the bins to
+///     evaluate A_L N_L + A_R N_R of every bin plane, and take the cheapest.
+///  3. Partition the working range in place in one pass (Hoare style) by each primitive's
+///     bin on the chosen axis, recomputed with the binning pass's exact expression (so
+///     exactly its decision, without storing a bin per primitive), collecting the
 ///     children's centroid bounds on the way; the children's boxes are the unions of their
 ///     bins' boxes, so no further pass over the primitives is needed.
 ///  4. Fallback to an object-median split on the widest centroid axis (nth_element; by
@@ -44,22 +46,58 @@ struct BuildRef {
   Vec3 center;
 };
 
-/// One SAH bin: the box of its primitives and how many there are.
+/// One SAH bin: the box of its primitives and how many there are (plain arrays so the
+/// growth compiles to branch-free scalar min/max).
 struct Bin {
-  Vec3 min{kRealMax};
-  Vec3 max{-kRealMax};
-  std::uint32_t count = 0;
+  Real lo[3];
+  Real hi[3];
+  std::uint32_t count;
+};
+
+inline Real fmin_(Real a, Real b) { return b < a ? b : a; }
+inline Real fmax_(Real a, Real b) { return a < b ? b : a; }
+
+/// Empties a bin.
+inline void clear_bin(Bin& b) {
+  b.lo[0] = b.lo[1] = b.lo[2] = kRealMax;
+  b.hi[0] = b.hi[1] = b.hi[2] = -kRealMax;
+  b.count = 0;
+}
+
+/// Grows bin b by the box [lo, hi].
+inline void grow_bin(Bin& b, const Vec3& lo, const Vec3& hi) {
+  b.lo[0] = fmin_(b.lo[0], lo.x);
+  b.lo[1] = fmin_(b.lo[1], lo.y);
+  b.lo[2] = fmin_(b.lo[2], lo.z);
+  b.hi[0] = fmax_(b.hi[0], hi.x);
+  b.hi[1] = fmax_(b.hi[1], hi.y);
+  b.hi[2] = fmax_(b.hi[2], hi.z);
+  ++b.count;
+}
+
+/// Running box of a sweep: grows by whole bins, reports its half area.
+struct SweepBox {
+  Real lo0 = kRealMax, lo1 = kRealMax, lo2 = kRealMax;
+  Real hi0 = -kRealMax, hi1 = -kRealMax, hi2 = -kRealMax;
+  void grow(const Bin& b) {
+    lo0 = fmin_(lo0, b.lo[0]);
+    lo1 = fmin_(lo1, b.lo[1]);
+    lo2 = fmin_(lo2, b.lo[2]);
+    hi0 = fmax_(hi0, b.hi[0]);
+    hi1 = fmax_(hi1, b.hi[1]);
+    hi2 = fmax_(hi2, b.hi[2]);
+  }
+  Real half_area() const {
+    const Real ex = fmax_(hi0 - lo0, Real(0));
+    const Real ey = fmax_(hi1 - lo1, Real(0));
+    const Real ez = fmax_(hi2 - lo2, Real(0));
+    return ex * ey + ey * ez + ez * ex;
+  }
 };
 
 constexpr std::uint32_t kMaxBins = 64;
 /// Nodes of at most this many primitives are binned on all three axes.
 constexpr std::uint32_t kAllAxesBelow = 32;
-
-/// Half the surface area of the box [lo, hi] (the SAH only compares ratios).
-inline Real half_area(const Vec3& lo, const Vec3& hi) {
-  const Vec3 e = glm::max(hi - lo, Vec3(Real(0)));
-  return e.x * e.y + e.y * e.z + e.z * e.x;
-}
 
 /// ceil(log2(n)) for n >= 1.
 inline std::uint32_t ceil_log2(std::uint32_t n) {
@@ -69,7 +107,7 @@ inline std::uint32_t ceil_log2(std::uint32_t n) {
 class Builder {
  public:
   Builder(std::vector<BuildRef>& refs, std::vector<BvhNode>& nodes, const BvhBuildOptions& options)
-      : refs_(refs), nodes_(nodes), bin_of_(refs.size()) {
+      : refs_(refs), nodes_(nodes) {
     max_leaf_ = std::clamp<std::uint32_t>(options.max_leaf_size, 1u, 255u);
     bins_ = std::clamp<std::uint32_t>(options.bin_count, 2u, kMaxBins);
   }
@@ -137,32 +175,24 @@ class Builder {
     const int axis_lo = all_axes ? 0 : widest;
     const int axis_hi = all_axes ? 2 : widest;
     for (int a = axis_lo; a <= axis_hi; ++a)
-      for (std::uint32_t b = 0; b < k; ++b) bins[std::size_t(a)][b] = Bin{};
+      for (std::uint32_t b = 0; b < k; ++b) clear_bin(bins[std::size_t(a)][b]);
     if (all_axes) {
+      const Real o0 = clo.x, o1 = clo.y, o2 = clo.z;
+      const Real s0 = scale.x, s1 = scale.y, s2 = scale.z;
       for (std::uint32_t i = begin; i != end; ++i) {
         const BuildRef& r = refs_[i];
-        const Vec3 f = (r.center - clo) * scale;
-        for (int a = 0; a < 3; ++a) {
-          const int b = std::min(static_cast<int>(f[a]), max_bin);
-          bin_of_[i][std::size_t(a)] = static_cast<std::uint8_t>(b);
-          Bin& bin = bins[std::size_t(a)][static_cast<std::size_t>(b)];
-          bin.min = glm::min(bin.min, r.min);
-          bin.max = glm::max(bin.max, r.max);
-          ++bin.count;
-        }
+        const int b0 = std::min(static_cast<int>((r.center.x - o0) * s0), max_bin);
+        const int b1 = std::min(static_cast<int>((r.center.y - o1) * s1), max_bin);
+        const int b2 = std::min(static_cast<int>((r.center.z - o2) * s2), max_bin);
+        grow_bin(bins[0][static_cast<std::size_t>(b0)], r.min, r.max);
+        grow_bin(bins[1][static_cast<std::size_t>(b1)], r.min, r.max);
+        grow_bin(bins[2][static_cast<std::size_t>(b2)], r.min, r.max);
       }
     } else {
-      const Real s = scale[widest];
-      const Real o = clo[widest];
-      auto& axis_bins = bins[std::size_t(widest)];
-      for (std::uint32_t i = begin; i != end; ++i) {
-        const BuildRef& r = refs_[i];
-        const int b = std::min(static_cast<int>((r.center[widest] - o) * s), max_bin);
-        bin_of_[i][std::size_t(widest)] = static_cast<std::uint8_t>(b);
-        Bin& bin = axis_bins[static_cast<std::size_t>(b)];
-        bin.min = glm::min(bin.min, r.min);
-        bin.max = glm::max(bin.max, r.max);
-        ++bin.count;
+      switch (widest) {
+        case 0: bin_one_axis<0>(begin, end, clo.x, scale.x, max_bin, bins[0]); break;
+        case 1: bin_one_axis<1>(begin, end, clo.y, scale.y, max_bin, bins[1]); break;
+        default: bin_one_axis<2>(begin, end, clo.z, scale.z, max_bin, bins[2]); break;
       }
     }
     // Sweep: right-to-left accumulated costs, then left-to-right evaluation.
@@ -172,25 +202,23 @@ class Builder {
     std::array<Real, kMaxBins> right_cost;
     for (int a = axis_lo; a <= axis_hi; ++a) {
       if (!(cext[a] > Real(0))) continue;
-      Vec3 lo(kRealMax), hi(-kRealMax);
+      const auto& axis_bins = bins[std::size_t(a)];
+      SweepBox right;
       std::uint32_t n = 0;
       for (std::uint32_t b = k - 1; b > 0; --b) {
-        const Bin& bin = bins[a][b];
-        lo = glm::min(lo, bin.min);
-        hi = glm::max(hi, bin.max);
+        const Bin& bin = axis_bins[b];
+        right.grow(bin);
         n += bin.count;
-        right_cost[b] = n == 0 ? Real(0) : half_area(lo, hi) * Real(n);
+        right_cost[b] = n == 0 ? Real(0) : right.half_area() * Real(n);
       }
-      lo = Vec3(kRealMax);
-      hi = Vec3(-kRealMax);
+      SweepBox left;
       n = 0;
       for (std::uint32_t b = 0; b + 1 < k; ++b) {
-        const Bin& bin = bins[a][b];
-        lo = glm::min(lo, bin.min);
-        hi = glm::max(hi, bin.max);
+        const Bin& bin = axis_bins[b];
+        left.grow(bin);
         n += bin.count;
-        if (n == 0 || n == end - begin) continue;
-        const Real cost = (n == 0 ? Real(0) : half_area(lo, hi) * Real(n)) + right_cost[b + 1];
+        if (n == 0 || n == count) continue;
+        const Real cost = left.half_area() * Real(n) + right_cost[b + 1];
         if (cost < best_cost) {
           best_cost = cost;
           best_axis = a;
@@ -200,24 +228,57 @@ class Builder {
     }
     if (best_axis < 0) return false;
     // Children's boxes from the bins.
-    left_lo = Vec3(kRealMax);
-    left_hi = Vec3(-kRealMax);
-    right_lo = Vec3(kRealMax);
-    right_hi = Vec3(-kRealMax);
-    const auto& axis_bins = bins[static_cast<std::size_t>(best_axis)];
-    for (std::uint32_t b = 0; b < k; ++b) {
-      if (b < best_plane) {
-        left_lo = glm::min(left_lo, axis_bins[b].min);
-        left_hi = glm::max(left_hi, axis_bins[b].max);
-      } else {
-        right_lo = glm::min(right_lo, axis_bins[b].min);
-        right_hi = glm::max(right_hi, axis_bins[b].max);
-      }
+    {
+      const auto& axis_bins = bins[static_cast<std::size_t>(best_axis)];
+      SweepBox l, r;
+      for (std::uint32_t b = 0; b < best_plane; ++b) l.grow(axis_bins[b]);
+      for (std::uint32_t b = best_plane; b < k; ++b) r.grow(axis_bins[b]);
+      left_lo = Vec3(l.lo0, l.lo1, l.lo2);
+      left_hi = Vec3(l.hi0, l.hi1, l.hi2);
+      right_lo = Vec3(r.lo0, r.lo1, r.lo2);
+      right_hi = Vec3(r.hi0, r.hi1, r.hi2);
     }
-    // In-place partition by the bin indices stored in the binning pass.
-    const auto plane = static_cast<std::uint8_t>(best_plane);
-    const auto axis = static_cast<std::size_t>(best_axis);
-    auto goes_left = [&](std::uint32_t i) { return bin_of_[i][axis] < plane; };
+    // In-place partition by the bin index, recomputed with the binning pass's exact
+    // expression (bin < plane <=> unclamped bin < plane, as plane <= k - 1).
+    const auto plane = static_cast<int>(best_plane);
+    switch (best_axis) {
+      case 0: mid = partition<0>(begin, end, clo.x, scale.x, plane, left_clo, left_chi, right_clo, right_chi); break;
+      case 1: mid = partition<1>(begin, end, clo.y, scale.y, plane, left_clo, left_chi, right_clo, right_chi); break;
+      default: mid = partition<2>(begin, end, clo.z, scale.z, plane, left_clo, left_chi, right_clo, right_chi); break;
+    }
+    // Cannot happen (same arithmetic as the binning); a median split covers it if it does.
+    return mid != begin && mid != end;
+  }
+
+  /// Component A of v, with A known at compile time.
+  template <int A>
+  static Real comp(const Vec3& v) {
+    if constexpr (A == 0)
+      return v.x;
+    else if constexpr (A == 1)
+      return v.y;
+    else
+      return v.z;
+  }
+
+  /// Bins refs_[begin, end) on axis A only.
+  template <int A>
+  void bin_one_axis(std::uint32_t begin, std::uint32_t end, Real o, Real s, int max_bin,
+                    std::array<Bin, kMaxBins>& axis_bins) {
+    for (std::uint32_t i = begin; i != end; ++i) {
+      const BuildRef& r = refs_[i];
+      const int b = std::min(static_cast<int>((comp<A>(r.center) - o) * s), max_bin);
+      grow_bin(axis_bins[static_cast<std::size_t>(b)], r.min, r.max);
+    }
+  }
+
+  /// Hoare partition of refs_[begin, end) by (bin on axis A) < plane; returns the split
+  /// position and the two sides' centroid bounds.
+  template <int A>
+  std::uint32_t partition(std::uint32_t begin, std::uint32_t end, Real o, Real s, int plane, Vec3& left_clo,
+                          Vec3& left_chi, Vec3& right_clo, Vec3& right_chi) {
+    BuildRef* refs = refs_.data();
+    auto goes_left = [&](std::uint32_t i) { return static_cast<int>((comp<A>(refs[i].center) - o) * s) < plane; };
     left_clo = Vec3(kRealMax);
     left_chi = Vec3(-kRealMax);
     right_clo = Vec3(kRealMax);
@@ -226,22 +287,19 @@ class Builder {
     std::uint32_t j = end;
     while (true) {
       while (i < j && goes_left(i)) {
-        left_clo = glm::min(left_clo, refs_[i].center);
-        left_chi = glm::max(left_chi, refs_[i].center);
+        left_clo = glm::min(left_clo, refs[i].center);
+        left_chi = glm::max(left_chi, refs[i].center);
         ++i;
       }
       while (i < j && !goes_left(j - 1)) {
         --j;
-        right_clo = glm::min(right_clo, refs_[j].center);
-        right_chi = glm::max(right_chi, refs_[j].center);
+        right_clo = glm::min(right_clo, refs[j].center);
+        right_chi = glm::max(right_chi, refs[j].center);
       }
       if (i >= j) break;
-      std::swap(refs_[i], refs_[j - 1]);
-      std::swap(bin_of_[i], bin_of_[j - 1]);
+      std::swap(refs[i], refs[j - 1]);
     }
-    mid = i;
-    assert(mid != begin && mid != end);
-    return true;
+    return i;
   }
 
   void median_split(std::uint32_t begin, std::uint32_t end, const Vec3& clo, const Vec3& chi, std::uint32_t& mid,
@@ -277,9 +335,6 @@ class Builder {
   std::uint32_t max_leaf_ = 4;
   std::uint32_t bins_ = 16;
   std::array<std::array<Bin, kMaxBins>, 3> bins_storage_;
-  /// Bin of each primitive (by position in refs_) on each axis binned for the current node,
-  /// so the partition reads it instead of recomputing it.
-  std::vector<std::array<std::uint8_t, 3>> bin_of_;
 };
 
 }  // namespace
