@@ -11,8 +11,8 @@
 ///     planes, and the traversal/primitive cost options do not change the tree). Bin the
 ///     centres into bin_count bins spanning the node's centroid bounds (on the widest
 ///     centroid axis for nodes of more than 32 primitives, on all three below, with
-///     max(4, n / 2) bins for those small nodes; bins are plain scalar arrays grown with
-///     branch-free min/max, the axis loops are compiled per axis), sweep the bins to
+///     max(4, n / 2) bins for those small nodes; bins are plain arrays grown with branch-free
+///     min/max, 4-wide with SSE2 in float, the axis loops are compiled per axis), sweep the bins to
 ///     evaluate A_L N_L + A_R N_R of every bin plane, and take the cheapest.
 ///  3. Partition the working range in place in one pass (Hoare style) by each primitive's
 ///     bin on the chosen axis, recomputed with the binning pass's exact expression (so
@@ -34,6 +34,14 @@
 #include <array>
 #include <bit>
 #include <cassert>
+#include <cstddef>
+
+#if defined(__SSE2__) && !PROXIMA_DOUBLE
+#include <emmintrin.h>
+#define PROXIMA_BVH_BUILD_SSE 1
+#else
+#define PROXIMA_BVH_BUILD_SSE 0
+#endif
 
 namespace proxima {
 namespace {
@@ -49,8 +57,8 @@ struct BuildRef {
 /// One SAH bin: the box of its primitives and how many there are (plain arrays so the
 /// growth compiles to branch-free scalar min/max).
 struct Bin {
-  Real lo[3];
-  Real hi[3];
+  alignas(16) Real lo[4];  // lane 3 unused
+  alignas(16) Real hi[4];  // lane 3 unused
   std::uint32_t count;
 };
 
@@ -61,11 +69,28 @@ inline Real fmax_(Real a, Real b) { return a < b ? b : a; }
 inline void clear_bin(Bin& b) {
   b.lo[0] = b.lo[1] = b.lo[2] = kRealMax;
   b.hi[0] = b.hi[1] = b.hi[2] = -kRealMax;
+  b.lo[3] = b.hi[3] = Real(0);
   b.count = 0;
 }
 
-/// Grows bin b by the box [lo, hi].
-inline void grow_bin(Bin& b, const Vec3& lo, const Vec3& hi) {
+#if PROXIMA_BVH_BUILD_SSE
+/// Grows bin b by r's box: one 4-wide load per corner (lanes 0-2; lane 3, the next member
+/// of BuildRef, is masked to zero so no bit pattern of it can reach the min/max).
+inline void grow_bin(Bin& b, const BuildRef& r) {
+  static_assert(offsetof(BuildRef, min) + 4 * sizeof(float) <= sizeof(BuildRef));
+  static_assert(offsetof(BuildRef, max) + 4 * sizeof(float) <= sizeof(BuildRef));
+  const __m128 mask = _mm_castsi128_ps(_mm_set_epi32(0, -1, -1, -1));
+  const __m128 lo = _mm_and_ps(_mm_loadu_ps(&r.min.x), mask);
+  const __m128 hi = _mm_and_ps(_mm_loadu_ps(&r.max.x), mask);
+  _mm_store_ps(b.lo, _mm_min_ps(_mm_load_ps(b.lo), lo));
+  _mm_store_ps(b.hi, _mm_max_ps(_mm_load_ps(b.hi), hi));
+  ++b.count;
+}
+#else
+/// Grows bin b by r's box.
+inline void grow_bin(Bin& b, const BuildRef& r) {
+  const Vec3& lo = r.min;
+  const Vec3& hi = r.max;
   b.lo[0] = fmin_(b.lo[0], lo.x);
   b.lo[1] = fmin_(b.lo[1], lo.y);
   b.lo[2] = fmin_(b.lo[2], lo.z);
@@ -74,6 +99,7 @@ inline void grow_bin(Bin& b, const Vec3& lo, const Vec3& hi) {
   b.hi[2] = fmax_(b.hi[2], hi.z);
   ++b.count;
 }
+#endif
 
 /// Running box of a sweep: grows by whole bins, reports its half area.
 struct SweepBox {
@@ -184,9 +210,9 @@ class Builder {
         const int b0 = std::min(static_cast<int>((r.center.x - o0) * s0), max_bin);
         const int b1 = std::min(static_cast<int>((r.center.y - o1) * s1), max_bin);
         const int b2 = std::min(static_cast<int>((r.center.z - o2) * s2), max_bin);
-        grow_bin(bins[0][static_cast<std::size_t>(b0)], r.min, r.max);
-        grow_bin(bins[1][static_cast<std::size_t>(b1)], r.min, r.max);
-        grow_bin(bins[2][static_cast<std::size_t>(b2)], r.min, r.max);
+        grow_bin(bins[0][static_cast<std::size_t>(b0)], r);
+        grow_bin(bins[1][static_cast<std::size_t>(b1)], r);
+        grow_bin(bins[2][static_cast<std::size_t>(b2)], r);
       }
     } else {
       switch (widest) {
@@ -268,7 +294,7 @@ class Builder {
     for (std::uint32_t i = begin; i != end; ++i) {
       const BuildRef& r = refs_[i];
       const int b = std::min(static_cast<int>((comp<A>(r.center) - o) * s), max_bin);
-      grow_bin(axis_bins[static_cast<std::size_t>(b)], r.min, r.max);
+      grow_bin(axis_bins[static_cast<std::size_t>(b)], r);
     }
   }
 
