@@ -102,6 +102,31 @@ inline void grow_bin(Bin& b, const BuildRef& r) {
 #endif
 
 /// Running box of a sweep: grows by whole bins, reports its half area.
+#if PROXIMA_BVH_BUILD_SSE
+struct SweepBox {
+  __m128 lo = _mm_set_ps(0.0f, kRealMax, kRealMax, kRealMax);
+  __m128 hi = _mm_set_ps(0.0f, -kRealMax, -kRealMax, -kRealMax);
+  void grow(const Bin& b) {
+    lo = _mm_min_ps(lo, _mm_load_ps(b.lo));
+    hi = _mm_max_ps(hi, _mm_load_ps(b.hi));
+  }
+  Real half_area() const {
+    alignas(16) float e[4];
+    _mm_store_ps(e, _mm_max_ps(_mm_sub_ps(hi, lo), _mm_setzero_ps()));
+    return e[0] * e[1] + e[1] * e[2] + e[2] * e[0];
+  }
+  Vec3 min_corner() const {
+    alignas(16) float v[4];
+    _mm_store_ps(v, lo);
+    return Vec3(v[0], v[1], v[2]);
+  }
+  Vec3 max_corner() const {
+    alignas(16) float v[4];
+    _mm_store_ps(v, hi);
+    return Vec3(v[0], v[1], v[2]);
+  }
+};
+#else
 struct SweepBox {
   Real lo0 = kRealMax, lo1 = kRealMax, lo2 = kRealMax;
   Real hi0 = -kRealMax, hi1 = -kRealMax, hi2 = -kRealMax;
@@ -119,7 +144,10 @@ struct SweepBox {
     const Real ez = fmax_(hi2 - lo2, Real(0));
     return ex * ey + ey * ez + ez * ex;
   }
+  Vec3 min_corner() const { return Vec3(lo0, lo1, lo2); }
+  Vec3 max_corner() const { return Vec3(hi0, hi1, hi2); }
 };
+#endif
 
 constexpr std::uint32_t kMaxBins = 64;
 /// Nodes of at most this many primitives are binned on all three axes.
@@ -259,10 +287,10 @@ class Builder {
       SweepBox l, r;
       for (std::uint32_t b = 0; b < best_plane; ++b) l.grow(axis_bins[b]);
       for (std::uint32_t b = best_plane; b < k; ++b) r.grow(axis_bins[b]);
-      left_lo = Vec3(l.lo0, l.lo1, l.lo2);
-      left_hi = Vec3(l.hi0, l.hi1, l.hi2);
-      right_lo = Vec3(r.lo0, r.lo1, r.lo2);
-      right_hi = Vec3(r.hi0, r.hi1, r.hi2);
+      left_lo = l.min_corner();
+      left_hi = l.max_corner();
+      right_lo = r.min_corner();
+      right_hi = r.max_corner();
     }
     // In-place partition by the bin index, recomputed with the binning pass's exact
     // expression (bin < plane <=> unclamped bin < plane, as plane <= k - 1).
