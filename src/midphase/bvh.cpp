@@ -149,6 +149,43 @@ struct SweepBox {
 };
 #endif
 
+#if PROXIMA_BVH_BUILD_SSE
+/// Bounds of primitive centres. One 4-wide load per primitive from max.z: lanes 1-3 are
+/// the centre (BuildRef keeps max and center adjacent), lane 0 (a finite coordinate) is
+/// ignored.
+struct CentroidBounds {
+  __m128 lo = _mm_set1_ps(kRealMax);
+  __m128 hi = _mm_set1_ps(-kRealMax);
+  void grow(const BuildRef& r) {
+    static_assert(offsetof(BuildRef, center) == offsetof(BuildRef, max) + 3 * sizeof(float));
+    const __m128 c = _mm_loadu_ps(&r.max.z);
+    lo = _mm_min_ps(lo, c);
+    hi = _mm_max_ps(hi, c);
+  }
+  void get(Vec3& out_lo, Vec3& out_hi) const {
+    alignas(16) float v[4];
+    _mm_store_ps(v, lo);
+    out_lo = Vec3(v[1], v[2], v[3]);
+    _mm_store_ps(v, hi);
+    out_hi = Vec3(v[1], v[2], v[3]);
+  }
+};
+#else
+/// Bounds of primitive centres.
+struct CentroidBounds {
+  Vec3 lo{kRealMax};
+  Vec3 hi{-kRealMax};
+  void grow(const BuildRef& r) {
+    lo = glm::min(lo, r.center);
+    hi = glm::max(hi, r.center);
+  }
+  void get(Vec3& out_lo, Vec3& out_hi) const {
+    out_lo = lo;
+    out_hi = hi;
+  }
+};
+#endif
+
 constexpr std::uint32_t kMaxBins = 64;
 /// Nodes of at most this many primitives are binned on all three axes.
 constexpr std::uint32_t kAllAxesBelow = 32;
@@ -333,26 +370,23 @@ class Builder {
                           Vec3& left_chi, Vec3& right_clo, Vec3& right_chi) {
     BuildRef* refs = refs_.data();
     auto goes_left = [&](std::uint32_t i) { return static_cast<int>((comp<A>(refs[i].center) - o) * s) < plane; };
-    left_clo = Vec3(kRealMax);
-    left_chi = Vec3(-kRealMax);
-    right_clo = Vec3(kRealMax);
-    right_chi = Vec3(-kRealMax);
+    CentroidBounds left, right;
     std::uint32_t i = begin;
     std::uint32_t j = end;
     while (true) {
       while (i < j && goes_left(i)) {
-        left_clo = glm::min(left_clo, refs[i].center);
-        left_chi = glm::max(left_chi, refs[i].center);
+        left.grow(refs[i]);
         ++i;
       }
       while (i < j && !goes_left(j - 1)) {
         --j;
-        right_clo = glm::min(right_clo, refs[j].center);
-        right_chi = glm::max(right_chi, refs[j].center);
+        right.grow(refs[j]);
       }
       if (i >= j) break;
       std::swap(refs[i], refs[j - 1]);
     }
+    left.get(left_clo, left_chi);
+    right.get(right_clo, right_chi);
     return i;
   }
 
