@@ -110,10 +110,12 @@ struct SweepBox {
     lo = _mm_min_ps(lo, _mm_load_ps(b.lo));
     hi = _mm_max_ps(hi, _mm_load_ps(b.hi));
   }
+  /// (e0 e1 + e1 e2) + e2 e0, the scalar path's exact order.
   Real half_area() const {
-    alignas(16) float e[4];
-    _mm_store_ps(e, _mm_max_ps(_mm_sub_ps(hi, lo), _mm_setzero_ps()));
-    return e[0] * e[1] + e[1] * e[2] + e[2] * e[0];
+    const __m128 e = _mm_max_ps(_mm_sub_ps(hi, lo), _mm_setzero_ps());
+    const __m128 p = _mm_mul_ps(e, _mm_shuffle_ps(e, e, _MM_SHUFFLE(3, 0, 2, 1)));  // e0e1, e1e2, e2e0
+    const __m128 s = _mm_add_ss(p, _mm_shuffle_ps(p, p, _MM_SHUFFLE(3, 2, 1, 1)));
+    return _mm_cvtss_f32(_mm_add_ss(s, _mm_movehl_ps(p, p)));
   }
   Vec3 min_corner() const {
     alignas(16) float v[4];
