@@ -27,103 +27,21 @@
 #include <vector>
 
 #include "../../src/midphase/mesh_mesh.hpp"
+#include "solid_test_meshes.hpp"
 #include "support/random.hpp"
 
 namespace proxima {
 namespace {
 
-constexpr Real kPi = Real(3.14159265358979323846);
 
 // ---- test meshes ------------------------------------------------------------------------
 
-IndexedMesh icosphere(int levels, Real radius) {
-  const Real p = Real(1.6180339887498949);
-  IndexedMesh m;
-  m.vertices = {{-1, p, 0},  {1, p, 0},  {-1, -p, 0}, {1, -p, 0}, {0, -1, p},  {0, 1, p},
-                {0, -1, -p}, {0, 1, -p}, {p, 0, -1},  {p, 0, 1},  {-p, 0, -1}, {-p, 0, 1}};
-  m.triangles = {{0, 11, 5},  {0, 5, 1},  {0, 1, 7},  {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
-                 {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
-                 {3, 8, 9},   {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
-  for (int l = 0; l < levels; ++l) {
-    std::map<std::pair<std::uint32_t, std::uint32_t>, std::uint32_t> mid;
-    auto midpoint = [&](std::uint32_t i, std::uint32_t j) {
-      const auto key = std::minmax(i, j);
-      const auto it = mid.find(key);
-      if (it != mid.end()) return it->second;
-      m.vertices.push_back((m.vertices[i] + m.vertices[j]) * Real(0.5));
-      const auto id = static_cast<std::uint32_t>(m.vertices.size() - 1);
-      mid.emplace(key, id);
-      return id;
-    };
-    std::vector<TriangleIndices> next;
-    for (const TriangleIndices& t : m.triangles) {
-      const std::uint32_t a = midpoint(t[0], t[1]);
-      const std::uint32_t b = midpoint(t[1], t[2]);
-      const std::uint32_t c = midpoint(t[2], t[0]);
-      next.push_back({t[0], a, c});
-      next.push_back({t[1], b, a});
-      next.push_back({t[2], c, b});
-      next.push_back({a, b, c});
-    }
-    m.triangles = std::move(next);
-  }
-  for (Vec3& v : m.vertices) v = glm::normalize(v) * radius;
-  return m;
-}
-
-/// Box [-h, h] with every face split into n x n quads (two triangles each), outward.
-IndexedMesh box_mesh(const Vec3& h, int n) {
-  IndexedMesh m;
-  for (int axis = 0; axis < 3; ++axis) {
-    for (int side = -1; side <= 1; side += 2) {
-      const int u = (axis + 1) % 3;
-      const int v = (axis + 2) % 3;
-      const auto base = static_cast<std::uint32_t>(m.vertices.size());
-      for (int i = 0; i <= n; ++i) {
-        for (int j = 0; j <= n; ++j) {
-          Vec3 p(0);
-          p[axis] = Real(side) * h[axis];
-          p[u] = h[u] * (Real(2 * i) / Real(n) - Real(1));
-          p[v] = h[v] * (Real(2 * j) / Real(n) - Real(1));
-          m.vertices.push_back(p);
-        }
-      }
-      for (int i = 0; i < n; ++i) {
-        for (int j = 0; j < n; ++j) {
-          const auto id = [&](int a, int b) { return base + static_cast<std::uint32_t>(a * (n + 1) + b); };
-          const std::uint32_t p00 = id(i, j), p10 = id(i + 1, j), p01 = id(i, j + 1), p11 = id(i + 1, j + 1);
-          if (side > 0) {
-            m.triangles.push_back({p00, p10, p11});
-            m.triangles.push_back({p00, p11, p01});
-          } else {
-            m.triangles.push_back({p00, p11, p10});
-            m.triangles.push_back({p00, p01, p11});
-          }
-        }
-      }
-    }
-  }
-  return m;
-}
-
+// Shared builders (solid_test_meshes.hpp): geodesic sphere, box with n x n quads per face,
+// torus.
+IndexedMesh icosphere(int levels, Real radius) { return test::icosphere_mesh(levels, radius); }
+IndexedMesh box_mesh(const Vec3& h, int n) { return test::tessellate_box(h, n); }
 IndexedMesh torus(Real major, Real minor, int segments, int sides) {
-  IndexedMesh m;
-  for (int i = 0; i < segments; ++i) {
-    const Real a = Real(2) * kPi * Real(i) / Real(segments);
-    for (int j = 0; j < sides; ++j) {
-      const Real b = Real(2) * kPi * Real(j) / Real(sides);
-      const Real r = major + minor * std::cos(b);
-      m.vertices.push_back({r * std::cos(a), r * std::sin(a), minor * std::sin(b)});
-    }
-  }
-  const auto id = [&](int i, int j) { return static_cast<std::uint32_t>((i % segments) * sides + (j % sides)); };
-  for (int i = 0; i < segments; ++i) {
-    for (int j = 0; j < sides; ++j) {
-      m.triangles.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
-      m.triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
-    }
-  }
-  return m;
+  return test::torus_mesh(major, minor, segments, sides);
 }
 
 TriangleMesh make(IndexedMesh m) {

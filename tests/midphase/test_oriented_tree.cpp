@@ -15,12 +15,12 @@
 #include <vector>
 
 #include "../../src/midphase/oriented_tree.hpp"
+#include "solid_test_meshes.hpp"
 #include "support/random.hpp"
 
 namespace proxima {
 namespace {
 
-constexpr Real kPi = Real(3.14159265358979323846);
 
 IndexedMesh soup(test::Random& rng, int count, Real spread, Real size) {
   IndexedMesh m;
@@ -34,23 +34,7 @@ IndexedMesh soup(test::Random& rng, int count, Real spread, Real size) {
 }
 
 IndexedMesh torus(Real major, Real minor, int segments, int sides) {
-  IndexedMesh m;
-  for (int i = 0; i < segments; ++i) {
-    const Real a = Real(2) * kPi * Real(i) / Real(segments);
-    for (int j = 0; j < sides; ++j) {
-      const Real b = Real(2) * kPi * Real(j) / Real(sides);
-      const Real r = major + minor * std::cos(b);
-      m.vertices.push_back({r * std::cos(a), r * std::sin(a), minor * std::sin(b)});
-    }
-  }
-  const auto id = [&](int i, int j) { return static_cast<std::uint32_t>((i % segments) * sides + (j % sides)); };
-  for (int i = 0; i < segments; ++i) {
-    for (int j = 0; j < sides; ++j) {
-      m.triangles.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
-      m.triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
-    }
-  }
-  return m;
+  return test::torus_mesh(major, minor, segments, sides);
 }
 
 /// n x n grid of quads in the plane z = 1 (the covariance has a zero eigenvalue).
