@@ -21,24 +21,13 @@
 #include <string>
 #include <vector>
 
+#include "brute_support.hpp"
 #include "support/random.hpp"
 
 namespace proxima {
 namespace {
 
-// First index of largest dot product over `v`, and that product.
-std::uint32_t brute_first(std::span<const Vec3> v, const Vec3& d, Real& best_dot) {
-  std::uint32_t best = 0;
-  best_dot = glm::dot(v[0], d);
-  for (std::uint32_t i = 1; i < v.size(); ++i) {
-    const Real x = glm::dot(v[i], d);
-    if (x > best_dot) {
-      best_dot = x;
-      best = i;
-    }
-  }
-  return best;
-}
+using test::brute_support;
 
 std::vector<Vec3> directions(const ConvexHull& hull, test::Random& rng) {
   std::vector<Vec3> dirs;
@@ -72,7 +61,7 @@ void check_hull(const ConvexHull& hull, test::Random& rng, const std::string& wh
   std::uint32_t start = 0;
   for (const Vec3& d : directions(hull, rng)) {
     Real best = Real(0);
-    const std::uint32_t first = brute_first(shifted, d, best);
+    const std::uint32_t first = brute_support(shifted, d, best);
     const std::uint32_t scan = hull.scan_support_index(d);
     ASSERT_EQ(scan, hull.scalar_support_index(d)) << what << " d=" << d.x << "," << d.y << "," << d.z;
     ASSERT_EQ(scan, first) << what << " d=" << d.x << "," << d.y << "," << d.z;

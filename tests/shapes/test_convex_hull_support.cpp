@@ -14,24 +14,13 @@
 #include <string>
 #include <vector>
 
+#include "brute_support.hpp"
 #include "support/random.hpp"
 
 namespace proxima {
 namespace {
 
-// First index of largest dot product, and that product.
-std::uint32_t brute_support(std::span<const Vec3> v, const Vec3& d, Real& best_dot) {
-  std::uint32_t best = 0;
-  best_dot = glm::dot(v[0], d);
-  for (std::uint32_t i = 1; i < v.size(); ++i) {
-    const Real x = glm::dot(v[i], d);
-    if (x > best_dot) {
-      best_dot = x;
-      best = i;
-    }
-  }
-  return best;
-}
+using test::brute_support;
 
 void check_hull(const ConvexHull& hull, test::Random& rng, const std::string& what) {
   const std::span<const Vec3> v = hull.vertices();
