@@ -31,7 +31,11 @@
 #include <proxima/core/tolerance.hpp>
 #include <proxima/geometry/raycast.hpp>
 
+#include <bit>
 #include <cmath>
+#include <cstdint>
+#include <limits>
+#include <type_traits>
 
 #include "geometry/raycast_detail.hpp"
 
@@ -66,9 +70,25 @@ TriangleRay TriangleRay::prepare(const Ray& ray) {
   const int kz = ad.x >= ad.y ? (ad.x >= ad.z ? 0 : 2) : (ad.y >= ad.z ? 1 : 2);
   if (!(ad[kz] > Real(0))) return p;
   int exponent = 0;
-  (void)std::frexp(ad[kz], &exponent);  // ad[kz] = f 2^exponent, f in [0.5, 1)
-  const Vec3 d(std::ldexp(ray.direction.x, -exponent), std::ldexp(ray.direction.y, -exponent),
-               std::ldexp(ray.direction.z, -exponent));
+  Vec3 d;
+  // ad[kz] = f 2^exponent, f in [0.5, 1); the direction scaled by 2^-exponent (exact but for
+  // components that fall below the normal range, rounded as ldexp rounds them).
+  constexpr Real kFastLow = std::numeric_limits<Real>::min() * Real(4);
+  constexpr Real kFastHigh = std::numeric_limits<Real>::max() / Real(8);
+  if (ad[kz] >= kFastLow && ad[kz] <= kFastHigh) {
+    // A normal number: frexp's exponent is the biased exponent minus (bias - 1), and 2^-exponent
+    // is a normal number too, so one multiplication replaces the libm calls.
+    using Bits = std::conditional_t<sizeof(Real) == 4, std::uint32_t, std::uint64_t>;
+    constexpr int mantissa = std::numeric_limits<Real>::digits - 1;
+    constexpr int bias = std::numeric_limits<Real>::max_exponent - 1;
+    const Bits bits = std::bit_cast<Bits>(ad[kz]);
+    exponent = static_cast<int>(bits >> mantissa) - (bias - 1);
+    d = ray.direction * std::bit_cast<Real>(static_cast<Bits>(bias - exponent) << mantissa);
+  } else {
+    (void)std::frexp(ad[kz], &exponent);
+    d = Vec3(std::ldexp(ray.direction.x, -exponent), std::ldexp(ray.direction.y, -exponent),
+             std::ldexp(ray.direction.z, -exponent));
+  }
   p.kz = kz;
   p.kx = (kz + 1) % 3;
   p.ky = (p.kx + 1) % 3;

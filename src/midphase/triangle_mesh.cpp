@@ -29,7 +29,6 @@
 #include <proxima/midphase/triangle_mesh.hpp>
 
 #include <algorithm>
-#include <bit>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -352,33 +351,6 @@ struct MeshRay {
   detail::BlockRay block;  ///< the same permutation and shear for filter_block
 };
 
-/// geometry::TriangleRay::prepare for a ray whose direction components are all normal
-/// numbers (as every ray the wide traversal accepts): the same fields bit for bit, with the
-/// power-of-two scaling done by one multiplication by an exact power of two (as correctly
-/// rounded as ldexp) instead of the libm calls frexp and ldexp.
-inline geometry::TriangleRay prepare_triangle_ray_normal(const Ray& ray) {
-  geometry::TriangleRay p;
-  p.ray = ray;
-  const Vec3 ad = glm::abs(ray.direction);
-  const int kz = ad.x >= ad.y ? (ad.x >= ad.z ? 0 : 2) : (ad.y >= ad.z ? 1 : 2);
-  // frexp's exponent of a normal number: the biased exponent minus (bias - 1).
-  using Bits = std::conditional_t<sizeof(Real) == 4, std::uint32_t, std::uint64_t>;
-  constexpr int mantissa = std::numeric_limits<Real>::digits - 1;
-  constexpr int bias = std::numeric_limits<Real>::max_exponent - 1;
-  const Bits bits = std::bit_cast<Bits>(ad[kz]);
-  const int exponent = static_cast<int>(bits >> mantissa) - (bias - 1);
-  const Real scale = std::bit_cast<Real>(static_cast<Bits>(bias - exponent) << mantissa);  // 2^-exponent
-  const Vec3 d = ray.direction * scale;
-  p.kz = kz;
-  p.kx = (kz + 1) % 3;
-  p.ky = (p.kx + 1) % 3;
-  if (d[kz] < Real(0)) std::swap(p.kx, p.ky);
-  p.shear = Vec3(d[p.kx] / d[kz], d[p.ky] / d[kz], Real(1) / d[kz]);
-  p.exponent = exponent;
-  p.valid = true;
-  return p;
-}
-
 inline MeshRay prepare_mesh_ray(const Ray& ray, FaceCulling culling, const geometry::TriangleRay& tri) {
   MeshRay r{tri, filter_applies(ray), culling, {}};
   const int k[3] = {r.tri.kx, r.tri.ky, r.tri.kz};
@@ -557,7 +529,7 @@ std::optional<MeshRayHit> TriangleMesh::raycast(const Ray& ray, Real max_t, Face
       detail::traverse_wide(
           *wide, w, detail::round_up_float(max_t), [&](std::uint32_t first, std::uint32_t count, float& t_max) {
             if (!prepared) {
-              r = prepare_mesh_ray(ray, culling, prepare_triangle_ray_normal(ray));
+              r = prepare_mesh_ray(ray, culling, geometry::TriangleRay::prepare(ray));
               prepared = true;
             }
             const Real limit = closest.limit();
