@@ -317,7 +317,9 @@ bool generic_intersect(const A& a, const Transform& pose_a, const B& b, const Tr
   s.margin = margin;
   const gjk::Result g = gjk::distance(setup.support_a, setup.support_b, setup.axis, s);
   if (cache) {
-    const Vec3 n = generic_detail::unit_or(-g.v, setup.axis);
+    // A proven separating axis is the best start for the next, coherent query.
+    const Vec3 n = g.status == gjk::Status::EarlyExit ? generic_detail::unit_or(g.separating_axis, -g.v)
+                                                      : generic_detail::unit_or(-g.v, setup.axis);
     setup.store(cache, n);
   }
   if (g.status == gjk::Status::EarlyExit) return false;
