@@ -41,6 +41,24 @@ inline BoxPairFrame box_pair_frame(const Vec3 (&axes_a)[3], const Vec3& center_a
   return f;
 }
 
+/// The unnormalised edge axis a_i x b_j in A's frame: the centre offset projected on it and
+/// the sum of the boxes' projected radii on it (Gottschalk et al., "OBBTree", 1996).
+struct EdgeAxisTerms {
+  Real projection;
+  Real radii;
+};
+
+inline EdgeAxisTerms edge_axis_terms(const Real (&r)[3][3], const Real (&abs_r)[3][3], const Real (&t)[3],
+                                     const Vec3& ea, const Vec3& eb, int i, int j) {
+  const int i1 = (i + 1) % 3;
+  const int i2 = (i + 2) % 3;
+  const int j1 = (j + 1) % 3;
+  const int j2 = (j + 2) % 3;
+  const Real ra = ea[i1] * abs_r[i2][j] + ea[i2] * abs_r[i1][j];
+  const Real rb = eb[j1] * abs_r[i][j2] + eb[j2] * abs_r[i][j1];
+  return {t[i2] * r[i1][j] - t[i1] * r[i2][j], ra + rb};
+}
+
 /// True when no candidate axis separates the boxes by more than `margin` (>= 0). The edge
 /// axes are not normalised: their length is at most 1, so an unscaled margin is
 /// conservative.
@@ -56,15 +74,9 @@ inline bool boxes_within(const Real (&r)[3][3], const Real (&abs_r)[3][3], const
     if (std::abs(tj) > ra + eb[j] + margin) return false;
   }
   for (int i = 0; i < 3; ++i) {
-    const int i1 = (i + 1) % 3;
-    const int i2 = (i + 2) % 3;
     for (int j = 0; j < 3; ++j) {
-      const int j1 = (j + 1) % 3;
-      const int j2 = (j + 2) % 3;
-      const Real ra = ea[i1] * abs_r[i2][j] + ea[i2] * abs_r[i1][j];
-      const Real rb = eb[j1] * abs_r[i][j2] + eb[j2] * abs_r[i][j1];
-      const Real tl = t[i2] * r[i1][j] - t[i1] * r[i2][j];
-      if (std::abs(tl) > ra + rb + margin) return false;
+      const EdgeAxisTerms e = edge_axis_terms(r, abs_r, t, ea, eb, i, j);
+      if (std::abs(e.projection) > e.radii + margin) return false;
     }
   }
   return true;
@@ -109,14 +121,9 @@ inline Real boxes_gap(const BoxPairFrame& f, const Vec3& ea, const Vec3& eb,
     if (gap >= enough) return gap;
   }
   for (int i = 0; i < 3; ++i) {
-    const int i1 = (i + 1) % 3;
-    const int i2 = (i + 2) % 3;
     for (int j = 0; j < 3; ++j) {
-      const int j1 = (j + 1) % 3;
-      const int j2 = (j + 2) % 3;
-      const Real ra = ea[i1] * abs_r[i2][j] + ea[i2] * abs_r[i1][j];
-      const Real rb = eb[j1] * abs_r[i][j2] + eb[j2] * abs_r[i][j1];
-      const Real g = std::abs(t[i2] * r[i1][j] - t[i1] * r[i2][j]) - ra - rb;
+      const EdgeAxisTerms e = edge_axis_terms(r, abs_r, t, ea, eb, i, j);
+      const Real g = std::abs(e.projection) - e.radii;
       // |a_i x b_j|^2 = 1 - r_ij^2; the unscaled gap g is the true gap times that length.
       if (g <= Real(0)) continue;
       const Real len2 = Real(1) - r[i][j] * r[i][j];
