@@ -33,7 +33,6 @@
 namespace proxima {
 namespace {
 
-
 // ---- test meshes ------------------------------------------------------------------------
 
 // Shared builders (solid_test_meshes.hpp): geodesic sphere, box with n x n quads per face,

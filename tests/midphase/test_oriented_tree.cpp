@@ -21,7 +21,6 @@
 namespace proxima {
 namespace {
 
-
 IndexedMesh soup(test::Random& rng, int count, Real spread, Real size) {
   IndexedMesh m;
   for (int i = 0; i < count; ++i) {
