@@ -5,7 +5,6 @@
 
 #include <proxima/midphase/bsp_polyhedron.hpp>
 #include <proxima/midphase/bvh.hpp>
-#include <proxima/midphase/mesh_point_cache.hpp>
 #include <proxima/shapes/indexed_mesh.hpp>
 #include <proxima/shapes/mass_properties.hpp>
 #include <proxima/shapes/surface_point.hpp>
@@ -84,9 +83,8 @@ bool mesh_contains_open(const MeshView& mesh, const Bvh& bvh, std::span<const Wi
 /// OnBoundary ones, so the answer equals mesh_contains' (rounding aside).
 bool mesh_contains_bsp(const MeshView& mesh, const Bvh& bvh, const BspPolyhedron& bsp, const Vec3& point);
 
-/// What a TriangleMesh's MeshPointCache holds once built.
+/// What a TriangleMesh's containment cache (Data::point_cache) holds once built.
 struct MeshPointCacheState {
-  std::once_flag once;               ///< guards the one build
   std::optional<BspPolyhedron> bsp;  ///< closed meshes whose BSP build succeeded
   std::vector<WindingNode> winding;  ///< open meshes (empty for closed ones)
 };

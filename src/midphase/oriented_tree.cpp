@@ -157,11 +157,7 @@ OrientedTree build_oriented_tree(const Bvh& bvh, std::span<const Vec3> vertices,
 
 const midphase::OrientedTree& TriangleMesh::oriented_tree() const {
   const Data& d = *data_;
-  std::call_once(d.oriented.once, [&d] {
-    d.oriented.tree = std::make_shared<const midphase::OrientedTree>(
-        midphase::build_oriented_tree(d.bvh, d.mesh.vertices, d.mesh.triangles));
-  });
-  return *d.oriented.tree;
+  return d.oriented.get([&d] { return midphase::build_oriented_tree(d.bvh, d.mesh.vertices, d.mesh.triangles); });
 }
 
 }  // namespace proxima

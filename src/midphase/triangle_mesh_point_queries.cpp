@@ -478,14 +478,6 @@ MassProperties mesh_mass_properties(const MeshView& mesh, Real density) {
 
 }  // namespace detail
 
-MeshPointCache::MeshPointCache() : state_(std::make_unique<detail::MeshPointCacheState>()) {}
-MeshPointCache::MeshPointCache(const MeshPointCache& /*unused*/) : MeshPointCache() {}
-MeshPointCache& MeshPointCache::operator=(const MeshPointCache& other) {
-  if (this != &other) state_ = std::make_unique<detail::MeshPointCacheState>();
-  return *this;
-}
-MeshPointCache::~MeshPointCache() = default;
-
 namespace {
 
 detail::MeshView view_of(const TriangleMesh& mesh) {
@@ -502,14 +494,15 @@ detail::MeshView view_of(const TriangleMesh& mesh) {
 bool TriangleMesh::contains(const Vec3& point) const {
   detail::MeshView v = view_of(*this);
   v.neighbors = data_->neighbors;
-  detail::MeshPointCacheState& cache = data_->point_cache.state();
-  std::call_once(cache.once, [&] {
+  const detail::MeshPointCacheState& cache = data_->point_cache.get([&] {
+    detail::MeshPointCacheState built;
     if (v.closed) {
       Result<BspPolyhedron> bsp = BspPolyhedron::create(data_->mesh);
-      if (bsp) cache.bsp = std::move(bsp.value());
+      if (bsp) built.bsp = std::move(bsp.value());
     } else {
-      cache.winding = detail::build_winding_nodes(v, data_->bvh);
+      built.winding = detail::build_winding_nodes(v, data_->bvh);
     }
+    return built;
   });
   if (v.closed) {
     return cache.bsp ? detail::mesh_contains_bsp(v, data_->bvh, *cache.bsp, point)

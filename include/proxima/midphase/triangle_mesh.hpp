@@ -9,7 +9,7 @@
 #include <proxima/geometry/aabb.hpp>
 #include <proxima/geometry/ray.hpp>
 #include <proxima/midphase/bvh.hpp>
-#include <proxima/midphase/mesh_point_cache.hpp>
+#include <proxima/midphase/lazy_slot.hpp>
 #include <proxima/shapes/indexed_mesh.hpp>
 #include <proxima/shapes/mass_properties.hpp>
 #include <proxima/shapes/surface_point.hpp>
@@ -17,7 +17,6 @@
 #include <array>
 #include <cstdint>
 #include <memory>
-#include <mutex>
 #include <optional>
 #include <span>
 #include <vector>
@@ -25,24 +24,13 @@
 namespace proxima {
 
 namespace detail {
-struct RayBvh;  // 4-wide ray hierarchy (src/midphase/ray_bvh.hpp)
+struct RayBvh;               // 4-wide ray hierarchy (src/midphase/ray_bvh.hpp)
+struct MeshPointCacheState;  // containment acceleration (src/midphase/mesh_point_queries.hpp)
 }  // namespace detail
 
 namespace midphase {
 struct OrientedTree;  // oriented node bounds for mesh-mesh queries (src/midphase/oriented_tree.hpp)
 }  // namespace midphase
-
-namespace detail {
-/// A midphase::OrientedTree built on first use (std::call_once, so safe when a shared mesh
-/// is queried from several threads). A copy starts empty: a deformed mesh builds its own.
-struct OrientedTreeSlot {
-  OrientedTreeSlot() = default;
-  OrientedTreeSlot(const OrientedTreeSlot&) {}
-  OrientedTreeSlot& operator=(const OrientedTreeSlot&) = delete;
-  mutable std::once_flag once;                                 ///< guards the build
-  mutable std::shared_ptr<const midphase::OrientedTree> tree;  ///< set once by the build
-};
-}  // namespace detail
 
 /// Marks "no triangle / no neighbour / no child".
 inline constexpr std::uint32_t kNoIndex = 0xffffffffu;
@@ -169,13 +157,13 @@ class TriangleMesh {
     /// triangles are contiguous for the ray casts).
     std::vector<std::array<Vec3, 3>> leaf_triangles;
     /// Oriented node bounds for mesh-mesh queries, built by oriented_tree() on first use.
-    detail::OrientedTreeSlot oriented;
+    detail::LazySlot<midphase::OrientedTree> oriented;
     /// 4-wide hierarchy for ray casts over the same leaves (RayTraversal::Wide); null or
     /// empty when the mesh's bounds do not fit its float layout.
     std::shared_ptr<const detail::RayBvh> ray_bvh;
     /// Built by the first contains(): the BSP tree of a closed mesh, the far-field winding
     /// data of an open one (a copy of Data starts with an empty cache).
-    MeshPointCache point_cache;
+    detail::LazySlot<detail::MeshPointCacheState> point_cache;
   };
 
  private:
