@@ -25,7 +25,7 @@
 #include <type_traits>
 #include <vector>
 
-#include "support/bench_main.hpp"
+#include "bench_main.hpp"
 #include "support/workloads.hpp"
 
 namespace {

@@ -62,7 +62,7 @@
 #include <string_view>
 #include <vector>
 
-#include "support/bench_main.hpp"
+#include "bench_main.hpp"
 #include "support/w1_grid_pairs.hpp"
 #include "support/workloads.hpp"
 

@@ -17,9 +17,9 @@
 
 #include <benchmark/benchmark.h>
 
-#include <proxima/midphase/bvh.hpp>
-#include <proxima/midphase/ray_batch.hpp>
-#include <proxima/midphase/triangle_mesh.hpp>
+#include <proxima/spatial/bvh.hpp>
+#include <proxima/shapes/ray_batch.hpp>
+#include <proxima/shapes/triangle_mesh.hpp>
 
 #if PROXIMA_HAVE_BULLET
 #include <BulletCollision/CollisionShapes/btBvhTriangleMeshShape.h>
@@ -34,9 +34,9 @@
 #include <thread>
 #include <vector>
 
-#include "support/bench_main.hpp"
+#include "bench_main.hpp"
 #if PROXIMA_HAVE_EMBREE
-#include "support/embree_scene.hpp"
+#include "embree_scene.hpp"
 #endif
 #include "support/workloads.hpp"
 

@@ -1,15 +1,15 @@
 // Mesh against mesh on the W4 workload (mesh_icosphere.obj at the identity, 20,480
 // triangles; mesh_torusknot.obj at each of the 1,000 poses of mesh_poses.txt, 50,000
 // triangles), every pose per iteration:
-//   MeshMesh/Boolean/proxima       midphase::mesh_mesh_intersect (oriented nodes)
+//   MeshMesh/Boolean/proxima       narrow::mesh_mesh_intersect (oriented nodes)
 //   MeshMesh/Boolean/proxima_aabb  the same on the axis-aligned nodes (the reference path)
 //   MeshMesh/Boolean/fcl_obbrss    fcl::collide, BVHModel<OBBRSSd>, one contact asked
 //   MeshMesh/Boolean/fcl_aabb      fcl::collide, BVHModel<AABBd>, one contact asked (every
 //                                  20th pose only, argument /20: about 20 ms a query)
-//   MeshMesh/Contacts/...          every contact: midphase::mesh_mesh_collide_all (narrow-phase
+//   MeshMesh/Contacts/...          every contact: narrow::mesh_mesh_collide_all (narrow-phase
 //                                  triangle manifolds); FCL with num_max_contacts = 1e6 and
 //                                  enable_contact
-//   MeshMesh/Distance/...          midphase::mesh_mesh_distance; fcl::distance with nearest
+//   MeshMesh/Distance/...          narrow::mesh_mesh_distance; fcl::distance with nearest
 //                                  points (meshes that intersect: 0 in both)
 // Counters: per_query (time per pose), hits (poses found intersecting), pairs (contacts or
 // contact pairs summed over the poses), sum_distance (sum of the distances).
@@ -18,11 +18,11 @@
 // mesh-mesh query and here before the timing).
 #include <benchmark/benchmark.h>
 
-#include <proxima/midphase/triangle_mesh.hpp>
+#include <proxima/shapes/triangle_mesh.hpp>
 
-#include "../src/midphase/mesh_mesh.hpp"
-#include "../src/midphase/oriented_tree.hpp"
-#include "support/bench_main.hpp"
+#include "narrowphase/mesh_mesh.hpp"
+#include "shapes/oriented_tree.hpp"
+#include "bench_main.hpp"
 #include "support/workloads.hpp"
 
 #if PROXIMA_HAVE_FCL
@@ -94,14 +94,14 @@ void proxima_build(benchmark::State& state) {
 void proxima_build_oriented(benchmark::State& state) {
   for (auto _ : state) {
     for (const proxima::TriangleMesh* m : {g_mesh_a.get(), g_mesh_b.get()}) {
-      auto tree = proxima::midphase::build_oriented_tree(m->bvh(), m->vertices(), m->triangles());
+      auto tree = proxima::detail::build_oriented_tree(m->bvh(), m->vertices(), m->triangles());
       benchmark::DoNotOptimize(tree);
     }
   }
   state.counters["triangles"] = static_cast<double>(g_mesh_a->triangle_count() + g_mesh_b->triangle_count());
 }
 
-using proxima::midphase::MeshMeshNodes;
+using proxima::narrow::MeshMeshNodes;
 enum class Query { Boolean, Contacts, Distance };
 
 /// Proxima's query `q` on node kind state.range(0) (a MeshMeshNodes).
@@ -114,15 +114,15 @@ void proxima_query(benchmark::State& state) {
   run_poses(state, g_transforms.size(), [&](std::size_t i, Tally& t) {
     const proxima::Transform& pose = g_transforms[i];
     if constexpr (q == Query::Boolean) {
-      t.hits += proxima::midphase::mesh_mesh_intersect(*g_mesh_a, identity, *g_mesh_b, pose, request, nodes) ? 1u : 0u;
+      t.hits += proxima::narrow::mesh_mesh_intersect(*g_mesh_a, identity, *g_mesh_b, pose, request, nodes) ? 1u : 0u;
     } else if constexpr (q == Query::Contacts) {
       contacts.clear();
-      proxima::midphase::mesh_mesh_collide_all(*g_mesh_a, identity, *g_mesh_b, pose, request, contacts, nodes);
+      proxima::narrow::mesh_mesh_collide_all(*g_mesh_a, identity, *g_mesh_b, pose, request, contacts, nodes);
       t.hits += contacts.empty() ? 0u : 1u;
       t.pairs += contacts.size();
     } else {
       const proxima::GeometryDistance d =
-          proxima::midphase::mesh_mesh_distance(*g_mesh_a, identity, *g_mesh_b, pose, request, nodes);
+          proxima::narrow::mesh_mesh_distance(*g_mesh_a, identity, *g_mesh_b, pose, request, nodes);
       t.sum += static_cast<double>(d.result.signed_distance);
       t.hits += d.result.signed_distance <= Real(0) ? 1u : 0u;
     }

@@ -18,8 +18,8 @@
 
 #include <benchmark/benchmark.h>
 
-#include <proxima/midphase/bsp_polyhedron.hpp>
-#include <proxima/midphase/triangle_mesh.hpp>
+#include <proxima/shapes/bsp_polyhedron.hpp>
+#include <proxima/shapes/triangle_mesh.hpp>
 
 #include <algorithm>
 #include <chrono>
@@ -29,9 +29,9 @@
 #include <string>
 #include <vector>
 
-#include "../src/midphase/mesh_point_queries.hpp"
-#include "../tests/midphase/solid_test_meshes.hpp"
-#include "support/bench_main.hpp"
+#include "shapes/mesh_point_queries.hpp"
+#include "support/solid_test_meshes.hpp"
+#include "bench_main.hpp"
 #include "support/workloads.hpp"
 
 namespace pb = proxima::bench;

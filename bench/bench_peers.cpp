@@ -11,7 +11,7 @@
 // them, and Embree (a ray tracer) is only listed in the context here.
 #include <benchmark/benchmark.h>
 
-#include "support/bench_main.hpp"
+#include "bench_main.hpp"
 #include "support/workloads.hpp"
 
 #if PROXIMA_HAVE_FCL

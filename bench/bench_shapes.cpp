@@ -18,7 +18,7 @@
 #include <string>
 #include <vector>
 
-#include "support/bench_main.hpp"
+#include "bench_main.hpp"
 #include "support/workloads.hpp"
 
 namespace {

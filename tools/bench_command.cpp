@@ -16,7 +16,7 @@
 #include <sstream>
 #include <string_view>
 
-#include "../bench/support/w1_grid_pairs.hpp"
+#include "support/w1_grid_pairs.hpp"
 
 namespace proxima::tool {
 

@@ -5,7 +5,7 @@
 // [[x,y,z],...],"triangles":[[i,j,k],...]}, and {"type":"compound","children":[{"shape":G,
 // "pose":P},...]} (children any geometry, nested compounds allowed).
 #include <proxima/core/transform.hpp>
-#include <proxima/midphase/compound.hpp>
+#include <proxima/shapes/compound.hpp>
 #include <proxima/shapes/shape.hpp>
 
 #include <string>

@@ -5,7 +5,7 @@
 // then print the report, the bounds, the volume and area, and the BVH statistics.
 #include "mesh_info.hpp"
 
-#include <proxima/midphase/triangle_mesh.hpp>
+#include <proxima/shapes/triangle_mesh.hpp>
 
 #include <chrono>
 #include <cstdio>

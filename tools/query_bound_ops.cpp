@@ -8,7 +8,7 @@
 #include <proxima/bounds/fit_shape.hpp>
 #include <proxima/bounds/fit_shape_capsule.hpp>
 #include <proxima/bounds/fit_sphere.hpp>
-#include <proxima/midphase/geometry.hpp>
+#include <proxima/shapes/geometry.hpp>
 
 #include <string_view>
 #include <variant>

@@ -1,6 +1,6 @@
 #include "query_pair_ops.hpp"
 
-#include <proxima/midphase/geometry_queries.hpp>
+#include <proxima/narrowphase/geometry_queries.hpp>
 #include <proxima/narrowphase/narrowphase.hpp>
 
 #include <cmath>

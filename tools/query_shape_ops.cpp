@@ -1,6 +1,6 @@
 #include "query_shape_ops.hpp"
 
-#include <proxima/midphase/geometry.hpp>
+#include <proxima/shapes/geometry.hpp>
 #include <proxima/shapes/placed.hpp>
 
 #include <variant>

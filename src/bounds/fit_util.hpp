@@ -1,11 +1,13 @@
 #pragma once
-// Internal helpers shared by the fitters: input validation, a symmetric 3x3 eigen solver,
-// exact-containment finishing passes.
+// Internal helpers shared by the fitters: input validation, boxes in a given frame,
+// exact-containment finishing passes. The eigen solver and frames: geometry/eigen_frame.hpp.
 
 #include <proxima/bounds/bounding_sphere.hpp>
 #include <proxima/bounds/obb.hpp>
 #include <proxima/core/math.hpp>
 #include <proxima/core/result.hpp>
+
+#include "geometry/eigen_frame.hpp"
 
 #include <glm/mat3x3.hpp>
 #include <glm/vec3.hpp>
@@ -19,18 +21,6 @@ namespace proxima::detail {
 
 /// Non-empty set of finite points: TooFew "<field>" or the first bad "<field>[i].x".
 std::optional<Error> validate_points(std::span<const Vec3> points, const std::string& field = "points");
-
-/// Eigen decomposition of a symmetric 3x3 matrix by cyclic Jacobi rotations (Golub and
-/// Van Loan, 8.5): returns the eigenvectors as columns, sorted by decreasing eigenvalue,
-/// orthonormal and right-handed; `values` receives the eigenvalues.
-glm::dmat3 symmetric_eigen(const glm::dmat3& m, glm::dvec3& values);
-
-/// Orthonormal right-handed frame (double) whose first column is `axis` (normalised;
-/// zero gives the identity).
-glm::dmat3 frame_from_axis(const glm::dvec3& axis);
-
-/// Orthonormalises `frame` (Gram-Schmidt on columns 0, 1; column 2 = cross) in double.
-glm::dmat3 orthonormalize(const glm::dmat3& frame);
 
 /// The tightest box with axes `frame` (orthonormal columns) containing every point, in the
 /// exact sense of Obb::contains.

@@ -16,7 +16,7 @@
 
 #include <cmath>
 
-#include "bounds/box_separation.hpp"
+#include "geometry/box_separation.hpp"
 
 namespace proxima {
 

@@ -8,7 +8,7 @@
 
 #include <cmath>
 
-#include "../../src/narrowphase/pairs_polyhedral.hpp"
+#include "narrowphase/pairs_polyhedral.hpp"
 #include "polytope_reference.hpp"
 #include "support/random.hpp"
 

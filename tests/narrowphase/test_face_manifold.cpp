@@ -10,11 +10,11 @@
 #include <cmath>
 #include <vector>
 
-#include "../../src/narrowphase/face_clipping.hpp"
-#include "../../src/narrowphase/pairs_polyhedral.hpp"
-#include "../../src/narrowphase/supporting_face.hpp"
+#include "narrowphase/face_clipping.hpp"
+#include "narrowphase/pairs_polyhedral.hpp"
+#include "narrowphase/supporting_face.hpp"
 // The generic manifold over the box-box distance (the template, not the box-box routine).
-#include "../../src/narrowphase/generic_collide.hpp"
+#include "narrowphase/generic_collide.hpp"
 #include "polytope_reference.hpp"
 #include "support/random.hpp"
 

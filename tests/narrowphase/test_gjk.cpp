@@ -9,7 +9,7 @@
 
 #include <cmath>
 
-#include "../../src/narrowphase/generic_distance.hpp"
+#include "narrowphase/generic_distance.hpp"
 #include "gjk_reference.hpp"
 #include "support/random.hpp"
 

@@ -8,7 +8,7 @@
 
 #include <vector>
 
-#include "../../src/narrowphase/manifold_reduction.hpp"
+#include "narrowphase/manifold_reduction.hpp"
 #include "support/random.hpp"
 
 namespace proxima {

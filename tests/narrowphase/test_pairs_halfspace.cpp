@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "../../src/narrowphase/pairs_halfspace.hpp"
+#include "narrowphase/pairs_halfspace.hpp"
 #include "narrowphase/pair_reference.hpp"
 #include "support/random.hpp"
 

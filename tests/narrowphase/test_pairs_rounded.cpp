@@ -9,7 +9,7 @@
 
 #include <string>
 
-#include "../../src/narrowphase/pairs_rounded.hpp"
+#include "narrowphase/pairs_rounded.hpp"
 #include "narrowphase/pair_check.hpp"
 #include "support/random.hpp"
 

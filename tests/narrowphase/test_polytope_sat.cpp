@@ -7,8 +7,8 @@
 
 #include <cmath>
 
-#include "../../src/narrowphase/generic_distance.hpp"
-#include "../../src/narrowphase/polytope_sat.hpp"
+#include "narrowphase/generic_distance.hpp"
+#include "narrowphase/polytope_sat.hpp"
 #include "gjk_reference.hpp"
 #include "support/random.hpp"
 

@@ -9,7 +9,7 @@
 #include <cmath>
 #include <vector>
 
-#include "../../src/narrowphase/supporting_face.hpp"
+#include "narrowphase/supporting_face.hpp"
 #include "support/random.hpp"
 
 namespace proxima::test {

@@ -14,7 +14,7 @@
 #include <utility>
 #include <vector>
 
-#include "../../src/narrowphase/pairs_polyhedral.hpp"
+#include "narrowphase/pairs_polyhedral.hpp"
 #include "polytope_reference.hpp"
 #include "support/random.hpp"
 

@@ -4,7 +4,7 @@
 // its header, BVH statistics present and within the build's depth limit), a missing file.
 #include <gtest/gtest.h>
 
-#include <proxima/midphase/bvh.hpp>
+#include <proxima/spatial/bvh.hpp>
 
 #include <nlohmann/json.hpp>
 

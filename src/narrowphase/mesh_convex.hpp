@@ -1,0 +1,28 @@
+#pragma once
+/// @file mesh_convex.hpp
+/// A triangle mesh (side A) against a convex shape (side B), internal to the midphase and
+/// reached through geometry_queries.hpp. Results are in the world frame with the mesh as A;
+/// sub.triangle is set on A's side, sub.child left at kNoIndex for the caller.
+
+#include <proxima/narrowphase/geometry_queries.hpp>
+
+#include <vector>
+
+namespace proxima::narrow {
+
+/// True when some triangle of the mesh is within request.contact_distance of `convex`.
+bool mesh_convex_intersect(const TriangleMesh& mesh, const Transform& pose_mesh, ShapeRef convex,
+                           const Transform& pose_convex, const PairRequest& request);
+
+/// Minimum signed distance over the triangles; only answers below `cutoff` are searched
+/// for (signed_distance = +infinity when none is). Ties go to the lower triangle index.
+GeometryDistance mesh_convex_distance(const TriangleMesh& mesh, const Transform& pose_mesh, ShapeRef convex,
+                                      const Transform& pose_convex, const PairRequest& request, Real cutoff);
+
+/// Appends the contacts of every triangle within request.contact_distance, with
+/// internal-edge handling (see the .cpp file).
+void mesh_convex_collide_all(const TriangleMesh& mesh, const Transform& pose_mesh, ShapeRef convex,
+                             const Transform& pose_convex, const PairRequest& request,
+                             std::vector<GeometryContact>& contacts);
+
+}  // namespace proxima::narrow
