@@ -130,7 +130,7 @@ void BM_RaysProximaLeaf(benchmark::State& state) {
 }
 
 void BM_RaysProximaBatch(benchmark::State& state) {
-  std::vector<proxima::MeshRayHit> out(g_batch.size());
+  std::vector<proxima::RayHit> out(g_batch.size());
   std::size_t hits = 0;
   for (auto _ : state) {
     hits = proxima::raycast_batch(*g_ray_mesh, g_batch, out).value();

@@ -110,21 +110,21 @@ void proxima_query(benchmark::State& state) {
   const auto nodes = static_cast<MeshMeshNodes>(state.range(0));
   const proxima::PairRequest request;
   const proxima::Transform identity;
-  std::vector<proxima::GeometryContact> contacts;
+  proxima::ContactVector contacts;
   run_poses(state, g_transforms.size(), [&](std::size_t i, Tally& t) {
     const proxima::Transform& pose = g_transforms[i];
     if constexpr (q == Query::Boolean) {
       t.hits += proxima::narrow::mesh_mesh_intersect(*g_mesh_a, identity, *g_mesh_b, pose, request, nodes) ? 1u : 0u;
     } else if constexpr (q == Query::Contacts) {
-      contacts.clear();
+      contacts.contacts.clear();
       proxima::narrow::mesh_mesh_collide_all(*g_mesh_a, identity, *g_mesh_b, pose, request, contacts, nodes);
-      t.hits += contacts.empty() ? 0u : 1u;
-      t.pairs += contacts.size();
+      t.hits += contacts.contacts.empty() ? 0u : 1u;
+      t.pairs += contacts.contacts.size();
     } else {
-      const proxima::GeometryDistance d =
+      const proxima::DistanceResult d =
           proxima::narrow::mesh_mesh_distance(*g_mesh_a, identity, *g_mesh_b, pose, request, nodes);
-      t.sum += static_cast<double>(d.result.signed_distance);
-      t.hits += d.result.signed_distance <= Real(0) ? 1u : 0u;
+      t.sum += static_cast<double>(d.signed_distance);
+      t.hits += d.signed_distance <= Real(0) ? 1u : 0u;
     }
   });
 }

@@ -133,8 +133,8 @@ Compound read_compound(const Json& value, const std::string& path) {
   std::vector<CompoundChild> children;
   children.reserve(list.size());
   for (std::size_t i = 0; i < list.size(); ++i) {
-    PlacedGeometry child = read_placed_geometry(list[i], index_path(children_path, i));
-    children.push_back(CompoundChild{std::move(child.geometry), child.pose});
+    PlacedShape child = read_placed_geometry(list[i], index_path(children_path, i));
+    children.push_back(CompoundChild{std::move(child.shape), child.pose});
   }
   return unwrap(Compound::create(std::move(children)), path);
 }
@@ -143,9 +143,7 @@ Compound read_compound(const Json& value, const std::string& path) {
 
 std::string geometry_type_names() { return shape_type_names() + ", mesh, compound"; }
 
-const Shape* convex_shape(const Geometry& geometry) { return std::get_if<Shape>(&geometry); }
-
-Geometry read_geometry(const Json& value, const std::string& path) {
+Shape read_geometry(const Json& value, const std::string& path) {
   require_object(value, path);
   const std::string type = read_string(require_member(value, path, "type"), join_path(path, "type"));
   if (type == "mesh") return read_mesh(value, path);
@@ -153,11 +151,11 @@ Geometry read_geometry(const Json& value, const std::string& path) {
   return read_convex_shape(value, path, true);
 }
 
-PlacedGeometry read_placed_geometry(const Json& value, const std::string& path) {
+PlacedShape read_placed_geometry(const Json& value, const std::string& path) {
   require_object(value, path);
-  if (find_member(value, "type") != nullptr) return PlacedGeometry{read_geometry(value, path), Transform::identity()};
+  if (find_member(value, "type") != nullptr) return PlacedShape{read_geometry(value, path), Transform::identity()};
   reject_unknown_fields(value, path, {"shape", "pose"});
-  PlacedGeometry placed{read_geometry(require_member(value, path, "shape"), join_path(path, "shape")),
+  PlacedShape placed{read_geometry(require_member(value, path, "shape"), join_path(path, "shape")),
                         Transform::identity()};
   if (const Json* pose = find_member(value, "pose")) placed.pose = read_pose(*pose, join_path(path, "pose"));
   return placed;
@@ -165,7 +163,7 @@ PlacedGeometry read_placed_geometry(const Json& value, const std::string& path) 
 
 std::string shape_type_names() {
   std::string names;
-  for (int i = 0; i < kShapeTypeCount; ++i) {
+  for (int i = 0; i < kConvexShapeTypeCount; ++i) {
     if (i > 0) names += ", ";
     names += to_string(static_cast<ShapeType>(i));
   }

@@ -14,21 +14,15 @@
 
 namespace proxima::tool {
 
-/// A shape with its placement in the world frame.
+/// A shape (any kind) with its placement in the world frame.
 struct PlacedShape {
   Shape shape;                             ///< the shape, in its local frame
   Transform pose = Transform::identity();  ///< local-to-world placement
 };
 
-/// A geometry (convex shape, triangle mesh or compound) with its placement in the world frame.
-struct PlacedGeometry {
-  Geometry geometry;                       ///< the geometry, in its local frame
-  Transform pose = Transform::identity();  ///< local-to-world placement
-};
-
-/// Parses a shape object ("type" plus the fields of that type, validated by the shape's
-/// create()). Errors name the field under `path` ("target.shape.radius"); a mesh or compound
-/// is rejected ("unsupported_geometry": this operation takes convex shapes only).
+/// Parses a convex shape object ("type" plus the fields of that type, validated by the
+/// shape's create()). Errors name the field under `path` ("target.shape.radius"); a mesh or
+/// compound is rejected ("unsupported_geometry": this operation takes convex shapes only).
 Shape read_shape(const Json& value, const std::string& path);
 
 /// Parses any geometry: a shape object as read_shape, a mesh (from "file", read through
@@ -36,13 +30,11 @@ Shape read_shape(const Json& value, const std::string& path);
 /// "triangles"; "repair" (default true) runs repair_mesh first) or a compound ("children":
 /// [{"shape":G,"pose":P},...]). Errors name the field ("target.shape.triangles[4][2]",
 /// "a.shape.children[1].shape.radius", "target.shape.file").
-Geometry read_geometry(const Json& value, const std::string& path);
+Shape read_geometry(const Json& value, const std::string& path);
 
-/// Parses a placed geometry {"shape":G,"pose":P} (or a bare geometry object at identity).
-PlacedGeometry read_placed_geometry(const Json& value, const std::string& path);
-
-/// The convex shape held by `geometry`, or nullptr for a mesh or compound.
-const Shape* convex_shape(const Geometry& geometry);
+/// Parses a placed shape of any kind {"shape":G,"pose":P} (or a bare shape object at
+/// identity).
+PlacedShape read_placed_geometry(const Json& value, const std::string& path);
 
 /// Parses a pose object {"position":[x,y,z],"rotation":[x,y,z,w]} (both optional; identity
 /// when absent), validated by Transform::create (errors "path.position.y", "path.rotation").

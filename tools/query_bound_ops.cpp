@@ -8,7 +8,7 @@
 #include <proxima/bounds/fit_shape.hpp>
 #include <proxima/bounds/fit_shape_capsule.hpp>
 #include <proxima/bounds/fit_sphere.hpp>
-#include <proxima/shapes/geometry.hpp>
+#include <proxima/shapes/shape_queries.hpp>
 
 #include <string_view>
 #include <variant>
@@ -58,14 +58,14 @@ namespace {
 
 // Bounds of a mesh from its world vertices (the hull of the vertices is the hull of the mesh);
 // a compound has its box only.
-Json geometry_bound(const PlacedGeometry& target, const std::string& name) {
+Json geometry_bound(const PlacedShape& target, const std::string& name) {
   Json answer = Json::object();
   answer["volume"] = name;
   if (name == "aabb") {
-    put_volume(answer, world_aabb(GeometryRef(target.geometry), target.pose));
+    put_volume(answer, world_aabb(target.shape, target.pose));
     return answer;
   }
-  const TriangleMesh* mesh = std::get_if<TriangleMesh>(&target.geometry);
+  const TriangleMesh* mesh = std::get_if<TriangleMesh>(&target.shape);
   if (mesh == nullptr) {
     throw FieldError("volume", "unsupported_geometry", "a compound has only the aabb bound");
   }
@@ -86,16 +86,18 @@ Json geometry_bound(const PlacedGeometry& target, const std::string& name) {
 
 Json op_bound(const Json& request) {
   reject_unknown_fields(request, "", {"id", "op", "target", "volume"});
-  const PlacedGeometry placed = read_placed_geometry(require_member(request, "", "target"), "target");
+  const PlacedShape target = read_placed_geometry(require_member(request, "", "target"), "target");
   const std::string name = read_volume_name(request, kBoundVolumes);
-  if (convex_shape(placed.geometry) == nullptr) return geometry_bound(placed, name);
-  const PlacedShape target{*convex_shape(placed.geometry), placed.pose};
+  if (!is_convex(shape_type(target.shape))) return geometry_bound(target, name);
   Json answer = Json::object();
   answer["volume"] = name;
   const Transform& pose = target.pose;
   std::visit(
       [&](const auto& shape) {
         using S = std::decay_t<decltype(shape)>;
+        if constexpr (!is_convex(kShapeTypeOf<S>)) {
+          return;  // answered by geometry_bound above
+        } else {
         if (name == "aabb") return put_volume(answer, fit_shape_aabb(shape, pose));
         if (name == "sphere") return put_volume(answer, fit_shape_sphere(shape, pose));
         if constexpr (S::kType == ShapeType::HalfSpace) {
@@ -108,6 +110,7 @@ Json op_bound(const Json& request) {
           if (name == "kdop14") return put_volume(answer, fit_shape_kdop<14>(shape, pose));
           if (name == "kdop18") return put_volume(answer, fit_shape_kdop<18>(shape, pose));
           return put_volume(answer, fit_shape_kdop<26>(shape, pose));
+        }
         }
       },
       target.shape);

@@ -1,6 +1,5 @@
 #include "query_pair_ops.hpp"
 
-#include <proxima/narrowphase/geometry_queries.hpp>
 #include <proxima/narrowphase/narrowphase.hpp>
 
 #include <cmath>
@@ -11,18 +10,17 @@ namespace proxima::tool {
 
 namespace {
 
-PlacedGeometry member_shape(const Json& request, std::string_view key) {
+PlacedShape member_shape(const Json& request, std::string_view key) {
   return read_placed_geometry(require_member(request, "", key), std::string(key));
 }
 
-// Both sides convex: the narrow phase's routines, as before meshes existed.
-bool both_convex(const PlacedGeometry& a, const PlacedGeometry& b) {
-  return convex_shape(a.geometry) != nullptr && convex_shape(b.geometry) != nullptr;
+bool both_convex(const PlacedShape& a, const PlacedShape& b) {
+  return is_convex(shape_type(a.shape)) && is_convex(shape_type(b.shape));
 }
 
 // {"child":…, "triangle":…} of a mesh or compound side (null for a convex side).
-Json sub_json(const PlacedGeometry& side, const SubShapeId& sub) {
-  if (convex_shape(side.geometry) != nullptr) return nullptr;
+Json sub_json(const PlacedShape& side, const SubShapeId& sub) {
+  if (is_convex(shape_type(side.shape))) return nullptr;
   Json j = Json::object();
   if (sub.child != kNoIndex) j["child"] = sub.child;
   if (sub.triangle != kNoIndex) j["triangle"] = sub.triangle;
@@ -56,32 +54,18 @@ const char* method_name(PairMethod method) {
 
 Json op_intersect(const Json& request) {
   reject_unknown_fields(request, "", {"id", "op", "a", "b"});
-  const PlacedGeometry a = member_shape(request, "a");
-  const PlacedGeometry b = member_shape(request, "b");
+  const PlacedShape a = member_shape(request, "a");
+  const PlacedShape b = member_shape(request, "b");
   Json answer = Json::object();
-  if (both_convex(a, b)) {
-    answer["hit"] = intersect(*convex_shape(a.geometry), a.pose, *convex_shape(b.geometry), b.pose);
-  } else {
-    answer["hit"] = intersect(GeometryRef(a.geometry), a.pose, GeometryRef(b.geometry), b.pose);
-  }
+  answer["hit"] = intersect(a.shape, a.pose, b.shape, b.pose);
   return answer;
 }
 
 Json op_distance(const Json& request) {
   reject_unknown_fields(request, "", {"id", "op", "a", "b"});
-  const PlacedGeometry a = member_shape(request, "a");
-  const PlacedGeometry b = member_shape(request, "b");
-  DistanceResult d;
-  SubShapeId sub_a;
-  SubShapeId sub_b;
-  if (both_convex(a, b)) {
-    d = distance(*convex_shape(a.geometry), a.pose, *convex_shape(b.geometry), b.pose);
-  } else {
-    const GeometryDistance g = distance(GeometryRef(a.geometry), a.pose, GeometryRef(b.geometry), b.pose);
-    d = g.result;
-    sub_a = g.a;
-    sub_b = g.b;
-  }
+  const PlacedShape a = member_shape(request, "a");
+  const PlacedShape b = member_shape(request, "b");
+  const DistanceResult d = distance(a.shape, a.pose, b.shape, b.pose);
   Json answer = Json::object();
   answer["distance"] = to_json(d.signed_distance);
   answer["point_a"] = to_json(d.point_a);
@@ -90,16 +74,16 @@ Json op_distance(const Json& request) {
   answer["status"] = status_name(d.status);
   answer["method"] = method_name(d.method);
   if (!both_convex(a, b)) {
-    if (Json s = sub_json(a, sub_a); !s.is_null()) answer["part_a"] = std::move(s);
-    if (Json s = sub_json(b, sub_b); !s.is_null()) answer["part_b"] = std::move(s);
+    if (Json s = sub_json(a, d.sub_a); !s.is_null()) answer["part_a"] = std::move(s);
+    if (Json s = sub_json(b, d.sub_b); !s.is_null()) answer["part_b"] = std::move(s);
   }
   return answer;
 }
 
 Json op_collide(const Json& request) {
   reject_unknown_fields(request, "", {"id", "op", "a", "b", "max_contacts", "contact_distance"});
-  const PlacedGeometry a = member_shape(request, "a");
-  const PlacedGeometry b = member_shape(request, "b");
+  const PlacedShape a = member_shape(request, "a");
+  const PlacedShape b = member_shape(request, "b");
   PairRequest options;
   if (const Json* m = find_member(request, "max_contacts")) {
     if (!m->is_number_integer()) throw FieldError("max_contacts", "wrong_type", "must be an integer");
@@ -111,9 +95,7 @@ Json op_collide(const Json& request) {
     options.contact_distance = read_real(*c, "contact_distance");
     if (options.contact_distance < Real(0)) throw FieldError("contact_distance", "negative", "must not be negative");
   }
-  const ContactManifold m = both_convex(a, b)
-                                ? collide(*convex_shape(a.geometry), a.pose, *convex_shape(b.geometry), b.pose, options)
-                                : collide(GeometryRef(a.geometry), a.pose, GeometryRef(b.geometry), b.pose, options);
+  const ContactManifold m = collide(a.shape, a.pose, b.shape, b.pose, options);
   Json answer = Json::object();
   answer["hit"] = m.count > 0;
   answer["normal"] = to_json(m.normal);

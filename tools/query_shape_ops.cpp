@@ -1,7 +1,9 @@
 #include "query_shape_ops.hpp"
 
-#include <proxima/shapes/geometry.hpp>
 #include <proxima/shapes/placed.hpp>
+#include <proxima/shapes/shape_queries.hpp>
+
+#include <type_traits>
 
 #include <variant>
 
@@ -11,13 +13,13 @@ namespace proxima::tool {
 
 namespace {
 
-PlacedGeometry member_target(const Json& request) {
+PlacedShape member_target(const Json& request) {
   return read_placed_geometry(require_member(request, "", "target"), "target");
 }
 
 // The error for a geometry an operation does not answer for.
-[[noreturn]] void unsupported(const PlacedGeometry& target, const char* what) {
-  const char* kind = std::holds_alternative<TriangleMesh>(target.geometry) ? "mesh" : "compound";
+[[noreturn]] void unsupported(const PlacedShape& target, const char* what) {
+  const char* kind = std::holds_alternative<TriangleMesh>(target.shape) ? "mesh" : "compound";
   throw FieldError("target.shape.type", "unsupported_geometry", std::string("a ") + kind + " has no " + what);
 }
 
@@ -35,7 +37,7 @@ Vec3 member_point(const Json& request, std::string_view key) {
 
 Json op_raycast(const Json& request) {
   reject_unknown_fields(request, "", {"id", "op", "target", "origin", "direction", "max_t"});
-  const PlacedGeometry target = member_target(request);
+  const PlacedShape target = member_target(request);
   const Ray ray{member_point(request, "origin"), member_point(request, "direction")};
   // No max_t: the ray is unbounded. The largest finite Real stands for infinity so that no
   // arithmetic on it can produce inf - inf.
@@ -47,41 +49,30 @@ Json op_raycast(const Json& request) {
     max_t = value >= static_cast<double>(kRealMax) ? kRealMax : static_cast<Real>(value);
   }
   Json answer = Json::object();
-  if (const Shape* convex = convex_shape(target.geometry); convex == nullptr) {
-    const auto hit = raycast(GeometryRef(target.geometry), target.pose, ray, max_t);
-    answer["hit"] = hit.has_value();
-    if (hit) {
-      answer["t"] = to_json(hit->hit.t);
-      answer["point"] = to_json(hit->hit.point);
-      answer["normal"] = to_json(hit->hit.normal);
-      put_sub(answer, hit->sub);
-    }
-    return answer;
-  }
-  const Shape& shape_variant = *convex_shape(target.geometry);
-  const auto hit =
-      std::visit([&](const auto& shape) { return raycast(shape, target.pose, ray, max_t); }, shape_variant);
+  const auto hit = raycast(target.shape, target.pose, ray, max_t);
   answer["hit"] = hit.has_value();
   if (hit) {
     answer["t"] = to_json(hit->t);
     answer["point"] = to_json(hit->point);
     answer["normal"] = to_json(hit->normal);
+    put_sub(answer, hit->sub);  // the triangle of a mesh, the child of a compound
   }
   return answer;
 }
 
 Json op_contains(const Json& request) {
   reject_unknown_fields(request, "", {"id", "op", "target", "point"});
-  const PlacedGeometry target = member_target(request);
+  const PlacedShape target = member_target(request);
   const Vec3 point = member_point(request, "point");
-  bool inside = false;
-  if (const Shape* convex = convex_shape(target.geometry)) {
-    inside = std::visit([&](const auto& shape) { return contains(shape, target.pose, point); }, *convex);
-  } else if (const TriangleMesh* mesh = std::get_if<TriangleMesh>(&target.geometry)) {
-    inside = contains(*mesh, target.pose, point);
-  } else {
-    unsupported(target, "point containment");
-  }
+  if (std::holds_alternative<Compound>(target.shape)) unsupported(target, "point containment");
+  const bool inside = std::visit(
+      [&](const auto& shape) {
+        if constexpr (PointQueryable<std::decay_t<decltype(shape)>>)
+          return contains(shape, target.pose, point);
+        else
+          return false;  // a compound: refused above
+      },
+      target.shape);
   Json answer = Json::object();
   answer["inside"] = inside;
   return answer;
@@ -89,16 +80,17 @@ Json op_contains(const Json& request) {
 
 Json op_closest_point(const Json& request) {
   reject_unknown_fields(request, "", {"id", "op", "target", "point"});
-  const PlacedGeometry target = member_target(request);
+  const PlacedShape target = member_target(request);
   const Vec3 point = member_point(request, "point");
-  SurfacePoint sp;
-  if (const Shape* convex = convex_shape(target.geometry)) {
-    sp = std::visit([&](const auto& shape) { return closest_point(shape, target.pose, point); }, *convex);
-  } else if (const TriangleMesh* mesh = std::get_if<TriangleMesh>(&target.geometry)) {
-    sp = closest_point(*mesh, target.pose, point);
-  } else {
-    unsupported(target, "closest point");
-  }
+  if (std::holds_alternative<Compound>(target.shape)) unsupported(target, "closest point");
+  const SurfacePoint sp = std::visit(
+      [&](const auto& shape) {
+        if constexpr (PointQueryable<std::decay_t<decltype(shape)>>)
+          return closest_point(shape, target.pose, point);
+        else
+          return SurfacePoint{};  // a compound: refused above
+      },
+      target.shape);
   Json answer = Json::object();
   answer["point"] = to_json(sp.point);
   answer["normal"] = to_json(sp.normal);
@@ -108,23 +100,20 @@ Json op_closest_point(const Json& request) {
 
 Json op_mass(const Json& request) {
   reject_unknown_fields(request, "", {"id", "op", "target", "density"});
-  const PlacedGeometry target = member_target(request);
+  const PlacedShape target = member_target(request);
   Real density = Real(1);
   if (const Json* d = find_member(request, "density")) {
     density = read_real(*d, "density");
     if (!(density > Real(0))) throw FieldError("density", "non_positive", "must be greater than zero");
   }
   std::optional<MassProperties> props;
-  if (const TriangleMesh* mesh = std::get_if<TriangleMesh>(&target.geometry)) {
+  if (const TriangleMesh* mesh = std::get_if<TriangleMesh>(&target.shape)) {
     if (!mesh->is_closed()) {
       throw FieldError("target.shape", "open_mesh",
                        "the mesh is not closed and outward oriented: it encloses no volume (see proxima mesh-info)");
     }
     props = mesh->mass_properties(density);
-  } else if (const Compound* compound = std::get_if<Compound>(&target.geometry)) {
-    props = compound->mass_properties(density);
   } else {
-    const Shape& shape_variant = *convex_shape(target.geometry);
     props = std::visit(
         [&](const auto& shape) -> std::optional<MassProperties> {
           if constexpr (requires { shape.mass_properties(density); }) {
@@ -133,11 +122,11 @@ Json op_mass(const Json& request) {
             return std::nullopt;
           }
         },
-        shape_variant);
+        target.shape);
     if (!props) {
       throw FieldError(
           "target.shape.type", "unbounded",
-          std::string("a ") + to_string(shape_type(shape_variant)) + " has infinite volume and no mass properties");
+          std::string("a ") + to_string(shape_type(target.shape)) + " has infinite volume and no mass properties");
     }
   }
   // World frame: the centroid moves with the pose, the inertia turns with it (R I R^T).

@@ -40,7 +40,7 @@
 #include <cmath>
 #include <limits>
 
-#include "shapes/geometry_dispatch.hpp"
+#include "shapes/shape_visit.hpp"
 
 namespace proxima::narrow {
 namespace {
@@ -179,7 +179,7 @@ Real directional_signed_distance(const Triangle& tri, const Transform& pose_mesh
 /// Per-thread scratch for collide_all (grows to the largest query, then allocation-free).
 struct Scratch {
   struct Pending {
-    GeometryContact contact;
+    ContactPoint contact;
     std::uint32_t v0, v1;  ///< mesh vertices of the feature (v1 == v0 for a vertex)
   };
   std::vector<Pending> pending;
@@ -212,13 +212,13 @@ bool halfspace_intersect(const TriangleMesh& mesh, const Transform& pose_mesh, c
   return hit;
 }
 
-GeometryDistance halfspace_distance(const TriangleMesh& mesh, const Transform& pose_mesh, const HalfSpace& h,
+DistanceResult halfspace_distance(const TriangleMesh& mesh, const Transform& pose_mesh, const HalfSpace& h,
                                     const Transform& pose_h, const PairRequest& request, Real cutoff) {
   const LocalPlane p = local_plane(h, pose_h, pose_mesh);
   const auto verts = mesh.vertices();
   const auto tris = mesh.triangles();
-  GeometryDistance best;
-  best.result.signed_distance = kInf;
+  DistanceResult best;
+  best.signed_distance = kInf;
   Real bound = cutoff;
   std::uint32_t best_vertex = kNoIndex;
   walk(
@@ -229,14 +229,14 @@ GeometryDistance halfspace_distance(const TriangleMesh& mesh, const Transform& p
           if (sd < bound) {
             bound = sd;
             best_vertex = k;
-            best.a.triangle = t;
+            best.sub_a.triangle = t;
           }
         }
         return true;
       });
   if (best_vertex == kNoIndex) return best;
   const Vec3 pa = pose_mesh.apply(verts[best_vertex]);
-  DistanceResult& r = best.result;
+  DistanceResult& r = best;
   r.signed_distance = bound;
   r.point_a = pa;
   r.point_b = pa - bound * p.world_normal;
@@ -250,7 +250,7 @@ GeometryDistance halfspace_distance(const TriangleMesh& mesh, const Transform& p
 }
 
 void halfspace_collide_all(const TriangleMesh& mesh, const Transform& pose_mesh, const HalfSpace& h,
-                           const Transform& pose_h, const PairRequest& request, std::vector<GeometryContact>& out) {
+                           const Transform& pose_h, const PairRequest& request, ContactCollector& collector) {
   const LocalPlane p = local_plane(h, pose_h, pose_mesh);
   const Real cd = request.contact_distance;
   const auto verts = mesh.vertices();
@@ -264,14 +264,15 @@ void halfspace_collide_all(const TriangleMesh& mesh, const Transform& pose_mesh,
           const Real sd = glm::dot(p.normal, verts[k]) - p.offset;
           if (sd > cd || seen[k]) continue;
           seen[k] = 1;
-          GeometryContact c;
-          c.contact.point_a = pose_mesh.apply(verts[k]);
-          c.contact.point_b = c.contact.point_a - sd * p.world_normal;
-          c.contact.normal = -p.world_normal;
-          c.contact.depth = -sd;
-          c.contact.feature_id = make_feature_id(FeatureKind::Vertex, k, FeatureKind::Face, 0);
-          c.a.triangle = t;
-          out.push_back(c);
+          ContactPoint c;
+          c.point_a = pose_mesh.apply(verts[k]);
+          c.point_b = c.point_a - sd * p.world_normal;
+          c.normal = -p.world_normal;
+          c.depth = -sd;
+          c.feature_id = make_feature_id(FeatureKind::Vertex, k, FeatureKind::Face, 0);
+          c.sub_a.triangle = t;
+          collector.add(c);
+          if (collector.done()) return false;
         }
         return true;
       });
@@ -300,12 +301,12 @@ bool mesh_convex_intersect(const TriangleMesh& mesh, const Transform& pose_mesh,
   return hit;
 }
 
-GeometryDistance mesh_convex_distance(const TriangleMesh& mesh, const Transform& pose_mesh, ShapeRef convex,
+DistanceResult mesh_convex_distance(const TriangleMesh& mesh, const Transform& pose_mesh, ShapeRef convex,
                                       const Transform& pose_convex, const PairRequest& request, Real cutoff) {
   if (convex.type() == ShapeType::HalfSpace)
     return halfspace_distance(mesh, pose_mesh, convex.as<HalfSpace>(), pose_convex, request, cutoff);
-  GeometryDistance best;
-  best.result.signed_distance = kInf;
+  DistanceResult best;
+  best.signed_distance = kInf;
   Real bound = cutoff;
   const Aabb box = convex_box_in_mesh(convex, pose_mesh, pose_convex);
   const auto nodes = mesh.bvh().nodes();
@@ -329,10 +330,10 @@ GeometryDistance mesh_convex_distance(const TriangleMesh& mesh, const Transform&
         auto tri = Triangle::create(v[0], v[1], v[2]);
         if (!tri) continue;
         const DistanceResult r = distance(ShapeRef(*tri), pose_mesh, convex, pose_convex, request);
-        if (r.signed_distance < bound || (r.signed_distance == bound && t < best.a.triangle)) {
+        if (r.signed_distance < bound || (r.signed_distance == bound && t < best.sub_a.triangle)) {
           bound = r.signed_distance;
-          best.result = r;
-          best.a.triangle = t;
+          best = r;
+          best.sub_a.triangle = t;
         }
       }
       continue;
@@ -352,9 +353,9 @@ GeometryDistance mesh_convex_distance(const TriangleMesh& mesh, const Transform&
 
 void mesh_convex_collide_all(const TriangleMesh& mesh, const Transform& pose_mesh, ShapeRef convex,
                              const Transform& pose_convex, const PairRequest& request,
-                             std::vector<GeometryContact>& contacts) {
+                             ContactCollector& collector) {
   if (convex.type() == ShapeType::HalfSpace) {
-    halfspace_collide_all(mesh, pose_mesh, convex.as<HalfSpace>(), pose_convex, request, contacts);
+    halfspace_collide_all(mesh, pose_mesh, convex.as<HalfSpace>(), pose_convex, request, collector);
     return;
   }
   const Real cd = request.contact_distance;
@@ -388,15 +389,15 @@ void mesh_convex_collide_all(const TriangleMesh& mesh, const Transform& pose_mes
         Real ghost_sd = Real(0);
         Vec3 ghost_n(Real(0));
         for (int i = 0; i < m.count; ++i) {
-          GeometryContact c;
-          c.contact = m.points[i];
-          c.a.triangle = t;
+          ContactPoint c;
+          c = m.points[i];
+          c.sub_a.triangle = t;
           if (face) {
-            contacts.push_back(c);
+            collector.add(c);
             sc.voided.insert(sc.voided.end(), idx.begin(), idx.end());
             continue;
           }
-          const Feature feat = classify(v, pose_mesh.inverse_apply(c.contact.point_a));
+          const Feature feat = classify(v, pose_mesh.inverse_apply(c.point_a));
           bool real = true;
           std::uint32_t v0 = 0, v1 = 0;
           if (feat.kind == 1) {
@@ -408,7 +409,7 @@ void mesh_convex_collide_all(const TriangleMesh& mesh, const Transform& pose_mes
             real = vertex_active(mesh, t, v0);
           }
           if (real) {
-            contacts.push_back(c);
+            collector.add(c);
             continue;
           }
           // Ghost candidate: normal -> face normal, signed distance along it to the triangle.
@@ -433,19 +434,20 @@ void mesh_convex_collide_all(const TriangleMesh& mesh, const Transform& pose_mes
           const Vec3 fw = ghost_n;
           const Real sd = ghost_sd;
           if (sd > cd) continue;
-          c.contact.normal = fw;
-          c.contact.depth = -sd;
-          c.contact.point_b = c.contact.point_a + sd * fw;
+          c.normal = fw;
+          c.depth = -sd;
+          c.point_b = c.point_a + sd * fw;
           sc.pending.push_back({c, v0, v1});
         }
-        return true;
+        return !collector.done();
       });
-  if (sc.pending.empty()) return;
+  if (sc.pending.empty() || collector.done()) return;
   std::sort(sc.voided.begin(), sc.voided.end());
   for (const Scratch::Pending& p : sc.pending) {
     const bool covered = std::binary_search(sc.voided.begin(), sc.voided.end(), p.v0) &&
                          std::binary_search(sc.voided.begin(), sc.voided.end(), p.v1);
-    if (!covered) contacts.push_back(p.contact);
+    if (!covered) collector.add(p.contact);
+    if (collector.done()) return;
   }
 }
 

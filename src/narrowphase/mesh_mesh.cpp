@@ -498,7 +498,7 @@ bool mesh_mesh_intersect(const TriangleMesh& a, const Transform& pose_a, const T
 }
 
 void mesh_mesh_collide_all(const TriangleMesh& a, const Transform& pose_a, const TriangleMesh& b,
-                           const Transform& pose_b, const PairRequest& request, std::vector<GeometryContact>& contacts,
+                           const Transform& pose_b, const PairRequest& request, ContactCollector& collector,
                            MeshMeshNodes node_kind) {
   const RelativeFrame f = make_frame(pose_a, pose_b);
   const Real cd = std::max(request.contact_distance, Real(0));
@@ -531,7 +531,12 @@ void mesh_mesh_collide_all(const TriangleMesh& a, const Transform& pose_a, const
         int added = 0;
         if (shape_a && shape_b) {
           const ContactManifold m = collide(ShapeRef(*shape_a), pose_a, ShapeRef(*shape_b), pose_b, request);
-          for (int p = 0; p < m.count; ++p) contacts.push_back({m.points[p], sub_a, sub_b});
+          for (int p = 0; p < m.count; ++p) {
+            ContactPoint c = m.points[p];
+            c.sub_a = sub_a;
+            c.sub_b = sub_b;
+            collector.add(c);
+          }
           added = m.count;
         }
         if (added == 0) {
@@ -549,8 +554,11 @@ void mesh_mesh_collide_all(const TriangleMesh& a, const Transform& pose_a, const
                          : facing_normal(ta, (tbl[0] + tbl[1] + tbl[2]) / Real(3), pose_a);
           c.depth = -d;
           c.feature_id = make_feature_id(FeatureKind::Face, tri_a, FeatureKind::Face, tri_b);
-          contacts.push_back({c, sub_a, sub_b});
+          c.sub_a = sub_a;
+          c.sub_b = sub_b;
+          collector.add(c);
         }
+        if (collector.done()) return false;
       }
     }
     return true;
@@ -563,14 +571,14 @@ namespace {
 
 /// The distance descent with node test `nodes` (see mesh_mesh_distance).
 template <class Nodes>
-GeometryDistance distance_descent(const TriangleMesh& a, const Transform& pose_a, const TriangleMesh& b,
+DistanceResult distance_descent(const TriangleMesh& a, const Transform& pose_a, const TriangleMesh& b,
                                   const PairRequest& request, const RelativeFrame& f, const Nodes& nodes) {
-  GeometryDistance out;
+  DistanceResult out;
   const Real scale = pair_scale(a, b, f);
   const Bvh& ba = a.bvh();
   const Bvh& bb = b.bvh();
   if (ba.empty() || bb.empty()) {
-    out.result.signed_distance = std::numeric_limits<Real>::infinity();
+    out.signed_distance = std::numeric_limits<Real>::infinity();
     return out;
   }
   const auto na = ba.nodes();
@@ -682,7 +690,7 @@ GeometryDistance distance_descent(const TriangleMesh& a, const Transform& pose_a
 
   const Real d = std::sqrt(best2);
   const Real tol = request.tolerance > Real(0) ? request.tolerance : linear_tolerance(scale);
-  DistanceResult& r = out.result;
+  DistanceResult& r = out;
   r.signed_distance = d;
   r.point_a = pose_a.apply(best_pair.on_a);
   r.point_b = pose_a.apply(best_pair.on_b);
@@ -693,14 +701,14 @@ GeometryDistance distance_descent(const TriangleMesh& a, const Transform& pose_a
   }
   r.status = status_from_distance(d, tol);
   r.method = PairMethod::Analytic;
-  out.a.triangle = best_a;
-  out.b.triangle = best_b;
+  out.sub_a.triangle = best_a;
+  out.sub_b.triangle = best_b;
   return out;
 }
 
 }  // namespace
 
-GeometryDistance mesh_mesh_distance(const TriangleMesh& a, const Transform& pose_a, const TriangleMesh& b,
+DistanceResult mesh_mesh_distance(const TriangleMesh& a, const Transform& pose_a, const TriangleMesh& b,
                                     const Transform& pose_b, const PairRequest& request, MeshMeshNodes node_kind) {
   const RelativeFrame f = make_frame(pose_a, pose_b);
   return with_nodes(node_kind, a, b, f,

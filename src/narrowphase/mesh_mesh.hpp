@@ -1,11 +1,13 @@
 #pragma once
 /// @file mesh_mesh.hpp
-/// Mesh against mesh (internal to the midphase; reached through geometry_queries.hpp):
+/// Mesh against mesh (internal; reached through the dispatch table of dispatch.cpp):
 /// boolean, every contact and distance between the triangle sets of two placed meshes, by a
 /// simultaneous descent of their hierarchies with the triangle pair routines of the narrow
 /// phase at the leaves.
 
-#include <proxima/narrowphase/geometry_queries.hpp>
+#include <proxima/narrowphase/contact.hpp>
+#include <proxima/narrowphase/contact_collector.hpp>
+#include <proxima/shapes/shape_ref.hpp>
 
 #include <cstdint>
 #include <vector>
@@ -25,13 +27,14 @@ bool mesh_mesh_intersect(const TriangleMesh& a, const Transform& pose_a, const T
 /// Minimum distance over all triangle pairs with its witnesses (sub.triangle set on both
 /// sides; sub.child left at kNoIndex for the caller to fill); 0 (status Touching) when the
 /// surfaces cross: meshes are surfaces here, no penetration depth is computed.
-GeometryDistance mesh_mesh_distance(const TriangleMesh& a, const Transform& pose_a, const TriangleMesh& b,
+DistanceResult mesh_mesh_distance(const TriangleMesh& a, const Transform& pose_a, const TriangleMesh& b,
                                     const Transform& pose_b, const PairRequest& request,
                                     MeshMeshNodes nodes = MeshMeshNodes::Oriented);
 
-/// Appends the contacts of every triangle pair within request.contact_distance.
+/// Adds the contacts of every triangle pair within request.contact_distance to `collector`
+/// (parts in sub_a / sub_b), stopping when it is done.
 void mesh_mesh_collide_all(const TriangleMesh& a, const Transform& pose_a, const TriangleMesh& b,
-                           const Transform& pose_b, const PairRequest& request, std::vector<GeometryContact>& contacts,
+                           const Transform& pose_b, const PairRequest& request, ContactCollector& collector,
                            MeshMeshNodes nodes = MeshMeshNodes::Oriented);
 
 }  // namespace proxima::narrow

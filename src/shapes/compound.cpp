@@ -9,13 +9,12 @@
 /// e.g. Goldstein, "Classical Mechanics", ch. 5).
 
 #include <proxima/shapes/compound.hpp>
-#include <proxima/shapes/geometry.hpp>
+#include <proxima/shapes/shape_queries.hpp>
 
 #include <string>
 #include <type_traits>
 #include <utility>
 
-#include "geometry_dispatch.hpp"
 
 namespace proxima {
 
@@ -35,11 +34,10 @@ Result<Compound> Compound::create(std::vector<CompoundChild> children, const Bvh
       return e;
     }
     child.pose = *pose;
-    const GeometryRef ref(child.geometry);
-    if (ref.kind() == GeometryKind::Convex && ref.convex().type() == ShapeType::HalfSpace)
+    if (shape_type(child.shape) == ShapeType::HalfSpace)
       return make_error(ErrorCode::InvalidArgument, prefix + ".shape",
                         "a half-space is unbounded and cannot be a compound child");
-    const Aabb box = proxima::world_aabb(ref, child.pose);
+    const Aabb box = proxima::world_aabb(child.shape, child.pose);
     boxes.push_back(box);
     centers.push_back(box.center());
   }
@@ -52,24 +50,21 @@ Result<Compound> Compound::create(std::vector<CompoundChild> children, const Bvh
 Aabb Compound::world_aabb(const Transform& pose) const {
   Aabb box = Aabb::empty();
   for (const CompoundChild& child : children())
-    box.grow(proxima::world_aabb(GeometryRef(child.geometry), pose * child.pose));
+    box.grow(proxima::world_aabb(child.shape, pose * child.pose));
   return box;
 }
 
 namespace {
 
-MassProperties child_mass_properties(const Geometry& geometry, Real density) {
-  switch (geometry.index()) {
-    case 0:
-      return detail::visit_convex(ShapeRef(std::get<Shape>(geometry)), [&](const auto& s) {
+MassProperties child_mass_properties(const Shape& shape, Real density) {
+  return std::visit(
+      [&](const auto& s) {
         if constexpr (std::is_same_v<std::decay_t<decltype(s)>, HalfSpace>)
           return MassProperties{};  // refused by create
         else
           return s.mass_properties(density);
-      });
-    case 1: return std::get<TriangleMesh>(geometry).mass_properties(density);
-    default: return std::get<Compound>(geometry).mass_properties(density);
-  }
+      },
+      shape);
 }
 
 }  // namespace
@@ -81,7 +76,7 @@ MassProperties Compound::mass_properties(Real density) const {
   moved.reserve(kids.size());
   Vec3 weighted{Real(0)};
   for (const CompoundChild& child : kids) {
-    MassProperties m = child_mass_properties(child.geometry, density);
+    MassProperties m = child_mass_properties(child.shape, density);
     const Mat3 r = child.pose.rotation_matrix();
     m.centroid = child.pose.apply(m.centroid);
     m.inertia = r * m.inertia * glm::transpose(r);

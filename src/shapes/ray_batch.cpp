@@ -13,16 +13,16 @@
 namespace proxima {
 namespace {
 
-std::size_t cast_range(const TriangleMesh& mesh, std::span<const BatchRay> rays, std::span<MeshRayHit> hits,
+std::size_t cast_range(const TriangleMesh& mesh, std::span<const BatchRay> rays, std::span<RayHit> hits,
                        FaceCulling culling, std::size_t begin, std::size_t end) {
   std::size_t count = 0;
   for (std::size_t i = begin; i < end; ++i) {
-    const std::optional<MeshRayHit> hit = mesh.raycast(rays[i].ray, rays[i].max_t, culling);
+    const std::optional<RayHit> hit = mesh.raycast(rays[i].ray, rays[i].max_t, culling);
     if (hit) {
       hits[i] = *hit;
       ++count;
     } else {
-      hits[i] = MeshRayHit{};
+      hits[i] = RayHit{};
     }
   }
   return count;
@@ -30,7 +30,7 @@ std::size_t cast_range(const TriangleMesh& mesh, std::span<const BatchRay> rays,
 
 }  // namespace
 
-Result<std::size_t> raycast_batch(const TriangleMesh& mesh, std::span<const BatchRay> rays, std::span<MeshRayHit> hits,
+Result<std::size_t> raycast_batch(const TriangleMesh& mesh, std::span<const BatchRay> rays, std::span<RayHit> hits,
                                   const RayBatchOptions& options) {
   if (hits.size() < rays.size())
     return make_error(ErrorCode::InvalidArgument, "hits",

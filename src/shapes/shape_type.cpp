@@ -15,6 +15,8 @@ const char* to_string(ShapeType type) {
     case ShapeType::Ellipsoid: return "ellipsoid";
     case ShapeType::ConvexHull: return "convex";
     case ShapeType::HalfSpace: return "halfspace";
+    case ShapeType::TriangleMesh: return "mesh";
+    case ShapeType::Compound: return "compound";
     case ShapeType::Count: break;
   }
   return "unknown";

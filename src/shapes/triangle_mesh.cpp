@@ -382,7 +382,7 @@ inline std::optional<RayHit> cast_triangle(const MeshRay& r, Real limit, const s
 /// Closest hit so far, with the tie rule (equal t: lower triangle index).
 struct ClosestHit {
   Real max_t;
-  std::optional<MeshRayHit> best;
+  std::optional<RayHit> best;
   Real best_t;
 
   explicit ClosestHit(Real max) : max_t(max), best_t(max) {}
@@ -396,8 +396,9 @@ struct ClosestHit {
              bool filtered = false) {
     const std::optional<RayHit> hit = cast_triangle(r, limit, corners, filtered);
     if (!hit) return;
-    if (best && (hit->t > best->hit.t || (hit->t == best->hit.t && tri > best->triangle))) return;
-    best = MeshRayHit{*hit, tri};
+    if (best && (hit->t > best->t || (hit->t == best->t && tri > best->sub.triangle))) return;
+    best = *hit;
+    best->sub.triangle = tri;
     best_t = hit->t;
   }
 };
@@ -515,7 +516,7 @@ void closest_binary(const TriangleMesh::Data& d, const Ray& ray, const MeshRay& 
 
 }  // namespace
 
-std::optional<MeshRayHit> TriangleMesh::raycast(const Ray& ray, Real max_t, FaceCulling culling,
+std::optional<RayHit> TriangleMesh::raycast(const Ray& ray, Real max_t, FaceCulling culling,
                                                 RayTraversal traversal) const {
   const Data& d = *data_;
   if (d.bvh.empty() || !(max_t >= Real(0))) return std::nullopt;
@@ -560,7 +561,7 @@ bool TriangleMesh::raycast_any(const Ray& ray, Real max_t, FaceCulling culling, 
                              });
 }
 
-void TriangleMesh::raycast_all(const Ray& ray, Real max_t, std::vector<MeshRayHit>& hits, FaceCulling culling,
+void TriangleMesh::raycast_all(const Ray& ray, Real max_t, std::vector<RayHit>& hits, FaceCulling culling,
                                RayTraversal traversal) const {
   const Data& d = *data_;
   if (d.bvh.empty() || !(max_t >= Real(0))) return;
@@ -569,13 +570,15 @@ void TriangleMesh::raycast_all(const Ray& ray, Real max_t, std::vector<MeshRayHi
   const std::size_t start = hits.size();
   for_each_candidate(d, ray, r, max_t, traversal,
                      [&](const std::array<Vec3, 3>& corners, std::uint32_t tri, bool filtered) {
-                       if (const std::optional<RayHit> hit = cast_triangle(r, max_t, corners, filtered))
-                         hits.push_back({*hit, tri});
+                       if (std::optional<RayHit> hit = cast_triangle(r, max_t, corners, filtered)) {
+                         hit->sub.triangle = tri;
+                         hits.push_back(*hit);
+                       }
                        return true;
                      });
   std::sort(hits.begin() + static_cast<std::ptrdiff_t>(start), hits.end(),
-            [](const MeshRayHit& x, const MeshRayHit& y) {
-              return x.hit.t < y.hit.t || (x.hit.t == y.hit.t && x.triangle < y.triangle);
+            [](const RayHit& x, const RayHit& y) {
+              return x.t < y.t || (x.t == y.t && x.sub.triangle < y.sub.triangle);
             });
 }
 

@@ -15,9 +15,12 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <vector>
+
+#include "narrowphase/mesh_mesh.hpp"
+#include "shapes/shape_visit.hpp"
 #include <string>
 #include <variant>
-#include <vector>
 
 #include "support/random.hpp"
 
@@ -33,11 +36,28 @@ inline Real narrow_tolerance(Real scale) {
   return rel * std::max(Real(1e-30), scale);
 }
 
-/// Every shape type in ShapeType order.
+/// Every convex shape type in ShapeType order (the kinds with pair routines of their own).
 inline std::vector<ShapeType> all_shape_types() {
   std::vector<ShapeType> t;
-  for (int i = 0; i < kShapeTypeCount; ++i) t.push_back(static_cast<ShapeType>(i));
+  for (int i = 0; i < kConvexShapeTypeCount; ++i) t.push_back(static_cast<ShapeType>(i));
   return t;
+}
+
+/// narrow::mesh_mesh_collide_all into a vector (appended).
+inline void mesh_mesh_contacts(const TriangleMesh& a, const Transform& pose_a, const TriangleMesh& b,
+                               const Transform& pose_b, const PairRequest& request, std::vector<ContactPoint>& out,
+                               narrow::MeshMeshNodes nodes = narrow::MeshMeshNodes::Oriented) {
+  ContactVector collector;
+  narrow::mesh_mesh_collide_all(a, pose_a, b, pose_b, request, collector, nodes);
+  out.insert(out.end(), collector.contacts.begin(), collector.contacts.end());
+}
+
+/// collide_all into a vector (appended), through the library's ContactVector collector.
+inline void collect_contacts(ShapeRef a, const Transform& pose_a, ShapeRef b, const Transform& pose_b,
+                             const PairRequest& request, std::vector<ContactPoint>& out) {
+  ContactVector collector;
+  collide_all(a, pose_a, b, pose_b, request, collector);
+  out.insert(out.end(), collector.contacts.begin(), collector.contacts.end());
 }
 
 /// True for the shapes without interior (point, segment, triangle).
@@ -118,7 +138,7 @@ inline Real shape_scale(const Shape& shape) {
 /// World signed distance of `point` from the surface of `shape` placed at `pose` (the
 /// shape layer's closest_point, not the narrow phase).
 inline Real surface_distance(const Shape& shape, const Transform& pose, const Vec3& point) {
-  return std::visit([&](const auto& s) { return closest_point(s, pose, point).signed_distance; }, shape);
+  return detail::visit_convex(shape, [&](const auto& s) { return closest_point(s, pose, point).signed_distance; });
 }
 
 /// Describes a shape and a pose for failure messages (enough to rebuild a reproducer).

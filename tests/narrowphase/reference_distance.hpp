@@ -16,6 +16,8 @@
 #include <proxima/shapes/placed.hpp>
 #include <proxima/shapes/shape.hpp>
 
+#include "shapes/shape_visit.hpp"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -40,7 +42,7 @@ inline D3v unit(D3v a) { return (1.0 / norm(a)) * a; }
 /// World support point of a placed shape in direction u, in double.
 inline D3v reference_support(const Shape& shape, const Transform& pose, D3v u) {
   const Vec3 d(static_cast<Real>(u.x), static_cast<Real>(u.y), static_cast<Real>(u.z));
-  return d3v(std::visit([&](const auto& s) { return support(s, pose, d); }, shape));
+  return d3v(detail::visit_convex(shape, [&](const auto& s) { return support(s, pose, d); }));
 }
 
 /// min_{x in B} u.x - max_{y in A} u.y for a unit u.

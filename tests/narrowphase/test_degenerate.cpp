@@ -10,6 +10,7 @@
 #include <limits>
 #include <string>
 
+#include "shapes/shape_visit.hpp"
 #include "narrowphase/pair_checker.hpp"
 #include "narrowphase/reference_distance.hpp"
 
@@ -51,7 +52,7 @@ void for_every_pair(std::uint64_t seed, Make make, const std::string& what, bool
 // nearest the pose origin (their support is a far corner of a huge clipping cube).
 Vec3 world_extreme(const Shape& shape, const Transform& pose, const Vec3& n) {
   if (const HalfSpace* h = std::get_if<HalfSpace>(&shape)) return pose.apply(h->offset() * h->normal());
-  return std::visit([&](const auto& s) { return support(s, pose, n); }, shape);
+  return detail::visit_convex(shape, [&](const auto& s) { return support(s, pose, n); });
 }
 
 // Places B so that A's farthest point in n and B's farthest point in -n are `gap` apart

@@ -1,4 +1,4 @@
-// Pair queries and ray casts over GeometryRef (src/midphase/geometry*.cpp, compound.cpp,
+// Pair queries and ray casts over ShapeRef (src/midphase/geometry*.cpp, compound.cpp,
 // mesh_convex.cpp).
 //
 // References: the narrow phase itself for convex pairs (must be identical); the brute-force
@@ -8,7 +8,6 @@
 #include <gtest/gtest.h>
 
 #include <proxima/core/tolerance.hpp>
-#include <proxima/narrowphase/geometry_queries.hpp>
 #include <proxima/narrowphase/narrowphase.hpp>
 
 #include <algorithm>
@@ -18,6 +17,7 @@
 #include <vector>
 
 #include "support/solid_test_meshes.hpp"
+#include "narrowphase/narrowphase_test_util.hpp"
 #include "support/random.hpp"
 
 namespace proxima {
@@ -42,19 +42,19 @@ TEST(GeometryQueries, ConvexPairsEqualTheNarrowPhaseExactly) {
   for (int k = 0; k < 2000; ++k) {
     const Shape a = random_convex(rng), b = random_convex(rng);
     const Transform pa = rng.pose(Real(0.6)), pb = rng.pose(Real(0.6));
-    const GeometryRef ga{ShapeRef(a)}, gb{ShapeRef(b)};
+    const ShapeRef ga(a), gb(b);
     EXPECT_EQ(intersect(ga, pa, gb, pb, request), intersect(ShapeRef(a), pa, ShapeRef(b), pb, request));
-    const GeometryDistance d = distance(ga, pa, gb, pb, request);
+    const DistanceResult d = distance(ga, pa, gb, pb, request);
     const DistanceResult n = distance(ShapeRef(a), pa, ShapeRef(b), pb, request);
-    EXPECT_EQ(d.result.signed_distance, n.signed_distance);
-    EXPECT_EQ(d.result.point_a, n.point_a);
-    EXPECT_EQ(d.result.normal, n.normal);
+    EXPECT_EQ(d.signed_distance, n.signed_distance);
+    EXPECT_EQ(d.point_a, n.point_a);
+    EXPECT_EQ(d.normal, n.normal);
     const ContactManifold m = collide(ga, pa, gb, pb, request);
     const ContactManifold mn = collide(ShapeRef(a), pa, ShapeRef(b), pb, request);
     ASSERT_EQ(m.count, mn.count);
     for (int i = 0; i < m.count; ++i) EXPECT_EQ(m.points[i].depth, mn.points[i].depth);
-    std::vector<GeometryContact> all;
-    collide_all(ga, pa, gb, pb, request, all);
+    std::vector<ContactPoint> all;
+    test::collect_contacts(ga, pa, gb, pb, request, all);
     EXPECT_EQ(static_cast<int>(all.size()), mn.count);
   }
 }
@@ -120,48 +120,48 @@ TEST(Compound, AgreesWithBruteForceOverChildren) {
     const Compound c = random_compound(rng, mesh);
     const Shape other = random_convex(rng);
     const Transform pc = rng.pose(Real(1)), po = rng.pose(Real(1.2));
-    const GeometryRef gc(c), go{ShapeRef(other)};
+    const ShapeRef gc(c), go(other);
     Real best = std::numeric_limits<Real>::infinity();
     std::uint32_t best_child = kNoIndex;
     std::size_t contact_count = 0;
-    std::optional<GeometryRayHit> best_ray;
+    std::optional<RayHit> best_ray;
     const Ray ray{po.position, pc.position - po.position + rng.in_ball(Real(0.5))};
     const auto kids = c.children();
     for (std::uint32_t i = 0; i < kids.size(); ++i) {
       const Transform pose = pc * kids[i].pose;
-      const GeometryDistance d = distance(GeometryRef(kids[i].geometry), pose, go, po, request);
-      if (d.result.signed_distance < best) {
-        best = d.result.signed_distance;
+      const DistanceResult d = distance(ShapeRef(kids[i].shape), pose, go, po, request);
+      if (d.signed_distance < best) {
+        best = d.signed_distance;
         best_child = i;
       }
-      std::vector<GeometryContact> cs;
-      collide_all(GeometryRef(kids[i].geometry), pose, go, po, request, cs);
+      std::vector<ContactPoint> cs;
+      test::collect_contacts(ShapeRef(kids[i].shape), pose, go, po, request, cs);
       contact_count += cs.size();
-      const auto h = raycast(GeometryRef(kids[i].geometry), pose, ray, Real(1));
-      if (h && (!best_ray || h->hit.t < best_ray->hit.t)) best_ray = h;
+      const auto h = raycast(ShapeRef(kids[i].shape), pose, ray, Real(1));
+      if (h && (!best_ray || h->t < best_ray->t)) best_ray = h;
     }
-    const GeometryDistance d = distance(gc, pc, go, po, request);
-    EXPECT_NEAR(d.result.signed_distance, best, kTol) << "case " << k;
-    if (std::abs(d.result.signed_distance - best) < kTol * Real(0.01)) {
-      EXPECT_EQ(d.a.child, best_child);
+    const DistanceResult d = distance(gc, pc, go, po, request);
+    EXPECT_NEAR(d.signed_distance, best, kTol) << "case " << k;
+    if (std::abs(d.signed_distance - best) < kTol * Real(0.01)) {
+      EXPECT_EQ(d.sub_a.child, best_child);
     }
     // Mirrored.
-    const GeometryDistance dm = distance(go, po, gc, pc, request);
-    EXPECT_NEAR(dm.result.signed_distance, best, kTol);
-    EXPECT_EQ(dm.b.child, d.a.child);
+    const DistanceResult dm = distance(go, po, gc, pc, request);
+    EXPECT_NEAR(dm.signed_distance, best, kTol);
+    EXPECT_EQ(dm.sub_b.child, d.sub_a.child);
     const bool in = intersect(gc, pc, go, po, request);
     if (std::abs(best - request.contact_distance) > kTol) {
       EXPECT_EQ(in, best <= request.contact_distance) << k;
     }
     hits += in;
-    std::vector<GeometryContact> all;
-    collide_all(gc, pc, go, po, request, all);
+    std::vector<ContactPoint> all;
+    test::collect_contacts(gc, pc, go, po, request, all);
     EXPECT_EQ(all.size(), contact_count) << "case " << k;
-    for (const GeometryContact& gcn : all) EXPECT_LT(gcn.a.child, kids.size());
+    for (const ContactPoint& gcn : all) EXPECT_LT(gcn.sub_a.child, kids.size());
     const auto h = raycast(gc, pc, ray, Real(1));
     ASSERT_EQ(h.has_value(), best_ray.has_value());
     if (h) {
-      EXPECT_NEAR(h->hit.t, best_ray->hit.t, kTol);  // compound frame vs world frame rounding
+      EXPECT_NEAR(h->t, best_ray->t, kTol);  // compound frame vs world frame rounding
       EXPECT_LT(h->sub.child, kids.size());
     }
   }
@@ -181,12 +181,12 @@ TEST(Compound, CompoundAgainstCompoundAgreesWithAllChildPairs) {
     std::size_t count = 0;
     for (const CompoundChild& x : a.children()) {
       for (const CompoundChild& y : b.children()) {
-        const GeometryRef gx(x.geometry), gy(y.geometry);
-        if (gx.kind() == GeometryKind::Mesh && gy.kind() == GeometryKind::Mesh) continue;  // skipped below too
-        const GeometryDistance d = distance(gx, pa * x.pose, gy, pb * y.pose, request);
-        best = std::min(best, d.result.signed_distance);
-        std::vector<GeometryContact> cs;
-        collide_all(gx, pa * x.pose, gy, pb * y.pose, request, cs);
+        const ShapeRef gx(x.shape), gy(y.shape);
+        if (gx.type() == ShapeType::TriangleMesh && gy.type() == ShapeType::TriangleMesh) continue;  // skipped below too
+        const DistanceResult d = distance(gx, pa * x.pose, gy, pb * y.pose, request);
+        best = std::min(best, d.signed_distance);
+        std::vector<ContactPoint> cs;
+        test::collect_contacts(gx, pa * x.pose, gy, pb * y.pose, request, cs);
         count += cs.size();
       }
     }
@@ -194,23 +194,23 @@ TEST(Compound, CompoundAgainstCompoundAgreesWithAllChildPairs) {
     // only cases where they are far apart.
     const auto& ka = a.children();
     const auto& kb = b.children();
-    const Real mm = distance(GeometryRef(ka[ka.size() - 2].geometry), pa * ka[ka.size() - 2].pose,
-                             GeometryRef(kb[kb.size() - 2].geometry), pb * kb[kb.size() - 2].pose, request)
-                        .result.signed_distance;
+    const Real mm = distance(ShapeRef(ka[ka.size() - 2].shape), pa * ka[ka.size() - 2].pose,
+                             ShapeRef(kb[kb.size() - 2].shape), pb * kb[kb.size() - 2].pose, request)
+                        .signed_distance;
     if (mm < best + Real(0.05)) continue;
-    const GeometryDistance d = distance(GeometryRef(a), pa, GeometryRef(b), pb, request);
-    EXPECT_NEAR(d.result.signed_distance, best, kTol) << k;
-    std::vector<GeometryContact> all;
-    collide_all(GeometryRef(a), pa, GeometryRef(b), pb, request, all);
+    const DistanceResult d = distance(ShapeRef(a), pa, ShapeRef(b), pb, request);
+    EXPECT_NEAR(d.signed_distance, best, kTol) << k;
+    std::vector<ContactPoint> all;
+    test::collect_contacts(ShapeRef(a), pa, ShapeRef(b), pb, request, all);
     if (mm > Real(0.05)) {
       EXPECT_EQ(all.size(), count) << k;
     }
     hits += !all.empty();
-    for (const GeometryContact& c : all) {
-      EXPECT_LT(c.a.child, ka.size());
-      EXPECT_LT(c.b.child, kb.size());
+    for (const ContactPoint& c : all) {
+      EXPECT_LT(c.sub_a.child, ka.size());
+      EXPECT_LT(c.sub_b.child, kb.size());
     }
-    EXPECT_EQ(intersect(GeometryRef(a), pa, GeometryRef(b), pb, request), !all.empty()) << k;
+    EXPECT_EQ(intersect(ShapeRef(a), pa, ShapeRef(b), pb, request), !all.empty()) << k;
   }
   EXPECT_GT(hits, 20);
 }
@@ -230,14 +230,14 @@ TEST(MeshConvex, NoGhostContactsSlidingOverAFlatGrid) {
       for (Real sink : {Real(0), Real(0.005), Real(0.02)}) {
         ++positions;
         const Transform pb{Vec3(x, Real(0.37) * x, Real(0.2) - sink), glm::angleAxis(yaw, Vec3(0, 0, 1))};
-        std::vector<GeometryContact> cs;
-        collide_all(GeometryRef(grid), Transform{}, GeometryRef(ShapeRef(box)), pb, request, cs);
+        std::vector<ContactPoint> cs;
+        test::collect_contacts(ShapeRef(grid), Transform{}, ShapeRef(box), pb, request, cs);
         ASSERT_FALSE(cs.empty()) << x;
-        for (const GeometryContact& c : cs) {
-          EXPECT_GT(c.contact.normal.z, Real(1) - Real(1e-4)) << "x " << x << " yaw " << yaw;
-          EXPECT_NEAR(c.contact.depth, sink, kTol) << "x " << x << " yaw " << yaw;
+        for (const ContactPoint& c : cs) {
+          EXPECT_GT(c.normal.z, Real(1) - Real(1e-4)) << "x " << x << " yaw " << yaw;
+          EXPECT_NEAR(c.depth, sink, kTol) << "x " << x << " yaw " << yaw;
         }
-        const ContactManifold m = collide(GeometryRef(ShapeRef(box)), pb, GeometryRef(grid), Transform{}, request);
+        const ContactManifold m = collide(ShapeRef(box), pb, ShapeRef(grid), Transform{}, request);
         ASSERT_GE(m.count, 3);
         EXPECT_LT(m.normal.z, Real(-1) + Real(1e-4));
         // The narrow phase alone, triangle by triangle: how many non-up normals it gives.
@@ -248,11 +248,11 @@ TEST(MeshConvex, NoGhostContactsSlidingOverAFlatGrid) {
           const ContactManifold raw = collide(ShapeRef(tri), Transform{}, ShapeRef(box), pb, request);
           if (raw.count > 0 && raw.normal.z < Real(1) - Real(1e-4)) ++raw_ghosts;
         }
-        std::vector<GeometryContact> bs;
+        std::vector<ContactPoint> bs;
         const Transform ps{Vec3(x, Real(-0.21) * x, Real(0.3) - sink), {}};
-        collide_all(GeometryRef(grid), Transform{}, GeometryRef(ShapeRef(ball)), ps, request, bs);
+        test::collect_contacts(ShapeRef(grid), Transform{}, ShapeRef(ball), ps, request, bs);
         ASSERT_FALSE(bs.empty());
-        for (const GeometryContact& c : bs) EXPECT_GT(c.contact.normal.z, Real(1) - Real(1e-4)) << x;
+        for (const ContactPoint& c : bs) EXPECT_GT(c.normal.z, Real(1) - Real(1e-4)) << x;
       }
     }
   }
@@ -275,13 +275,13 @@ TEST(MeshConvex, HalfSpaceAgainstMeshIsClosedFormOverVertices) {
       lowest = std::min(lowest, z);
       below += z <= Real(0);
     }
-    const GeometryDistance d = distance(GeometryRef(mesh), pm, GeometryRef(ShapeRef(h)), Transform{}, request);
-    EXPECT_NEAR(d.result.signed_distance, lowest, kTol);
-    EXPECT_EQ(intersect(GeometryRef(ShapeRef(h)), Transform{}, GeometryRef(mesh), pm, request), lowest <= Real(0));
-    std::vector<GeometryContact> cs;
-    collide_all(GeometryRef(ShapeRef(h)), Transform{}, GeometryRef(mesh), pm, request, cs);
+    const DistanceResult d = distance(ShapeRef(mesh), pm, ShapeRef(h), Transform{}, request);
+    EXPECT_NEAR(d.signed_distance, lowest, kTol);
+    EXPECT_EQ(intersect(ShapeRef(h), Transform{}, ShapeRef(mesh), pm, request), lowest <= Real(0));
+    std::vector<ContactPoint> cs;
+    test::collect_contacts(ShapeRef(h), Transform{}, ShapeRef(mesh), pm, request, cs);
     EXPECT_EQ(static_cast<int>(cs.size()), below);
-    for (const GeometryContact& c : cs) EXPECT_EQ(c.contact.normal, Vec3(0, 0, 1));
+    for (const ContactPoint& c : cs) EXPECT_EQ(c.normal, Vec3(0, 0, 1));
   }
 }
 
@@ -296,17 +296,17 @@ TEST(GeometryQueries, RandomSweepQueriesAgree) {
     const Compound c = random_compound(rng, box);
     const Shape s = random_convex(rng);
     const int pick_a = rng.integer(0, 2);
-    const GeometryRef a = pick_a == 0 ? GeometryRef(sphere) : pick_a == 1 ? GeometryRef(c) : GeometryRef(ShapeRef(s));
+    const ShapeRef a = pick_a == 0 ? ShapeRef(sphere) : pick_a == 1 ? ShapeRef(c) : ShapeRef(s);
     const Shape t = random_convex(rng);
-    const GeometryRef b{ShapeRef(t)};
+    const ShapeRef b(t);
     const Transform pa = rng.pose(Real(1)), pb = rng.pose(Real(1));
-    const GeometryDistance d = distance(a, pa, b, pb, request);
-    if (std::abs(d.result.signed_distance) < kTol) continue;
+    const DistanceResult d = distance(a, pa, b, pb, request);
+    if (std::abs(d.signed_distance) < kTol) continue;
     ++cases;
     const bool in = intersect(a, pa, b, pb, request);
-    std::vector<GeometryContact> all;
-    collide_all(a, pa, b, pb, request, all);
-    EXPECT_EQ(in, d.result.signed_distance < Real(0)) << k;
+    std::vector<ContactPoint> all;
+    test::collect_contacts(a, pa, b, pb, request, all);
+    EXPECT_EQ(in, d.signed_distance < Real(0)) << k;
     EXPECT_EQ(!all.empty(), in) << k;
     EXPECT_EQ(collide(a, pa, b, pb, request).count > 0, in) << k;
     overlaps += in;
@@ -315,12 +315,12 @@ TEST(GeometryQueries, RandomSweepQueriesAgree) {
   EXPECT_LT(overlaps, cases * 9 / 10);
 }
 
-/// Two small tessellated meshes through GeometryRef against brute force over every triangle
+/// Two small tessellated meshes through ShapeRef against brute force over every triangle
 /// pair with the narrow phase on Triangle shapes: boolean = any pair; distance = minimum over
 /// pairs when apart (both orders, witnesses on the named triangles), at most 0 when the
 /// surfaces cross; collide_all = exactly the pairs the
 /// narrow phase reports, each with that pair's deepest depth; collide = the deepest contact.
-TEST(MeshMesh, GeometryRefQueriesAgreeWithAllTrianglePairs) {
+TEST(MeshMesh, ShapeRefQueriesAgreeWithAllTrianglePairs) {
   const TriangleMesh ma = TriangleMesh::create(test::tessellate_sphere(Real(0.5), 8, 4)).value();
   const TriangleMesh mb = TriangleMesh::create(test::tessellate_box(Vec3(0.4, 0.3, 0.2), 1)).value();
   const auto triangles = [](const TriangleMesh& m, const Transform& pose) {
@@ -356,36 +356,36 @@ TEST(MeshMesh, GeometryRefQueriesAgreeWithAllTrianglePairs) {
         pair_depth.push_back(deepest);
       }
     }
-    const GeometryRef ga(ma), gb(mb);
+    const ShapeRef ga(ma), gb(mb);
     EXPECT_EQ(intersect(ga, pa, gb, pb, request), any) << k;
-    const GeometryDistance d = distance(ga, pa, gb, pb, request);
+    const DistanceResult d = distance(ga, pa, gb, pb, request);
     // Overlapping surfaces answer distance 0 (mesh_mesh.cpp's choice), not the deepest pair's.
     if (best > Real(0)) {
-      EXPECT_NEAR(d.result.signed_distance, best, kTol) << k;
-      ASSERT_LT(d.a.triangle, ta.size());
-      ASSERT_LT(d.b.triangle, tb.size());
-      EXPECT_NEAR(distance(ShapeRef(ta[d.a.triangle]), Transform{}, ShapeRef(tb[d.b.triangle]), Transform{}, request)
+      EXPECT_NEAR(d.signed_distance, best, kTol) << k;
+      ASSERT_LT(d.sub_a.triangle, ta.size());
+      ASSERT_LT(d.sub_b.triangle, tb.size());
+      EXPECT_NEAR(distance(ShapeRef(ta[d.sub_a.triangle]), Transform{}, ShapeRef(tb[d.sub_b.triangle]), Transform{}, request)
                       .signed_distance,
-                  d.result.signed_distance, kTol)
+                  d.signed_distance, kTol)
           << k;
     } else {
-      EXPECT_LE(d.result.signed_distance, kTol) << k;
+      EXPECT_LE(d.signed_distance, kTol) << k;
     }
-    const GeometryDistance back = distance(gb, pb, ga, pa, request);
-    EXPECT_NEAR(back.result.signed_distance, d.result.signed_distance, kTol) << k;
-    std::vector<GeometryContact> all;
-    collide_all(ga, pa, gb, pb, request, all);
+    const DistanceResult back = distance(gb, pb, ga, pa, request);
+    EXPECT_NEAR(back.signed_distance, d.signed_distance, kTol) << k;
+    std::vector<ContactPoint> all;
+    test::collect_contacts(ga, pa, gb, pb, request, all);
     std::vector<std::pair<std::uint32_t, std::uint32_t>> got;
-    for (const GeometryContact& c : all) got.emplace_back(c.a.triangle, c.b.triangle);
+    for (const ContactPoint& c : all) got.emplace_back(c.sub_a.triangle, c.sub_b.triangle);
     std::sort(got.begin(), got.end());
     got.erase(std::unique(got.begin(), got.end()), got.end());
     EXPECT_EQ(got, pairs) << k;  // brute-force pairs come out sorted
     Real deepest_all = -std::numeric_limits<Real>::infinity();
-    for (const GeometryContact& c : all) {
-      deepest_all = std::max(deepest_all, c.contact.depth);
-      const auto it = std::lower_bound(pairs.begin(), pairs.end(), std::make_pair(c.a.triangle, c.b.triangle));
-      if (it != pairs.end() && *it == std::make_pair(c.a.triangle, c.b.triangle)) {
-        EXPECT_LE(c.contact.depth, pair_depth[static_cast<std::size_t>(it - pairs.begin())] + kTol) << k;
+    for (const ContactPoint& c : all) {
+      deepest_all = std::max(deepest_all, c.depth);
+      const auto it = std::lower_bound(pairs.begin(), pairs.end(), std::make_pair(c.sub_a.triangle, c.sub_b.triangle));
+      if (it != pairs.end() && *it == std::make_pair(c.sub_a.triangle, c.sub_b.triangle)) {
+        EXPECT_LE(c.depth, pair_depth[static_cast<std::size_t>(it - pairs.begin())] + kTol) << k;
       }
     }
     if (!all.empty()) {

@@ -10,6 +10,7 @@
 
 #include <string>
 
+#include "narrowphase/dispatch.hpp"
 #include "narrowphase/pair_checker.hpp"
 
 namespace proxima {
@@ -76,12 +77,12 @@ INSTANTIATE_TEST_SUITE_P(AllPairs, Invariants, testing::ValuesIn(all_pairs()), p
 TEST(Invariants, DispatchTableIsComplete) {
   for (ShapeType a : test::all_shape_types()) {
     for (ShapeType b : test::all_shape_types()) {
-      const PairFunctions& f = pair_functions(a, b);
+      const narrow::PairFunctions& f = narrow::pair_functions(a, b);
       EXPECT_NE(f.intersect, nullptr) << to_string(a) << "-" << to_string(b);
       EXPECT_NE(f.distance, nullptr) << to_string(a) << "-" << to_string(b);
       EXPECT_NE(f.collide, nullptr) << to_string(a) << "-" << to_string(b);
       if (f.mirrored) {
-        EXPECT_FALSE(pair_functions(b, a).mirrored) << to_string(a) << "-" << to_string(b);
+        EXPECT_FALSE(narrow::pair_functions(b, a).mirrored) << to_string(a) << "-" << to_string(b);
       }
     }
   }

@@ -28,6 +28,7 @@
 
 #include "narrowphase/mesh_mesh.hpp"
 #include "support/solid_test_meshes.hpp"
+#include "narrowphase/narrowphase_test_util.hpp"
 #include "support/random.hpp"
 
 namespace proxima {
@@ -118,10 +119,10 @@ std::set<std::pair<std::uint32_t, std::uint32_t>> contact_pairs(const TriangleMe
                                                                 const TriangleMesh& b, const Transform& pose_b,
                                                                 const PairRequest& request,
                                                                 narrow::MeshMeshNodes nodes) {
-  std::vector<GeometryContact> contacts;
-  narrow::mesh_mesh_collide_all(a, pose_a, b, pose_b, request, contacts, nodes);
+  std::vector<ContactPoint> contacts;
+  test::mesh_mesh_contacts(a, pose_a, b, pose_b, request, contacts, nodes);
   std::set<std::pair<std::uint32_t, std::uint32_t>> pairs;
-  for (const GeometryContact& c : contacts) pairs.insert({c.a.triangle, c.b.triangle});
+  for (const ContactPoint& c : contacts) pairs.insert({c.sub_a.triangle, c.sub_b.triangle});
   return pairs;
 }
 
@@ -134,9 +135,9 @@ bool expect_paths_agree(const TriangleMesh& a, const Transform& pose_a, const Tr
   EXPECT_EQ(hit, narrow::mesh_mesh_intersect(a, pose_a, b, pose_b, request, MeshMeshNodes::Aabb));
   EXPECT_EQ(contact_pairs(a, pose_a, b, pose_b, request, MeshMeshNodes::Oriented),
             contact_pairs(a, pose_a, b, pose_b, request, MeshMeshNodes::Aabb));
-  const GeometryDistance d = narrow::mesh_mesh_distance(a, pose_a, b, pose_b, request, MeshMeshNodes::Oriented);
-  const GeometryDistance r = narrow::mesh_mesh_distance(a, pose_a, b, pose_b, request, MeshMeshNodes::Aabb);
-  EXPECT_NEAR(d.result.signed_distance, r.result.signed_distance, distance_tolerance());
+  const DistanceResult d = narrow::mesh_mesh_distance(a, pose_a, b, pose_b, request, MeshMeshNodes::Oriented);
+  const DistanceResult r = narrow::mesh_mesh_distance(a, pose_a, b, pose_b, request, MeshMeshNodes::Aabb);
+  EXPECT_NEAR(d.signed_distance, r.signed_distance, distance_tolerance());
   return hit;
 }
 
@@ -157,39 +158,39 @@ void check_case(const TriangleMesh& a, const Transform& pose_a, const TriangleMe
   stats.hits += ref_hit ? 1 : 0;
 
   // Distance.
-  const GeometryDistance d = narrow::mesh_mesh_distance(a, pose_a, b, pose_b, request);
-  ASSERT_TRUE(std::isfinite(d.result.signed_distance));
-  EXPECT_NEAR(d.result.signed_distance, ref.min_distance, distance_tolerance());
+  const DistanceResult d = narrow::mesh_mesh_distance(a, pose_a, b, pose_b, request);
+  ASSERT_TRUE(std::isfinite(d.signed_distance));
+  EXPECT_NEAR(d.signed_distance, ref.min_distance, distance_tolerance());
   if (ref_hit) {
-    EXPECT_LE(d.result.signed_distance, ref.touch());
+    EXPECT_LE(d.signed_distance, ref.touch());
   }
-  ASSERT_LT(d.a.triangle, a.triangle_count());
-  ASSERT_LT(d.b.triangle, b.triangle_count());
-  EXPECT_LE(point_triangle_distance(d.result.point_a, ta[d.a.triangle]), distance_tolerance());
-  EXPECT_LE(point_triangle_distance(d.result.point_b, tb[d.b.triangle]), distance_tolerance());
-  EXPECT_NEAR(glm::length(d.result.point_b - d.result.point_a), d.result.signed_distance, distance_tolerance());
-  EXPECT_NEAR(glm::length(d.result.normal), Real(1), Real(1e-4));
-  EXPECT_NEAR(ref.distance({d.a.triangle, d.b.triangle}), d.result.signed_distance, distance_tolerance());
-  if (d.result.signed_distance > Real(1e-3)) {
+  ASSERT_LT(d.sub_a.triangle, a.triangle_count());
+  ASSERT_LT(d.sub_b.triangle, b.triangle_count());
+  EXPECT_LE(point_triangle_distance(d.point_a, ta[d.sub_a.triangle]), distance_tolerance());
+  EXPECT_LE(point_triangle_distance(d.point_b, tb[d.sub_b.triangle]), distance_tolerance());
+  EXPECT_NEAR(glm::length(d.point_b - d.point_a), d.signed_distance, distance_tolerance());
+  EXPECT_NEAR(glm::length(d.normal), Real(1), Real(1e-4));
+  EXPECT_NEAR(ref.distance({d.sub_a.triangle, d.sub_b.triangle}), d.signed_distance, distance_tolerance());
+  if (d.signed_distance > Real(1e-3)) {
     // point_b = point_a + signed_distance * normal.
-    const Vec3 expected = d.result.point_a + d.result.signed_distance * d.result.normal;
-    EXPECT_LE(glm::length(expected - d.result.point_b), distance_tolerance());
+    const Vec3 expected = d.point_a + d.signed_distance * d.normal;
+    EXPECT_LE(glm::length(expected - d.point_b), distance_tolerance());
   }
 
   // All contacts: the set of triangle pairs.
-  std::vector<GeometryContact> contacts;
-  narrow::mesh_mesh_collide_all(a, pose_a, b, pose_b, request, contacts);
+  std::vector<ContactPoint> contacts;
+  test::mesh_mesh_contacts(a, pose_a, b, pose_b, request, contacts);
   std::set<std::pair<std::uint32_t, std::uint32_t>> pairs;
   expect_paths_agree(a, pose_a, b, pose_b, request);
-  for (const GeometryContact& c : contacts) {
-    ASSERT_LT(c.a.triangle, a.triangle_count());
-    ASSERT_LT(c.b.triangle, b.triangle_count());
-    pairs.insert({c.a.triangle, c.b.triangle});
-    EXPECT_TRUE(is_finite(c.contact.point_a) && is_finite(c.contact.point_b) && is_finite(c.contact.normal));
-    EXPECT_NEAR(glm::length(c.contact.normal), Real(1), Real(1e-3));
+  for (const ContactPoint& c : contacts) {
+    ASSERT_LT(c.sub_a.triangle, a.triangle_count());
+    ASSERT_LT(c.sub_b.triangle, b.triangle_count());
+    pairs.insert({c.sub_a.triangle, c.sub_b.triangle});
+    EXPECT_TRUE(is_finite(c.point_a) && is_finite(c.point_b) && is_finite(c.normal));
+    EXPECT_NEAR(glm::length(c.normal), Real(1), Real(1e-3));
     // The contact lies near both triangles it names.
-    EXPECT_LE(point_triangle_distance(c.contact.point_a, ta[c.a.triangle]), Real(1e-3));
-    EXPECT_LE(point_triangle_distance(c.contact.point_b, tb[c.b.triangle]), Real(1e-3));
+    EXPECT_LE(point_triangle_distance(c.point_a, ta[c.sub_a.triangle]), Real(1e-3));
+    EXPECT_LE(point_triangle_distance(c.point_b, tb[c.sub_b.triangle]), Real(1e-3));
   }
   std::vector<std::pair<std::uint32_t, std::uint32_t>> only_mine;
   std::vector<std::pair<std::uint32_t, std::uint32_t>> only_ref;
@@ -280,25 +281,25 @@ TEST(MeshMesh, BoxGapAnalytic) {
     const Vec3 offset(Real(0.8) + gap, rng.uniform(Real(-0.5), Real(0.5)), rng.uniform(Real(-0.5), Real(0.5)));
     const Transform pa{origin, q};
     const Transform pb{origin + q * offset, q};
-    const GeometryDistance d = narrow::mesh_mesh_distance(a, pa, b, pb, {});
-    EXPECT_NEAR(d.result.signed_distance, gap, Real(20) * distance_tolerance()) << k;
-    const Vec3 n_local = glm::conjugate(q) * d.result.normal;
+    const DistanceResult d = narrow::mesh_mesh_distance(a, pa, b, pb, {});
+    EXPECT_NEAR(d.signed_distance, gap, Real(20) * distance_tolerance()) << k;
+    const Vec3 n_local = glm::conjugate(q) * d.normal;
     if (gap > Real(1e-2)) {
       EXPECT_NEAR(n_local.x, Real(1), Real(1e-3)) << k;
     }
     EXPECT_EQ(narrow::mesh_mesh_intersect(a, pa, b, pb, {}), gap == Real(0)) << k;
-    std::vector<GeometryContact> contacts;
-    narrow::mesh_mesh_collide_all(a, pa, b, pb, {}, contacts);
+    std::vector<ContactPoint> contacts;
+    test::mesh_mesh_contacts(a, pa, b, pb, {}, contacts);
     EXPECT_EQ(contacts.empty(), gap != Real(0)) << k;
     // Within a contact distance above the gap: boolean true, contacts with depth -gap.
     PairRequest speculative;
     speculative.contact_distance = gap + Real(1e-2);
     EXPECT_TRUE(narrow::mesh_mesh_intersect(a, pa, b, pb, speculative)) << k;
     contacts.clear();
-    narrow::mesh_mesh_collide_all(a, pa, b, pb, speculative, contacts);
+    test::mesh_mesh_contacts(a, pa, b, pb, speculative, contacts);
     ASSERT_FALSE(contacts.empty()) << k;
     Real deepest = -std::numeric_limits<Real>::infinity();
-    for (const GeometryContact& c : contacts) deepest = std::max(deepest, c.contact.depth);
+    for (const ContactPoint& c : contacts) deepest = std::max(deepest, c.depth);
     EXPECT_NEAR(deepest, -gap, Real(20) * distance_tolerance()) << k;
   }
 }
@@ -319,10 +320,10 @@ TEST(MeshMesh, ContactDistanceBruteForce) {
     const bool expected = ref.min_distance <= request.contact_distance;
     within += expected ? 1 : 0;
     EXPECT_EQ(narrow::mesh_mesh_intersect(a, pa, b, pb, request), expected) << k;
-    std::vector<GeometryContact> contacts;
-    narrow::mesh_mesh_collide_all(a, pa, b, pb, request, contacts);
+    std::vector<ContactPoint> contacts;
+    test::mesh_mesh_contacts(a, pa, b, pb, request, contacts);
     std::set<std::pair<std::uint32_t, std::uint32_t>> pairs;
-    for (const GeometryContact& c : contacts) pairs.insert({c.a.triangle, c.b.triangle});
+    for (const ContactPoint& c : contacts) pairs.insert({c.sub_a.triangle, c.sub_b.triangle});
     std::size_t expected_pairs = 0;
     for (std::uint32_t i = 0; i < a.triangle_count(); ++i) {
       for (std::uint32_t j = 0; j < b.triangle_count(); ++j) {
@@ -347,12 +348,12 @@ TEST(MeshMesh, IdenticalPlacement) {
   const TriangleMesh a = make(box_mesh(Vec3(0.5, 0.5, 0.5), 2));
   const Transform pose{Vec3(1, 2, 3), glm::normalize(Quat(Real(0.9), Real(0.1), Real(0.3), Real(-0.2)))};
   EXPECT_TRUE(narrow::mesh_mesh_intersect(a, pose, a, pose, {}));
-  const GeometryDistance d = narrow::mesh_mesh_distance(a, pose, a, pose, {});
-  EXPECT_EQ(d.result.signed_distance, Real(0));
-  std::vector<GeometryContact> contacts;
-  narrow::mesh_mesh_collide_all(a, pose, a, pose, {}, contacts);
+  const DistanceResult d = narrow::mesh_mesh_distance(a, pose, a, pose, {});
+  EXPECT_EQ(d.signed_distance, Real(0));
+  std::vector<ContactPoint> contacts;
+  test::mesh_mesh_contacts(a, pose, a, pose, {}, contacts);
   std::set<std::pair<std::uint32_t, std::uint32_t>> pairs;
-  for (const GeometryContact& c : contacts) pairs.insert({c.a.triangle, c.b.triangle});
+  for (const ContactPoint& c : contacts) pairs.insert({c.sub_a.triangle, c.sub_b.triangle});
   for (std::uint32_t i = 0; i < a.triangle_count(); ++i) EXPECT_TRUE(pairs.count({i, i})) << i;
 }
 
@@ -367,9 +368,9 @@ TEST(MeshMesh, FarSpheresBracket) {
     const Transform pa{rng.vec3(Real(-10), Real(10)), rng.rotation()};
     const Real dist = rng.uniform(Real(2), Real(20));
     const Transform pb{pa.position + rng.unit_vector() * dist, rng.rotation()};
-    const GeometryDistance d = narrow::mesh_mesh_distance(a, pa, b, pb, {});
-    EXPECT_LE(d.result.signed_distance, dist - Real(1.5) * Real(0.95) + Real(1e-4)) << k;
-    EXPECT_GE(d.result.signed_distance, dist - Real(1.5) - Real(1e-4)) << k;
+    const DistanceResult d = narrow::mesh_mesh_distance(a, pa, b, pb, {});
+    EXPECT_LE(d.signed_distance, dist - Real(1.5) * Real(0.95) + Real(1e-4)) << k;
+    EXPECT_GE(d.signed_distance, dist - Real(1.5) - Real(1e-4)) << k;
     EXPECT_FALSE(narrow::mesh_mesh_intersect(a, pa, b, pb, {}));
   }
 }

@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "narrowphase/mesh_mesh.hpp"
+#include "narrowphase/narrowphase_test_util.hpp"
 #include "support/random.hpp"
 
 #if PROXIMA_HAVE_FCL && defined(PROXIMA_DEFAULT_WORKLOAD_DIR)
@@ -200,10 +201,10 @@ TEST(MeshMeshPeers, BooleanAndContactsAgainstFcl) {
       fcl_pairs.insert({static_cast<std::uint32_t>(contact.b1), static_cast<std::uint32_t>(contact.b2)});
     }
     const bool mine = narrow::mesh_mesh_intersect(*w->mesh_a, Transform{}, *w->mesh_b, pose_b, {});
-    std::vector<GeometryContact> contacts;
-    narrow::mesh_mesh_collide_all(*w->mesh_a, Transform{}, *w->mesh_b, pose_b, {}, contacts);
+    std::vector<ContactPoint> contacts;
+    test::mesh_mesh_contacts(*w->mesh_a, Transform{}, *w->mesh_b, pose_b, {}, contacts);
     std::set<std::pair<std::uint32_t, std::uint32_t>> my_pairs;
-    for (const GeometryContact& c : contacts) my_pairs.insert({c.a.triangle, c.b.triangle});
+    for (const ContactPoint& c : contacts) my_pairs.insert({c.sub_a.triangle, c.sub_b.triangle});
     ++cases;
     hits += mine ? 1 : 0;
     EXPECT_EQ(mine, !my_pairs.empty());
@@ -264,13 +265,13 @@ TEST(MeshMeshPeers, DistanceAgainstFcl) {
       test::ScopedNoFpTraps no_traps;
       fcl::distance(&oa, &ob, request, result);
     }
-    const GeometryDistance mine = narrow::mesh_mesh_distance(*w->mesh_a, Transform{}, *w->mesh_b, pose_b, {});
+    const DistanceResult mine = narrow::mesh_mesh_distance(*w->mesh_a, Transform{}, *w->mesh_b, pose_b, {});
     ++cases;
     // Proxima's claim is realised by the pair it names.
-    const Real mine_pair = pair_distance(*w, pose_b, mine.a.triangle, mine.b.triangle);
-    EXPECT_NEAR(mine_pair, mine.result.signed_distance, touch());
+    const Real mine_pair = pair_distance(*w, pose_b, mine.sub_a.triangle, mine.sub_b.triangle);
+    EXPECT_NEAR(mine_pair, mine.signed_distance, touch());
     const Real fcl_d = std::max(Real(0), static_cast<Real>(result.min_distance));
-    if (std::abs(fcl_d - mine.result.signed_distance) <= distance_tolerance()) return;
+    if (std::abs(fcl_d - mine.signed_distance) <= distance_tolerance()) return;
     ++disagreements;
     // FCL's named pair decides: if it realises a smaller distance than Proxima's, Proxima
     // missed it.
@@ -278,14 +279,14 @@ TEST(MeshMeshPeers, DistanceAgainstFcl) {
     const auto fb = static_cast<std::uint32_t>(result.b2);
     const bool ids_valid = fa < w->mesh_a->triangle_count() && fb < w->mesh_b->triangle_count();
     const Real fcl_pair = ids_valid ? pair_distance(*w, pose_b, fa, fb) : Real(1e30);
-    EXPECT_GE(fcl_pair, mine.result.signed_distance - distance_tolerance())
+    EXPECT_GE(fcl_pair, mine.signed_distance - distance_tolerance())
         << "FCL's pair " << fa << "," << fb << " is nearer than Proxima's answer";
     // Proxima's answer is realised by its pair (checked above) and no pair FCL names is
     // nearer: FCL's answer is the wrong one.
     ++fcl_wrong;
     std::printf("pose %zu: FCL distance %.9g (its pair %u,%u at %.9g), Proxima %.9g (pair %u,%u)\n", k,
                 static_cast<double>(fcl_d), fa, fb, static_cast<double>(fcl_pair),
-                static_cast<double>(mine.result.signed_distance), mine.a.triangle, mine.b.triangle);
+                static_cast<double>(mine.signed_distance), mine.sub_a.triangle, mine.sub_b.triangle);
   });
   std::printf("W4 distance vs FCL OBBRSS: %d poses, %d disagreements beyond %g, FCL wrong %d\n", cases, disagreements,
               static_cast<double>(distance_tolerance()), fcl_wrong);

@@ -28,38 +28,41 @@ bool passes(FaceCulling culling, const RayHit& h, const std::array<Vec3, 3>& t) 
   return culling == FaceCulling::Back ? side > 0 : side < 0;
 }
 
-std::vector<MeshRayHit> brute_all(const TriangleMesh& mesh, const Ray& ray, Real max_t, FaceCulling culling) {
-  std::vector<MeshRayHit> out;
+std::vector<RayHit> brute_all(const TriangleMesh& mesh, const Ray& ray, Real max_t, FaceCulling culling) {
+  std::vector<RayHit> out;
   for (std::uint32_t i = 0; i < mesh.triangle_count(); ++i) {
     const auto t = mesh.triangle(i);
     const auto h = geometry::ray_triangle(ray, max_t, t[0], t[1], t[2]);
-    if (h && passes(culling, *h, t)) out.push_back({*h, i});
+    if (h && passes(culling, *h, t)) {
+      out.push_back(*h);
+      out.back().sub.triangle = i;
+    }
   }
-  std::sort(out.begin(), out.end(), [](const MeshRayHit& a, const MeshRayHit& b) {
-    return a.hit.t < b.hit.t || (a.hit.t == b.hit.t && a.triangle < b.triangle);
+  std::sort(out.begin(), out.end(), [](const RayHit& a, const RayHit& b) {
+    return a.t < b.t || (a.t == b.t && a.sub.triangle < b.sub.triangle);
   });
   return out;
 }
 
 /// Compares the three casts with brute force; returns whether the ray hit.
 bool check_ray(const TriangleMesh& mesh, const Ray& ray, Real max_t, FaceCulling culling = FaceCulling::None) {
-  const std::vector<MeshRayHit> want = brute_all(mesh, ray, max_t, culling);
-  const std::optional<MeshRayHit> got = mesh.raycast(ray, max_t, culling);
+  const std::vector<RayHit> want = brute_all(mesh, ray, max_t, culling);
+  const std::optional<RayHit> got = mesh.raycast(ray, max_t, culling);
   EXPECT_EQ(got.has_value(), !want.empty());
   if (got && !want.empty()) {
-    EXPECT_EQ(got->hit.t, want[0].hit.t);
-    EXPECT_EQ(got->triangle, want[0].triangle);
-    EXPECT_EQ(got->hit.point, want[0].hit.point);
-    EXPECT_EQ(got->hit.normal, want[0].hit.normal);
+    EXPECT_EQ(got->t, want[0].t);
+    EXPECT_EQ(got->sub.triangle, want[0].sub.triangle);
+    EXPECT_EQ(got->point, want[0].point);
+    EXPECT_EQ(got->normal, want[0].normal);
   }
   EXPECT_EQ(mesh.raycast_any(ray, max_t, culling), !want.empty());
-  std::vector<MeshRayHit> all{MeshRayHit{}};  // appended after what is there
+  std::vector<RayHit> all{RayHit{}};  // appended after what is there
   mesh.raycast_all(ray, max_t, all, culling);
   EXPECT_EQ(all.size(), want.size() + 1);
   if (all.size() == want.size() + 1) {
     for (std::size_t i = 0; i < want.size(); ++i) {
-      EXPECT_EQ(all[i + 1].triangle, want[i].triangle);
-      EXPECT_EQ(all[i + 1].hit.t, want[i].hit.t);
+      EXPECT_EQ(all[i + 1].sub.triangle, want[i].sub.triangle);
+      EXPECT_EQ(all[i + 1].t, want[i].t);
     }
   }
   return !want.empty();
@@ -249,14 +252,14 @@ TEST(TriangleMeshRaycast, Culling) {
   const auto back = sphere.raycast(outside, kRealMax, FaceCulling::Back);
   const auto front = sphere.raycast(outside, kRealMax, FaceCulling::Front);
   ASSERT_TRUE(none && back && front);
-  EXPECT_EQ(none->triangle, back->triangle);
-  EXPECT_NEAR(double(back->hit.t), 4.0, 0.02);
-  EXPECT_NEAR(double(front->hit.t), 6.0, 0.02);  // leaves through the far side's back face
+  EXPECT_EQ(none->sub.triangle, back->sub.triangle);
+  EXPECT_NEAR(double(back->t), 4.0, 0.02);
+  EXPECT_NEAR(double(front->t), 6.0, 0.02);  // leaves through the far side's back face
   const Ray inside{Vec3(0.1, 0, 0), Vec3(0, 1, 0)};
   EXPECT_FALSE(sphere.raycast(inside, kRealMax, FaceCulling::Back));
   EXPECT_FALSE(sphere.raycast_any(inside, kRealMax, FaceCulling::Back));
   EXPECT_TRUE(sphere.raycast(inside, kRealMax, FaceCulling::Front));
-  std::vector<MeshRayHit> all;
+  std::vector<RayHit> all;
   sphere.raycast_all(outside, kRealMax, all, FaceCulling::Back);
   EXPECT_EQ(all.size(), 1u);
 }
@@ -277,31 +280,31 @@ TEST(TriangleMeshRaycast, DegenerateRays) {
   const Ray down{Vec3(Real(0.5), Real(0.5), 1), Vec3(0, 0, -1)};  // the diagonal of cell (0, 0)
   const auto all = brute_all(grid, down, kRealMax, FaceCulling::None);
   ASSERT_GE(all.size(), 2u);
-  EXPECT_EQ(grid.raycast(down, kRealMax)->triangle, std::min(all[0].triangle, all[1].triangle));
+  EXPECT_EQ(grid.raycast(down, kRealMax)->sub.triangle, std::min(all[0].sub.triangle, all[1].sub.triangle));
 }
 
 /// The 4-wide traversal against the binary reference: closest (same triangle, t, point and
 /// normal, bit for bit), any, and all (same list) agree. Returns whether the ray hit.
 bool expect_same_traversals(const TriangleMesh& mesh, const Ray& ray, Real max_t, FaceCulling culling) {
-  const std::optional<MeshRayHit> wide = mesh.raycast(ray, max_t, culling, RayTraversal::Wide);
-  const std::optional<MeshRayHit> binary = mesh.raycast(ray, max_t, culling, RayTraversal::Binary);
+  const std::optional<RayHit> wide = mesh.raycast(ray, max_t, culling, RayTraversal::Wide);
+  const std::optional<RayHit> binary = mesh.raycast(ray, max_t, culling, RayTraversal::Binary);
   EXPECT_EQ(wide.has_value(), binary.has_value());
   if (wide && binary) {
-    EXPECT_EQ(wide->triangle, binary->triangle);
-    EXPECT_EQ(wide->hit.t, binary->hit.t);
-    EXPECT_EQ(wide->hit.point, binary->hit.point);
-    EXPECT_EQ(wide->hit.normal, binary->hit.normal);
+    EXPECT_EQ(wide->sub.triangle, binary->sub.triangle);
+    EXPECT_EQ(wide->t, binary->t);
+    EXPECT_EQ(wide->point, binary->point);
+    EXPECT_EQ(wide->normal, binary->normal);
   }
   EXPECT_EQ(mesh.raycast_any(ray, max_t, culling, RayTraversal::Wide),
             mesh.raycast_any(ray, max_t, culling, RayTraversal::Binary));
-  std::vector<MeshRayHit> all_wide, all_binary;
+  std::vector<RayHit> all_wide, all_binary;
   mesh.raycast_all(ray, max_t, all_wide, culling, RayTraversal::Wide);
   mesh.raycast_all(ray, max_t, all_binary, culling, RayTraversal::Binary);
   EXPECT_EQ(all_wide.size(), all_binary.size());
   if (all_wide.size() == all_binary.size()) {
     for (std::size_t i = 0; i < all_wide.size(); ++i) {
-      EXPECT_EQ(all_wide[i].triangle, all_binary[i].triangle);
-      EXPECT_EQ(all_wide[i].hit.t, all_binary[i].hit.t);
+      EXPECT_EQ(all_wide[i].sub.triangle, all_binary[i].sub.triangle);
+      EXPECT_EQ(all_wide[i].t, all_binary[i].t);
     }
   }
   return binary.has_value();
@@ -418,16 +421,16 @@ TEST(RayBatch, EqualsSerialForAnyThreadCount) {
     r.ray = {rng.vec3(-4, 4), rng.vec3(-2, 2) - rng.vec3(-4, 4)};
     r.max_t = rng.uniform(0, 3);
   }
-  std::vector<MeshRayHit> serial(rays.size());
+  std::vector<RayHit> serial(rays.size());
   std::size_t serial_hits = 0;
   for (std::size_t i = 0; i < rays.size(); ++i) {
     const auto h = mesh.raycast(rays[i].ray, rays[i].max_t, FaceCulling::Back);
     if (h) ++serial_hits;
-    serial[i] = h ? *h : MeshRayHit{};
+    serial[i] = h ? *h : RayHit{};
   }
   EXPECT_GT(serial_hits, 100u);
   for (const unsigned threads : {1u, 2u, 3u, 8u, 0u}) {
-    std::vector<MeshRayHit> out(rays.size());
+    std::vector<RayHit> out(rays.size());
     RayBatchOptions opt;
     opt.threads = threads;
     opt.min_rays_per_thread = 100;
@@ -436,12 +439,12 @@ TEST(RayBatch, EqualsSerialForAnyThreadCount) {
     ASSERT_TRUE(n.ok());
     EXPECT_EQ(n.value(), serial_hits);
     for (std::size_t i = 0; i < rays.size(); ++i) {
-      EXPECT_EQ(out[i].triangle, serial[i].triangle);
-      EXPECT_EQ(out[i].hit.t, serial[i].hit.t);
-      EXPECT_EQ(out[i].hit.point, serial[i].hit.point);
+      EXPECT_EQ(out[i].sub.triangle, serial[i].sub.triangle);
+      EXPECT_EQ(out[i].t, serial[i].t);
+      EXPECT_EQ(out[i].point, serial[i].point);
     }
   }
-  std::vector<MeshRayHit> small(10);
+  std::vector<RayHit> small(10);
   EXPECT_FALSE(raycast_batch(mesh, rays, small).ok());
 }
 

@@ -29,12 +29,15 @@ namespace {
 namespace pb = bench;
 
 /// Brute force over every triangle with the same watertight test (lower index on ties).
-std::optional<MeshRayHit> brute_closest(const TriangleMesh& mesh, const Ray& ray, Real max_t) {
-  std::optional<MeshRayHit> best;
+std::optional<RayHit> brute_closest(const TriangleMesh& mesh, const Ray& ray, Real max_t) {
+  std::optional<RayHit> best;
   for (std::uint32_t i = 0; i < mesh.triangle_count(); ++i) {
     const auto t = mesh.triangle(i);
     const auto h = geometry::ray_triangle(ray, max_t, t[0], t[1], t[2]);
-    if (h && (!best || h->t < best->hit.t)) best = MeshRayHit{*h, i};
+    if (h && (!best || h->t < best->t)) {
+      best = *h;
+      best->sub.triangle = i;
+    }
   }
   return best;
 }
@@ -60,19 +63,19 @@ TEST(MeshRaycastPeers, SharedRayWorkloadMatchesEmbree) {
   const EmbreeScene embree(mesh);
   std::size_t hits = 0, both = 0, hit_miss = 0, t_differs = 0, triangle_differs = 0;
   std::vector<BatchRay> batch;
-  std::vector<std::optional<MeshRayHit>> ours;
+  std::vector<std::optional<RayHit>> ours;
   for (const pb::RayQuery& q : rays.value().rays) {
     const Ray ray{pb::to_vec3(q.origin), pb::to_vec3(q.direction)};
     const Real max_t = static_cast<Real>(q.max_t);
     batch.push_back({ray, max_t});
-    const std::optional<MeshRayHit> mine = mesh.raycast(ray, max_t);
+    const std::optional<RayHit> mine = mesh.raycast(ray, max_t);
     ours.push_back(mine);
     // The binary reference traversal gives the same hit, bit for bit.
-    const std::optional<MeshRayHit> binary = mesh.raycast(ray, max_t, FaceCulling::None, RayTraversal::Binary);
+    const std::optional<RayHit> binary = mesh.raycast(ray, max_t, FaceCulling::None, RayTraversal::Binary);
     ASSERT_EQ(binary.has_value(), mine.has_value());
     if (mine) {
-      ASSERT_EQ(binary->triangle, mine->triangle);
-      ASSERT_EQ(binary->hit.t, mine->hit.t);
+      ASSERT_EQ(binary->sub.triangle, mine->sub.triangle);
+      ASSERT_EQ(binary->t, mine->t);
     }
     const auto theirs = embree.intersect(q);
     hits += mine ? 1 : 0;
@@ -82,11 +85,11 @@ TEST(MeshRaycastPeers, SharedRayWorkloadMatchesEmbree) {
       disagree = true;
     } else if (mine) {
       ++both;
-      const double tol = 1e-4 * std::max(1.0, double(mine->hit.t));
-      if (std::abs(double(mine->hit.t) - double(theirs->first)) > tol) {
+      const double tol = 1e-4 * std::max(1.0, double(mine->t));
+      if (std::abs(double(mine->t) - double(theirs->first)) > tol) {
         ++t_differs;
         disagree = true;
-      } else if (mine->triangle != theirs->second) {
+      } else if (mine->sub.triangle != theirs->second) {
         ++triangle_differs;  // same t: an edge or vertex shared by two triangles
       }
     }
@@ -94,7 +97,7 @@ TEST(MeshRaycastPeers, SharedRayWorkloadMatchesEmbree) {
       const auto reference = brute_closest(mesh, ray, max_t);
       ASSERT_EQ(reference.has_value(), mine.has_value());
       if (reference) {
-        EXPECT_EQ(reference->hit.t, mine->hit.t);
+        EXPECT_EQ(reference->t, mine->t);
       }
     }
   }
@@ -106,14 +109,14 @@ TEST(MeshRaycastPeers, SharedRayWorkloadMatchesEmbree) {
   EXPECT_LE(hit_miss + t_differs, rays.value().rays.size() / 10000);  // at most 0.01 %
 
   // The batch API gives the same answers.
-  std::vector<MeshRayHit> out(batch.size());
+  std::vector<RayHit> out(batch.size());
   RayBatchOptions opt;
   opt.threads = 4;
   ASSERT_EQ(raycast_batch(mesh, batch, out, opt).value(), hits);
   for (std::size_t i = 0; i < batch.size(); ++i) {
-    ASSERT_EQ(out[i].triangle, ours[i] ? ours[i]->triangle : kNoIndex);
+    ASSERT_EQ(out[i].triangle, ours[i] ? ours[i]->sub.triangle : kNoIndex);
     if (ours[i]) {
-      ASSERT_EQ(out[i].hit.t, ours[i]->hit.t);
+      ASSERT_EQ(out[i].t, ours[i]->t);
     }
   }
 }

@@ -12,9 +12,9 @@
 #include <gtest/gtest.h>
 
 #include <proxima/core/tolerance.hpp>
-#include <proxima/narrowphase/geometry_queries.hpp>
 #include <proxima/narrowphase/narrowphase.hpp>
 #include <proxima/shapes/placed.hpp>
+#include <proxima/shapes/shape_queries.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -23,7 +23,9 @@
 #include <variant>
 #include <vector>
 
+#include "shapes/shape_visit.hpp"
 #include "support/solid_test_meshes.hpp"
+#include "narrowphase/narrowphase_test_util.hpp"
 #include "support/random.hpp"
 
 namespace proxima {
@@ -91,21 +93,21 @@ TEST(TessellationConsistency, RayHitsBracketedByInnerAndOuterPrimitives) {
       const Vec3 target = pose.position + rng.in_ball(Real(1.2));
       const Ray ray{origin, target - origin};
       const Real max_t = Real(2);
-      const auto mesh_hit = raycast(GeometryRef(c.mesh), pose, ray, max_t);
-      const auto outer_hit = raycast(GeometryRef(ShapeRef(c.outer)), pose, ray, max_t);
-      const auto inner_hit = raycast(GeometryRef(ShapeRef(c.inner)), pose, ray, max_t);
+      const auto mesh_hit = raycast(ShapeRef(c.mesh), pose, ray, max_t);
+      const auto outer_hit = raycast(ShapeRef(c.outer), pose, ray, max_t);
+      const auto inner_hit = raycast(ShapeRef(c.inner), pose, ray, max_t);
       const Real len = glm::length(ray.direction);
       const Real tol_t = kTol / len;
       if (mesh_hit) {
         ++hits;
         ASSERT_TRUE(outer_hit) << c.name << " case " << k;
-        EXPECT_GE(mesh_hit->hit.t, outer_hit->hit.t - tol_t) << c.name << " case " << k;
+        EXPECT_GE(mesh_hit->t, outer_hit->t - tol_t) << c.name << " case " << k;
         EXPECT_EQ(mesh_hit->sub.child, kNoIndex);
         EXPECT_LT(mesh_hit->sub.triangle, c.mesh.triangle_count());
       }
       if (inner_hit) {
         ASSERT_TRUE(mesh_hit) << c.name << " case " << k;
-        EXPECT_LE(mesh_hit->hit.t, inner_hit->hit.t + tol_t) << c.name << " case " << k;
+        EXPECT_LE(mesh_hit->t, inner_hit->t + tol_t) << c.name << " case " << k;
       }
     }
     EXPECT_GT(hits, 300) << c.name;
@@ -123,21 +125,21 @@ TEST(TessellationConsistency, DistancesBracketedWhenSeparated) {
       const DistanceResult outer = distance(ShapeRef(c.outer), pose, ShapeRef(probe), pp);
       if (outer.signed_distance <= Real(0.01)) continue;
       const DistanceResult inner = distance(ShapeRef(c.inner), pose, ShapeRef(probe), pp);
-      const GeometryDistance mesh = distance(GeometryRef(c.mesh), pose, GeometryRef(ShapeRef(probe)), pp);
+      const DistanceResult mesh = distance(ShapeRef(c.mesh), pose, ShapeRef(probe), pp);
       ++checked;
-      EXPECT_GE(mesh.result.signed_distance, outer.signed_distance - kTol) << c.name << " case " << k;
-      EXPECT_LE(mesh.result.signed_distance, inner.signed_distance + kTol) << c.name << " case " << k;
-      ASSERT_LT(mesh.a.triangle, c.mesh.triangle_count());
+      EXPECT_GE(mesh.signed_distance, outer.signed_distance - kTol) << c.name << " case " << k;
+      EXPECT_LE(mesh.signed_distance, inner.signed_distance + kTol) << c.name << " case " << k;
+      ASSERT_LT(mesh.sub_a.triangle, c.mesh.triangle_count());
       // Witnesses realise the distance and lie on the named triangle.
-      EXPECT_NEAR(glm::length(mesh.result.point_b - mesh.result.point_a), mesh.result.signed_distance, kTol);
-      const auto v = c.mesh.triangle(mesh.a.triangle);
+      EXPECT_NEAR(glm::length(mesh.point_b - mesh.point_a), mesh.signed_distance, kTol);
+      const auto v = c.mesh.triangle(mesh.sub_a.triangle);
       const auto tri = Triangle::create(v[0], v[1], v[2]).value();
-      EXPECT_LE(tri.closest_point(pose.inverse_apply(mesh.result.point_a)).signed_distance, kTol)
+      EXPECT_LE(tri.closest_point(pose.inverse_apply(mesh.point_a)).signed_distance, kTol)
           << c.name << " case " << k;
       // The same from the other side.
-      const GeometryDistance back = distance(GeometryRef(ShapeRef(probe)), pp, GeometryRef(c.mesh), pose);
-      EXPECT_NEAR(back.result.signed_distance, mesh.result.signed_distance, kTol);
-      EXPECT_EQ(back.b.triangle, mesh.a.triangle);
+      const DistanceResult back = distance(ShapeRef(probe), pp, ShapeRef(c.mesh), pose);
+      EXPECT_NEAR(back.signed_distance, mesh.signed_distance, kTol);
+      EXPECT_EQ(back.sub_b.triangle, mesh.sub_a.triangle);
     }
     EXPECT_GT(checked, 800) << c.name;
   }
@@ -145,7 +147,7 @@ TEST(TessellationConsistency, DistancesBracketedWhenSeparated) {
 
 /// Height of the support point of `s` (at `pose`) along the world direction `n`.
 Real support_height(const Shape& s, const Transform& pose, const Vec3& n) {
-  return std::visit([&](const auto& x) { return glm::dot(pose.apply(x.support(pose.inverse_apply_vector(n))), n); }, s);
+  return detail::visit_convex(s, [&](const auto& x) { return glm::dot(pose.apply(x.support(pose.inverse_apply_vector(n))), n); });
 }
 
 // Shallow penetrations. What holds for every contact of a mesh whose triangles lie inside the
@@ -176,8 +178,8 @@ TEST(TessellationConsistency, ShallowContactDepthsBracketed) {
       const DistanceResult outer = distance(ShapeRef(c.outer), pose, ShapeRef(probe), pp);
       const DistanceResult inner = distance(ShapeRef(c.inner), pose, ShapeRef(probe), pp);
       if (inner.signed_distance > -Real(0.002)) continue;  // the tessellation error ate the overlap
-      std::vector<GeometryContact> contacts;
-      collide_all(GeometryRef(c.mesh), pose, GeometryRef(ShapeRef(probe)), pp, request, contacts);
+      std::vector<ContactPoint> contacts;
+      test::collect_contacts(ShapeRef(c.mesh), pose, ShapeRef(probe), pp, request, contacts);
       ASSERT_FALSE(contacts.empty()) << c.name << " case " << k;
       // Brute force over every triangle, narrow phase per triangle.
       const Aabb probe_box = std::visit([&](const auto& x) { return x.world_aabb(pp); }, probe);
@@ -189,29 +191,29 @@ TEST(TessellationConsistency, ShallowContactDepthsBracketed) {
         brute = std::min(brute, distance(ShapeRef(*tri), pose, ShapeRef(probe), pp).signed_distance);
       }
       Real deepest = -std::numeric_limits<Real>::infinity();
-      for (const GeometryContact& gc : contacts) {
-        deepest = std::max(deepest, gc.contact.depth);
-        const Vec3 n = gc.contact.normal;
+      for (const ContactPoint& gc : contacts) {
+        deepest = std::max(deepest, gc.depth);
+        const Vec3 n = gc.normal;
         EXPECT_NEAR(glm::length(n), Real(1), kTol);
-        EXPECT_LT(gc.a.triangle, c.mesh.triangle_count());
-        EXPECT_LE(gc.contact.depth, support_height(c.outer, pose, n) + support_height(probe, pp, -n) + kTol)
+        EXPECT_LT(gc.sub_a.triangle, c.mesh.triangle_count());
+        EXPECT_LE(gc.depth, support_height(c.outer, pose, n) + support_height(probe, pp, -n) + kTol)
             << c.name << " case " << k;
-        const auto v = c.mesh.triangle(gc.a.triangle);
+        const auto v = c.mesh.triangle(gc.sub_a.triangle);
         const auto tri = Triangle::create(v[0], v[1], v[2]).value();
         const ContactManifold raw = collide(ShapeRef(tri), pose, ShapeRef(probe), pp, request);
         if (raw.count > 0 && glm::dot(raw.normal, n) > Real(1) - Real(1e-6)) {
-          EXPECT_LE(gc.contact.depth, -outer.signed_distance + kTol) << c.name << " case " << k;
+          EXPECT_LE(gc.depth, -outer.signed_distance + kTol) << c.name << " case " << k;
         }
       }
       ++checked;
       below_inner += deepest < -inner.signed_distance - kTol;
       EXPECT_GE(deepest, -brute - kTol) << c.name << " case " << k;
-      const GeometryDistance d = distance(GeometryRef(c.mesh), pose, GeometryRef(ShapeRef(probe)), pp);
-      EXPECT_NEAR(d.result.signed_distance, brute, kTol) << c.name << " case " << k;
-      EXPECT_LE(d.result.signed_distance, kTol) << c.name << " case " << k;
-      EXPECT_GE(d.result.signed_distance, outer.signed_distance - kTol) << c.name << " case " << k;
-      EXPECT_TRUE(intersect(GeometryRef(c.mesh), pose, GeometryRef(ShapeRef(probe)), pp));
-      const ContactManifold m = collide(GeometryRef(c.mesh), pose, GeometryRef(ShapeRef(probe)), pp);
+      const DistanceResult d = distance(ShapeRef(c.mesh), pose, ShapeRef(probe), pp);
+      EXPECT_NEAR(d.signed_distance, brute, kTol) << c.name << " case " << k;
+      EXPECT_LE(d.signed_distance, kTol) << c.name << " case " << k;
+      EXPECT_GE(d.signed_distance, outer.signed_distance - kTol) << c.name << " case " << k;
+      EXPECT_TRUE(intersect(ShapeRef(c.mesh), pose, ShapeRef(probe), pp));
+      const ContactManifold m = collide(ShapeRef(c.mesh), pose, ShapeRef(probe), pp);
       ASSERT_GT(m.count, 0);
       EXPECT_NEAR(m.points[0].depth, deepest, kTol);
     }

@@ -341,7 +341,7 @@ TEST(Query, EveryShapeTypeAnswersEveryShapeOperation) {
     {"type":"ellipsoid","radii":[1,2,3]},
     {"type":"convex","points":[[0,0,0],[1,0,0],[0,1,0],[0,0,1],[0.1,0.1,0.1]]},
     {"type":"halfspace","normal":[0,0,1],"offset":0.5}])");
-  ASSERT_EQ(shapes.size(), static_cast<std::size_t>(kShapeTypeCount));
+  ASSERT_EQ(shapes.size(), static_cast<std::size_t>(kConvexShapeTypeCount));
   test::Random rng(105);
   for (const Json& shape : shapes) {
     for (int i = 0; i < 50; ++i) {

@@ -10,6 +10,7 @@
 /// Moving B by `t * normal` changes the signed distance by `t` (for small t).
 
 #include <proxima/core/math.hpp>
+#include <proxima/core/sub_shape_id.hpp>
 
 #include <array>
 #include <cstdint>
@@ -72,7 +73,8 @@ struct PairCache {
   bool valid = false;              ///< false: nothing cached yet
 };
 
-/// Answer of `distance`: signed distance with witness points on each surface.
+/// Answer of `distance`: signed distance with witness points on each surface, and the parts
+/// of A and B (mesh triangle, compound child) that hold them.
 struct DistanceResult {
   Real signed_distance = Real(0);          ///< > 0 gap, < 0 penetration (= -depth), length units
   Vec3 point_a{Real(0)};                   ///< witness on A's surface, world frame
@@ -81,6 +83,8 @@ struct DistanceResult {
   PairStatus status = PairStatus::Separated;
   PairMethod method = PairMethod::Analytic;
   int iterations = 0;  ///< GJK + EPA iterations (0 for analytic routines)
+  SubShapeId sub_a;    ///< part of A holding point_a (kNoIndex fields for a convex A)
+  SubShapeId sub_b;    ///< part of B holding point_b
 };
 
 /// One contact point of a manifold.
@@ -94,6 +98,8 @@ struct ContactPoint {
   /// the same features touch, so a world can match contacts and warm-start impulses.
   /// See make_feature_id.
   std::uint32_t feature_id = 0;
+  SubShapeId sub_a;  ///< part of A this point lies on (kNoIndex fields for a convex A)
+  SubShapeId sub_b;  ///< part of B
 };
 
 /// Largest number of points in a manifold.
@@ -131,26 +137,35 @@ constexpr PairStatus status_from_distance(Real signed_distance, Real tolerance) 
                                         : PairStatus::Touching;
 }
 
-/// The result with A and B swapped: witnesses exchanged, normal negated.
+/// The result with A and B swapped: witnesses and parts exchanged, normal negated.
 inline DistanceResult mirrored(const DistanceResult& r) {
   DistanceResult m = r;
   m.point_a = r.point_b;
   m.point_b = r.point_a;
   m.normal = -r.normal;
+  m.sub_a = r.sub_b;
+  m.sub_b = r.sub_a;
   return m;
 }
 
-/// The manifold with A and B swapped: witnesses exchanged, normals negated, feature ids
-/// mirrored.
+/// The contact with A and B swapped: witnesses and parts exchanged, normal negated, feature
+/// id mirrored.
+inline ContactPoint mirrored(const ContactPoint& c) {
+  ContactPoint m = c;
+  m.point_a = c.point_b;
+  m.point_b = c.point_a;
+  m.normal = -c.normal;
+  m.feature_id = mirror_feature_id(c.feature_id);
+  m.sub_a = c.sub_b;
+  m.sub_b = c.sub_a;
+  return m;
+}
+
+/// The manifold with A and B swapped: every point mirrored, normal negated.
 inline ContactManifold mirrored(const ContactManifold& m) {
   ContactManifold f = m;
   f.normal = -m.normal;
-  for (int i = 0; i < m.count; ++i) {
-    f.points[i].point_a = m.points[i].point_b;
-    f.points[i].point_b = m.points[i].point_a;
-    f.points[i].normal = -m.points[i].normal;
-    f.points[i].feature_id = mirror_feature_id(m.points[i].feature_id);
-  }
+  for (int i = 0; i < m.count; ++i) f.points[i] = mirrored(m.points[i]);
   return f;
 }
 

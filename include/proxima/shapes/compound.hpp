@@ -1,19 +1,16 @@
 #pragma once
 /// @file compound.hpp
-/// Compound: an immutable, shared set of child geometries (convex shapes, triangle meshes or
-/// other compounds) at local poses, with a BVH over the children's boxes. A compound works
-/// wherever a geometry does (midphase/geometry.hpp, midphase/geometry_queries.hpp).
-
+/// Compound: an immutable, shared set of child shapes (convex shapes, triangle meshes or
+/// other compounds) at local poses, with a BVH over the children's boxes. A compound is a
+/// Shape like any other (shape.hpp, which defines CompoundChild) and answers every query
+/// through ShapeRef.
 #include <proxima/core/result.hpp>
 #include <proxima/core/transform.hpp>
+#include <proxima/shapes/mass_properties.hpp>
 #include <proxima/spatial/bvh.hpp>
-#include <proxima/shapes/triangle_mesh.hpp>
-#include <proxima/shapes/shape.hpp>
 
 #include <memory>
-#include <optional>
 #include <span>
-#include <variant>
 #include <vector>
 
 namespace proxima {
@@ -40,30 +37,15 @@ class Compound {
   /// (overlapping volume counts twice, as in Jolt and Bullet); open meshes contribute none.
   MassProperties mass_properties(Real density = Real(1)) const;
 
-  struct Data;  ///< the immutable shared data (children and BVH)
+  struct Data;  ///< the immutable shared data (children and BVH), defined in shape.hpp
 
  private:
   explicit Compound(std::shared_ptr<const Data> data) : data_(std::move(data)) {}
   std::shared_ptr<const Data> data_;
 };
 
-/// Any geometry, owning: a convex shape, a triangle mesh or a compound (meshes and
-/// compounds share their data, so copies are cheap).
-using Geometry = std::variant<Shape, TriangleMesh, Compound>;
-
-/// One child of a compound: its geometry and its pose in the compound's frame.
-struct CompoundChild {
-  Geometry geometry;  ///< the child geometry
-  Transform pose;     ///< child frame -> compound frame
-};
-
-/// The data behind a Compound.
-struct Compound::Data {
-  std::vector<CompoundChild> children;  ///< children in the order given
-  Bvh bvh;                              ///< over the children's boxes, compound frame
-};
-
-inline std::span<const CompoundChild> Compound::children() const { return data_->children; }
-inline const Bvh& Compound::bvh() const { return data_->bvh; }
-
 }  // namespace proxima
+
+// CompoundChild and Compound::Data hold a Shape, which holds a Compound: they are defined
+// in shape.hpp, included here so that including compound.hpp alone is enough.
+#include <proxima/shapes/shape.hpp>

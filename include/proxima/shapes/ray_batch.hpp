@@ -30,11 +30,11 @@ struct RayBatchOptions {
 };
 
 /// Closest hit of every ray: hits[i] is TriangleMesh::raycast(rays[i].ray, rays[i].max_t,
-/// culling), or a MeshRayHit with triangle == kNoIndex (and t = 0) for a miss. Returns the
+/// culling), or a RayHit with sub.triangle == kNoIndex (and t = 0) for a miss. Returns the
 /// number of rays that hit. Errors: InvalidArgument ("hits") when hits is shorter than rays.
 /// O(R log n / threads); the calling thread works as one of the threads; no allocation
 /// besides the std::thread objects.
-Result<std::size_t> raycast_batch(const TriangleMesh& mesh, std::span<const BatchRay> rays, std::span<MeshRayHit> hits,
+Result<std::size_t> raycast_batch(const TriangleMesh& mesh, std::span<const BatchRay> rays, std::span<RayHit> hits,
                                   const RayBatchOptions& options = {});
 
 }  // namespace proxima

@@ -5,6 +5,7 @@
 /// one mesh can be used by many objects.
 
 #include <proxima/core/result.hpp>
+#include <proxima/core/sub_shape_id.hpp>
 #include <proxima/core/transform.hpp>
 #include <proxima/geometry/aabb.hpp>
 #include <proxima/geometry/ray.hpp>
@@ -32,9 +33,6 @@ namespace detail {
 struct OrientedTree;  // oriented node bounds for mesh-mesh queries (src/midphase/oriented_tree.hpp)
 }  // namespace detail
 
-/// Marks "no triangle / no neighbour / no child".
-inline constexpr std::uint32_t kNoIndex = 0xffffffffu;
-
 /// Which triangle sides a ray may hit. The front side is the one the normal
 /// (b - a) x (c - a) points to.
 enum class FaceCulling : std::uint8_t {
@@ -49,13 +47,6 @@ enum class RayTraversal : std::uint8_t {
   Wide,    ///< the 4-wide hierarchy collapsed from bvh() (four child boxes per SSE slab test,
            ///< float boxes rounded outward), falling back to Binary for rays it cannot bound
   Binary,  ///< the binary bvh(), one box at a time: the scalar reference of Wide
-};
-
-/// A ray hit on a mesh: the hit (t, point, normal facing the ray origin; local frame of the
-/// mesh unless transformed) and which triangle.
-struct MeshRayHit {
-  RayHit hit;                         ///< t, point, normal
-  std::uint32_t triangle = kNoIndex;  ///< triangle index in TriangleMesh::triangles()
 };
 
 /// How TriangleMesh::create treats its input.
@@ -119,14 +110,15 @@ class TriangleMesh {
 
   /// Closest hit of `ray` (local frame) within [0, max_t]: watertight (a ray through a
   /// shared edge or vertex never slips through), ties broken by the lower triangle index.
-  /// `traversal` picks the hierarchy (same answer either way). O(log n) typical.
-  std::optional<MeshRayHit> raycast(const Ray& ray, Real max_t, FaceCulling culling = FaceCulling::None,
+  /// The hit's normal faces the ray origin; `sub.triangle` is the triangle index in
+  /// triangles(). `traversal` picks the hierarchy (same answer either way). O(log n) typical.
+  std::optional<RayHit> raycast(const Ray& ray, Real max_t, FaceCulling culling = FaceCulling::None,
                                     RayTraversal traversal = RayTraversal::Wide) const;
   /// True when the ray hits any triangle within [0, max_t] (stops at the first found).
   bool raycast_any(const Ray& ray, Real max_t, FaceCulling culling = FaceCulling::None,
                    RayTraversal traversal = RayTraversal::Wide) const;
   /// Appends every hit within [0, max_t] to `hits`, sorted by t then triangle index.
-  void raycast_all(const Ray& ray, Real max_t, std::vector<MeshRayHit>& hits, FaceCulling culling = FaceCulling::None,
+  void raycast_all(const Ray& ray, Real max_t, std::vector<RayHit>& hits, FaceCulling culling = FaceCulling::None,
                    RayTraversal traversal = RayTraversal::Wide) const;
 
   /// For a closed mesh: true when `point` (local) is inside, or within

@@ -1,8 +1,8 @@
 #pragma once
-/// @file geometry_dispatch.hpp
-/// Internal helpers of the midphase geometry layer: calling a generic lambda with the
-/// concrete type behind a ShapeRef, and distances between boxes used as lower bounds when
-/// pruning hierarchies.
+/// @file shape_visit.hpp
+/// Internal: calling a generic lambda with the concrete convex type behind a ShapeRef (for
+/// code that needs members only convex shapes have, such as support), and the distance
+/// between two boxes used as a lower bound when pruning hierarchies.
 
 #include <proxima/geometry/aabb.hpp>
 #include <proxima/shapes/shape_ref.hpp>
@@ -12,7 +12,8 @@
 
 namespace proxima::detail {
 
-/// Calls `f(concrete_shape)` with the shape `s` refers to (one switch, no allocation).
+/// Calls `f(concrete_shape)` with the convex shape `s` views (one switch, no allocation);
+/// `s` must be convex (is_convex(s.type())).
 template <class F>
 decltype(auto) visit_convex(ShapeRef s, F&& f) {
   switch (s.type()) {
@@ -26,7 +27,7 @@ decltype(auto) visit_convex(ShapeRef s, F&& f) {
     case ShapeType::Cone: return f(s.as<Cone>());
     case ShapeType::Ellipsoid: return f(s.as<Ellipsoid>());
     case ShapeType::ConvexHull: return f(s.as<ConvexHull>());
-    default: return f(s.as<HalfSpace>());
+    default: PROXIMA_ASSERT(s.type() == ShapeType::HalfSpace); return f(s.as<HalfSpace>());
   }
 }
 

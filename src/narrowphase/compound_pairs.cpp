@@ -1,0 +1,220 @@
+/// @file compound_pairs.cpp
+/// A compound against any shape, and the reduction of a composite pair's contacts to one
+/// manifold.
+///
+/// Steps:
+///  1. A compound against a non-compound: the other side's box is mapped into the compound's
+///     frame; the compound's BVH is walked for the children whose boxes overlap it (inflated
+///     by the contact distance), each child answered at its pose through the dispatch table
+///     (nested compounds included) and tagged with its top-level child index. Distance walks
+///     the BVH nearer node first and prunes nodes whose box gap is not below the best answer
+///     (branch and bound; the best so far is passed down as a cutoff, so nested parts prune
+///     against the global best).
+///  2. Compound against compound (boolean, contacts): simultaneous descent of both BVHs over
+///     node pairs (B's node box mapped into A's frame, Arvo's box of a rotated box), the
+///     larger node split first, fixed stack; leaf pairs recurse on child pairs. Distance
+///     descends A's BVH and answers each child against B (which descends B's BVH), sharing
+///     the cutoff.
+///  3. The manifold of a composite pair: collide_all, then the deepest contact's normal
+///     becomes the manifold normal; contacts whose normal is within about 26 degrees of it
+///     (cosine >= 0.9) are candidates, their depths projected on that normal (point_b moved
+///     to keep point_b = point_a - depth * normal), and narrow::reduce_contacts keeps at most
+///     max_contacts of them: deepest, farthest from it, largest triangle, largest
+///     quadrilateral (Gregorius, GDC 2015). Feature ids are mixed with the sub-shape ids so
+///     that points from different parts keep distinct ids.
+
+#include "compound_pairs.hpp"
+
+#include <proxima/core/tolerance.hpp>
+#include <proxima/narrowphase/narrowphase.hpp>
+#include <proxima/shapes/shape_queries.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "collector_adapters.hpp"
+#include "dispatch.hpp"
+#include "manifold_reduction.hpp"
+#include "shapes/shape_visit.hpp"
+
+namespace proxima::narrow {
+namespace {
+
+/// Calls leaf(i, j) for every pair of children of A and B whose BVH leaves overlap (B's node
+/// boxes mapped into A's frame, A's boxes inflated by `margin`). leaf returns false to stop;
+/// returns false when stopped.
+template <class Leaf>
+bool pair_descent(const Compound& a, const Transform& pose_a, const Compound& b, const Transform& pose_b, Real margin,
+                  Leaf&& leaf) {
+  const auto na = a.bvh().nodes(), nb = b.bvh().nodes();
+  const auto pa = a.bvh().primitives(), pb = b.bvh().primitives();
+  if (na.empty() || nb.empty()) return true;
+  const Transform rel = relative(pose_a, pose_b);
+  const auto overlap = [&](std::uint32_t i, std::uint32_t j) {
+    return na[i].bounds().inflated(margin).overlaps(nb[j].bounds().transformed(rel));
+  };
+  struct Pair {
+    std::uint32_t i, j;
+  };
+  Pair stack[2 * Bvh::kMaxDepth + 4];
+  std::uint32_t top = 0;
+  if (!overlap(0, 0)) return true;
+  stack[top++] = {0, 0};
+  while (top != 0) {
+    const Pair p = stack[--top];
+    const BvhNode& x = na[p.i];
+    const BvhNode& y = nb[p.j];
+    if (x.is_leaf() && y.is_leaf()) {
+      for (std::uint32_t s = x.first; s != x.first + x.count; ++s)
+        for (std::uint32_t t = y.first; t != y.first + y.count; ++t)
+          if (!leaf(pa[s], pb[t])) return false;
+      continue;
+    }
+    const bool split_a = !x.is_leaf() && (y.is_leaf() || x.bounds().surface_area() >= y.bounds().surface_area());
+    for (std::uint32_t c = 0; c != 2; ++c) {
+      const Pair q = split_a ? Pair{x.first + 1 - c, p.j} : Pair{p.i, y.first + 1 - c};
+      if (overlap(q.i, q.j)) stack[top++] = q;
+    }
+  }
+  return true;
+}
+
+std::uint32_t mix_sub_ids(const ContactPoint& c) {
+  std::uint32_t h = 0x811c9dc5u;
+  for (std::uint32_t x : {c.sub_a.child, c.sub_a.triangle, c.sub_b.child, c.sub_b.triangle}) h = (h ^ x) * 0x01000193u;
+  return h;
+}
+
+}  // namespace
+
+DistanceResult distance_below(ShapeRef a, const Transform& pose_a, ShapeRef b, const Transform& pose_b,
+                              const PairRequest& request, Real cutoff) {
+  return pair_functions(a.type(), b.type()).distance(a.data(), pose_a, b.data(), pose_b, request, nullptr, cutoff);
+}
+
+bool compound_intersect(const Compound& a, const Transform& pa, ShapeRef b, const Transform& pb,
+                        const PairRequest& req) {
+  const auto kids = a.children();
+  if (b.type() == ShapeType::Compound) {
+    bool hit = false;
+    const auto kb = b.as<Compound>().children();
+    pair_descent(a, pa, b.as<Compound>(), pb, req.contact_distance, [&](std::uint32_t i, std::uint32_t j) {
+      hit = intersect(kids[i].shape, pa * kids[i].pose, kb[j].shape, pb * kb[j].pose, req);
+      return !hit;
+    });
+    return hit;
+  }
+  const Aabb box = world_aabb(b, relative(pa, pb)).inflated(req.contact_distance);
+  bool hit = false;
+  a.bvh().traverse([&](const BvhNode& n) { return n.bounds().overlaps(box); },
+                   [&](std::uint32_t i) {
+                     hit = intersect(kids[i].shape, pa * kids[i].pose, b, pb, req);
+                     return !hit;
+                   });
+  return hit;
+}
+
+DistanceResult compound_distance(const Compound& a, const Transform& pa, ShapeRef b, const Transform& pb,
+                                 const PairRequest& req, Real cutoff) {
+  DistanceResult best;
+  best.signed_distance = std::numeric_limits<Real>::infinity();
+  Real bound = cutoff;
+  const auto nodes = a.bvh().nodes();
+  const auto prims = a.bvh().primitives();
+  const auto kids = a.children();
+  if (nodes.empty()) return best;
+  const Aabb box = world_aabb(b, relative(pa, pb));
+  struct Entry {
+    std::uint32_t node;
+    Real gap;
+  };
+  Entry stack[Bvh::kMaxDepth + 2];
+  std::uint32_t top = 0;
+  stack[top++] = {0, detail::aabb_gap(nodes[0].bounds(), box)};
+  while (top != 0) {
+    const Entry e = stack[--top];
+    if (e.gap > bound && e.gap > Real(0)) continue;  // a box gap bounds gaps, not depths
+    const BvhNode& node = nodes[e.node];
+    if (node.is_leaf()) {
+      for (std::uint32_t s = node.first; s != node.first + node.count; ++s) {
+        const std::uint32_t i = prims[s];
+        const DistanceResult d = distance_below(kids[i].shape, pa * kids[i].pose, b, pb, req, bound);
+        if (d.signed_distance < bound || (d.signed_distance == bound && i < best.sub_a.child)) {
+          best = d;
+          best.sub_a.child = i;
+          bound = d.signed_distance;
+        }
+      }
+      continue;
+    }
+    const std::uint32_t l = node.first, r = node.first + 1;
+    const Real gl = detail::aabb_gap(nodes[l].bounds(), box), gr = detail::aabb_gap(nodes[r].bounds(), box);
+    if (gl <= gr) {
+      if (gr <= bound || gr <= Real(0)) stack[top++] = {r, gr};
+      if (gl <= bound || gl <= Real(0)) stack[top++] = {l, gl};
+    } else {
+      if (gl <= bound || gl <= Real(0)) stack[top++] = {l, gl};
+      if (gr <= bound || gr <= Real(0)) stack[top++] = {r, gr};
+    }
+  }
+  return best;
+}
+
+void compound_collide_all(const Compound& a, const Transform& pa, ShapeRef b, const Transform& pb,
+                          const PairRequest& req, ContactCollector& collector) {
+  const auto kids = a.children();
+  if (b.type() == ShapeType::Compound) {
+    const auto kb = b.as<Compound>().children();
+    pair_descent(a, pa, b.as<Compound>(), pb, req.contact_distance, [&](std::uint32_t i, std::uint32_t j) {
+      ChildPairCollector tagged(collector, i, j);
+      collide_all(kids[i].shape, pa * kids[i].pose, kb[j].shape, pb * kb[j].pose, req, tagged);
+      return !collector.done();
+    });
+    return;
+  }
+  const Aabb box = world_aabb(b, relative(pa, pb)).inflated(req.contact_distance);
+  a.bvh().traverse([&](const BvhNode& n) { return n.bounds().overlaps(box); },
+                   [&](std::uint32_t i) {
+                     ChildOfACollector tagged(collector, i);
+                     collide_all(kids[i].shape, pa * kids[i].pose, b, pb, req, tagged);
+                     return !collector.done();
+                   });
+}
+
+ContactManifold reduced_manifold(ShapeRef a, const Transform& pose_a, ShapeRef b, const Transform& pose_b,
+                                 const PairRequest& request) {
+  thread_local ContactVector all;
+  thread_local std::vector<ContactPoint> candidates;
+  all.contacts.clear();
+  candidates.clear();
+  collide_all(a, pose_a, b, pose_b, request, all);
+  ContactManifold m;
+  const std::vector<ContactPoint>& found = all.contacts;
+  if (found.empty()) return m;
+  std::size_t deepest = 0;
+  for (std::size_t k = 1; k < found.size(); ++k)
+    if (found[k].depth > found[deepest].depth) deepest = k;
+  const Vec3 n = found[deepest].normal;
+  for (const ContactPoint& c : found) {
+    const Real cosine = glm::dot(c.normal, n);
+    if (cosine < Real(0.9)) continue;
+    ContactPoint p = c;
+    p.depth = c.depth * cosine;
+    p.normal = n;
+    p.point_b = p.point_a - p.depth * n;
+    p.feature_id ^= mix_sub_ids(c);
+    candidates.push_back(p);
+  }
+  m.count = reduce_contacts(candidates, n, std::clamp(request.max_contacts, 1, kMaxContactPoints), m.points);
+  m.normal = n;
+  const ContactPoint& top = m.points[0];
+  const Real scale = std::max({std::abs(top.point_a.x), std::abs(top.point_a.y), std::abs(top.point_a.z)});
+  const Real tol = request.tolerance > Real(0) ? request.tolerance : linear_tolerance(scale);
+  m.status = status_from_distance(-top.depth, tol);
+  m.method = PairMethod::Analytic;
+  return m;
+}
+
+}  // namespace proxima::narrow

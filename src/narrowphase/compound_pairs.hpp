@@ -1,0 +1,36 @@
+#pragma once
+/// @file compound_pairs.hpp
+/// Internal: a compound (side A) against any shape (side B), and the reduction of a
+/// composite pair's contacts to one manifold; reached through the dispatch table of
+/// dispatch.cpp, which mirrors these for the cells with the compound on side B.
+#include <proxima/narrowphase/contact.hpp>
+#include <proxima/narrowphase/contact_collector.hpp>
+#include <proxima/shapes/shape_ref.hpp>
+
+namespace proxima::narrow {
+
+/// True when a child of `a` touches B (within request.contact_distance).
+bool compound_intersect(const Compound& a, const Transform& pose_a, ShapeRef b, const Transform& pose_b,
+                        const PairRequest& request);
+
+/// Minimum signed distance over the children of `a` against B, searching only for answers
+/// below `cutoff` (+infinity when none is); sub_a.child names the child.
+DistanceResult compound_distance(const Compound& a, const Transform& pose_a, ShapeRef b, const Transform& pose_b,
+                                 const PairRequest& request, Real cutoff);
+
+/// Every contact of the children of `a` against B, each tagged with its child in sub_a
+/// (and B's child in sub_b when B is a compound too).
+void compound_collide_all(const Compound& a, const Transform& pose_a, ShapeRef b, const Transform& pose_b,
+                          const PairRequest& request, ContactCollector& collector);
+
+/// The manifold of a pair with a mesh or compound side: collide_all, then the contacts
+/// within about 26 degrees of the deepest one's normal reduced to request.max_contacts.
+ContactManifold reduced_manifold(ShapeRef a, const Transform& pose_a, ShapeRef b, const Transform& pose_b,
+                                 const PairRequest& request);
+
+/// distance() with a cutoff: the dispatch table's cell, for the branch and bound across the
+/// parts of composite shapes.
+DistanceResult distance_below(ShapeRef a, const Transform& pose_a, ShapeRef b, const Transform& pose_b,
+                              const PairRequest& request, Real cutoff);
+
+}  // namespace proxima::narrow
