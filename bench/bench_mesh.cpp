@@ -36,7 +36,7 @@
 
 #include "bench_main.hpp"
 #if PROXIMA_HAVE_EMBREE
-#include "embree_scene.hpp"
+#include "support/embree_scene.hpp"
 #endif
 #include "support/workloads.hpp"
 

@@ -20,7 +20,7 @@
 #include "support/random.hpp"
 
 #if PROXIMA_HAVE_EMBREE && defined(PROXIMA_DEFAULT_WORKLOAD_DIR)
-#include "embree_scene.hpp"
+#include "support/embree_scene.hpp"
 #include "support/workloads.hpp"
 
 namespace proxima {
