@@ -17,9 +17,9 @@
 
 #include <benchmark/benchmark.h>
 
-#include <proxima/spatial/bvh.hpp>
 #include <proxima/shapes/ray_batch.hpp>
 #include <proxima/shapes/triangle_mesh.hpp>
+#include <proxima/spatial/bvh.hpp>
 
 #if PROXIMA_HAVE_BULLET
 #include <BulletCollision/CollisionShapes/btBvhTriangleMeshShape.h>

@@ -20,9 +20,9 @@
 
 #include <proxima/shapes/triangle_mesh.hpp>
 
+#include "bench_main.hpp"
 #include "narrowphase/mesh_mesh.hpp"
 #include "shapes/oriented_tree.hpp"
-#include "bench_main.hpp"
 #include "support/workloads.hpp"
 
 #if PROXIMA_HAVE_FCL

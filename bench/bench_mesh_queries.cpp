@@ -29,9 +29,9 @@
 #include <string>
 #include <vector>
 
+#include "bench_main.hpp"
 #include "shapes/mesh_point_queries.hpp"
 #include "support/solid_test_meshes.hpp"
-#include "bench_main.hpp"
 #include "support/workloads.hpp"
 
 namespace pb = proxima::bench;

@@ -156,7 +156,7 @@ PlacedShape read_placed_geometry(const Json& value, const std::string& path) {
   if (find_member(value, "type") != nullptr) return PlacedShape{read_geometry(value, path), Transform::identity()};
   reject_unknown_fields(value, path, {"shape", "pose"});
   PlacedShape placed{read_geometry(require_member(value, path, "shape"), join_path(path, "shape")),
-                        Transform::identity()};
+                     Transform::identity()};
   if (const Json* pose = find_member(value, "pose")) placed.pose = read_pose(*pose, join_path(path, "pose"));
   return placed;
 }

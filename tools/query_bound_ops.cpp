@@ -98,19 +98,19 @@ Json op_bound(const Json& request) {
         if constexpr (!is_convex(kShapeTypeOf<S>)) {
           return;  // answered by geometry_bound above
         } else {
-        if (name == "aabb") return put_volume(answer, fit_shape_aabb(shape, pose));
-        if (name == "sphere") return put_volume(answer, fit_shape_sphere(shape, pose));
-        if constexpr (S::kType == ShapeType::HalfSpace) {
-          throw FieldError("target.shape.type", "unbounded",
-                           "a halfspace is unbounded: only the aabb and sphere bounds exist");
-        } else {
-          if (name == "obb") return put_volume(answer, fit_shape_obb(shape, pose));
-          if (name == "capsule") return put_volume(answer, fit_shape_capsule(shape, pose));
-          if (name == "kdop6") return put_volume(answer, fit_shape_kdop<6>(shape, pose));
-          if (name == "kdop14") return put_volume(answer, fit_shape_kdop<14>(shape, pose));
-          if (name == "kdop18") return put_volume(answer, fit_shape_kdop<18>(shape, pose));
-          return put_volume(answer, fit_shape_kdop<26>(shape, pose));
-        }
+          if (name == "aabb") return put_volume(answer, fit_shape_aabb(shape, pose));
+          if (name == "sphere") return put_volume(answer, fit_shape_sphere(shape, pose));
+          if constexpr (S::kType == ShapeType::HalfSpace) {
+            throw FieldError("target.shape.type", "unbounded",
+                             "a halfspace is unbounded: only the aabb and sphere bounds exist");
+          } else {
+            if (name == "obb") return put_volume(answer, fit_shape_obb(shape, pose));
+            if (name == "capsule") return put_volume(answer, fit_shape_capsule(shape, pose));
+            if (name == "kdop6") return put_volume(answer, fit_shape_kdop<6>(shape, pose));
+            if (name == "kdop14") return put_volume(answer, fit_shape_kdop<14>(shape, pose));
+            if (name == "kdop18") return put_volume(answer, fit_shape_kdop<18>(shape, pose));
+            return put_volume(answer, fit_shape_kdop<26>(shape, pose));
+          }
         }
       },
       target.shape);

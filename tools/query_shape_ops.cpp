@@ -4,7 +4,6 @@
 #include <proxima/shapes/shape_queries.hpp>
 
 #include <type_traits>
-
 #include <variant>
 
 #include "json_shapes.hpp"

@@ -28,7 +28,6 @@ std::optional<Error> validate_points(std::span<const Vec3> points, const std::st
   return std::nullopt;
 }
 
-
 Obb fit_obb_to_frame(std::span<const Vec3> points, const glm::dmat3& frame) {
   const glm::dmat3 q = orthonormalize(frame);
   Mat3 axes;

@@ -7,8 +7,6 @@
 #include <proxima/core/math.hpp>
 #include <proxima/core/result.hpp>
 
-#include "geometry/eigen_frame.hpp"
-
 #include <glm/mat3x3.hpp>
 #include <glm/vec3.hpp>
 
@@ -16,6 +14,8 @@
 #include <optional>
 #include <span>
 #include <string>
+
+#include "geometry/eigen_frame.hpp"
 
 namespace proxima::detail {
 

@@ -16,8 +16,8 @@
 //     / 2 <= R step^2 / 8 of the arc), so growing every sampled point into a cube of that half
 //     side makes the hull of the samples contain every placement.
 
-#include <proxima/core/tolerance.hpp>
 #include <proxima/ccd/movement_bounds.hpp>
+#include <proxima/core/tolerance.hpp>
 
 #include <algorithm>
 #include <array>

@@ -13,6 +13,8 @@
 /// Cell (A, B) with A after B (in ShapeType order; a compound side always goes first, a mesh
 /// side before a convex one) calls the (B, A) routine and mirrors its answer (witnesses and
 /// parts swapped, normal negated; intersect unchanged).
+#include "dispatch.hpp"
+
 #include <proxima/narrowphase/narrowphase.hpp>
 #include <proxima/shapes/placed.hpp>
 
@@ -23,7 +25,6 @@
 #include <type_traits>
 #include <utility>
 
-#include "dispatch.hpp"
 #include "pair_table.hpp"
 // Closed-form routines first, so that the generic templates below see them.
 #include "pairs_halfspace.hpp"
@@ -135,11 +136,11 @@ void cell_collide_all_convex(const void* a, const Transform& pose_a, const void*
 template <class A, class B>
 constexpr PairFunctions convex_cell() {
   if constexpr (kShapeTypeOf<A> <= kShapeTypeOf<B>) {
-    return PairFunctions{&cell_intersect_direct<A, B>, &cell_distance_direct<A, B>, &cell_collide_direct<A, B>,
-                         &cell_collide_all_convex<A, B>, kAnalyticPair<A, B>, false};
+    return PairFunctions{&cell_intersect_direct<A, B>,   &cell_distance_direct<A, B>, &cell_collide_direct<A, B>,
+                         &cell_collide_all_convex<A, B>, kAnalyticPair<A, B>,         false};
   } else {
     return PairFunctions{&cell_intersect_mirrored<A, B>, &cell_distance_mirrored<A, B>, &cell_collide_mirrored<A, B>,
-                         &cell_collide_all_convex<A, B>, kAnalyticPair<B, A>, true};
+                         &cell_collide_all_convex<A, B>, kAnalyticPair<B, A>,           true};
   }
 }
 
@@ -181,8 +182,8 @@ void composite_collide_all(const A& a, const Transform& pa, const B& b, const Tr
 /// Whether the composite routine for (A, B) runs as written (else as (B, A), mirrored): a
 /// compound side goes first, then a mesh side.
 template <class A, class B>
-inline constexpr bool kCompositeDirect =
-    std::is_same_v<A, Compound> || (std::is_same_v<A, TriangleMesh> && !std::is_same_v<B, Compound>);
+inline constexpr bool kCompositeDirect = std::is_same_v<A, Compound> ||
+                                         (std::is_same_v<A, TriangleMesh> && !std::is_same_v<B, Compound>);
 
 template <class A, class B>
 struct CompositeCell {

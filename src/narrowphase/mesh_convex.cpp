@@ -81,8 +81,8 @@ Aabb convex_box_in_mesh(ShapeRef convex, const Transform& pose_mesh, const Trans
 }
 
 Vec3 world_support(ShapeRef convex, const Transform& pose, const Vec3& world_direction) {
-  return detail::visit_convex(convex,
-                      [&](const auto& s) { return pose.apply(s.support(pose.inverse_apply_vector(world_direction))); });
+  return detail::visit_convex(
+      convex, [&](const auto& s) { return pose.apply(s.support(pose.inverse_apply_vector(world_direction))); });
 }
 
 /// Which feature of triangle (a, b, c) holds `p` (mesh frame): 0 face, 1 edge, 2 vertex;
@@ -213,7 +213,7 @@ bool halfspace_intersect(const TriangleMesh& mesh, const Transform& pose_mesh, c
 }
 
 DistanceResult halfspace_distance(const TriangleMesh& mesh, const Transform& pose_mesh, const HalfSpace& h,
-                                    const Transform& pose_h, const PairRequest& request, Real cutoff) {
+                                  const Transform& pose_h, const PairRequest& request, Real cutoff) {
   const LocalPlane p = local_plane(h, pose_h, pose_mesh);
   const auto verts = mesh.vertices();
   const auto tris = mesh.triangles();
@@ -302,7 +302,7 @@ bool mesh_convex_intersect(const TriangleMesh& mesh, const Transform& pose_mesh,
 }
 
 DistanceResult mesh_convex_distance(const TriangleMesh& mesh, const Transform& pose_mesh, ShapeRef convex,
-                                      const Transform& pose_convex, const PairRequest& request, Real cutoff) {
+                                    const Transform& pose_convex, const PairRequest& request, Real cutoff) {
   if (convex.type() == ShapeType::HalfSpace)
     return halfspace_distance(mesh, pose_mesh, convex.as<HalfSpace>(), pose_convex, request, cutoff);
   DistanceResult best;
@@ -352,8 +352,7 @@ DistanceResult mesh_convex_distance(const TriangleMesh& mesh, const Transform& p
 }
 
 void mesh_convex_collide_all(const TriangleMesh& mesh, const Transform& pose_mesh, ShapeRef convex,
-                             const Transform& pose_convex, const PairRequest& request,
-                             ContactCollector& collector) {
+                             const Transform& pose_convex, const PairRequest& request, ContactCollector& collector) {
   if (convex.type() == ShapeType::HalfSpace) {
     halfspace_collide_all(mesh, pose_mesh, convex.as<HalfSpace>(), pose_convex, request, collector);
     return;

@@ -19,12 +19,11 @@ bool mesh_convex_intersect(const TriangleMesh& mesh, const Transform& pose_mesh,
 /// Minimum signed distance over the triangles; only answers below `cutoff` are searched
 /// for (signed_distance = +infinity when none is). Ties go to the lower triangle index.
 DistanceResult mesh_convex_distance(const TriangleMesh& mesh, const Transform& pose_mesh, ShapeRef convex,
-                                      const Transform& pose_convex, const PairRequest& request, Real cutoff);
+                                    const Transform& pose_convex, const PairRequest& request, Real cutoff);
 
 /// Adds the contacts of every triangle within request.contact_distance to `collector` (the
 /// triangle in sub_a), with internal-edge handling (see the .cpp file); stops when it is done.
 void mesh_convex_collide_all(const TriangleMesh& mesh, const Transform& pose_mesh, ShapeRef convex,
-                             const Transform& pose_convex, const PairRequest& request,
-                             ContactCollector& collector);
+                             const Transform& pose_convex, const PairRequest& request, ContactCollector& collector);
 
 }  // namespace proxima::narrow

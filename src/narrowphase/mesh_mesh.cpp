@@ -572,7 +572,7 @@ namespace {
 /// The distance descent with node test `nodes` (see mesh_mesh_distance).
 template <class Nodes>
 DistanceResult distance_descent(const TriangleMesh& a, const Transform& pose_a, const TriangleMesh& b,
-                                  const PairRequest& request, const RelativeFrame& f, const Nodes& nodes) {
+                                const PairRequest& request, const RelativeFrame& f, const Nodes& nodes) {
   DistanceResult out;
   const Real scale = pair_scale(a, b, f);
   const Bvh& ba = a.bvh();
@@ -709,7 +709,7 @@ DistanceResult distance_descent(const TriangleMesh& a, const Transform& pose_a, 
 }  // namespace
 
 DistanceResult mesh_mesh_distance(const TriangleMesh& a, const Transform& pose_a, const TriangleMesh& b,
-                                    const Transform& pose_b, const PairRequest& request, MeshMeshNodes node_kind) {
+                                  const Transform& pose_b, const PairRequest& request, MeshMeshNodes node_kind) {
   const RelativeFrame f = make_frame(pose_a, pose_b);
   return with_nodes(node_kind, a, b, f,
                     [&](const auto& nodes) { return distance_descent(a, pose_a, b, request, f, nodes); });

@@ -28,8 +28,8 @@ bool mesh_mesh_intersect(const TriangleMesh& a, const Transform& pose_a, const T
 /// sides; sub.child left at kNoIndex for the caller to fill); 0 (status Touching) when the
 /// surfaces cross: meshes are surfaces here, no penetration depth is computed.
 DistanceResult mesh_mesh_distance(const TriangleMesh& a, const Transform& pose_a, const TriangleMesh& b,
-                                    const Transform& pose_b, const PairRequest& request,
-                                    MeshMeshNodes nodes = MeshMeshNodes::Oriented);
+                                  const Transform& pose_b, const PairRequest& request,
+                                  MeshMeshNodes nodes = MeshMeshNodes::Oriented);
 
 /// Adds the contacts of every triangle pair within request.contact_distance to `collector`
 /// (parts in sub_a / sub_b), stopping when it is done.

@@ -31,8 +31,8 @@ ContactManifold collide(ShapeRef a, const Transform& pose_a, ShapeRef b, const T
   return narrow::pair_functions(a.type(), b.type()).collide(a.data(), pose_a, b.data(), pose_b, request, cache);
 }
 
-void collide_all(ShapeRef a, const Transform& pose_a, ShapeRef b, const Transform& pose_b,
-                 const PairRequest& request, ContactCollector& collector) {
+void collide_all(ShapeRef a, const Transform& pose_a, ShapeRef b, const Transform& pose_b, const PairRequest& request,
+                 ContactCollector& collector) {
   narrow::pair_functions(a.type(), b.type()).collide_all(a.data(), pose_a, b.data(), pose_b, request, collector);
 }
 

@@ -15,7 +15,6 @@
 #include <type_traits>
 #include <utility>
 
-
 namespace proxima {
 
 Result<Compound> Compound::create(std::vector<CompoundChild> children, const BvhBuildOptions& bvh) {
@@ -49,8 +48,7 @@ Result<Compound> Compound::create(std::vector<CompoundChild> children, const Bvh
 
 Aabb Compound::world_aabb(const Transform& pose) const {
   Aabb box = Aabb::empty();
-  for (const CompoundChild& child : children())
-    box.grow(proxima::world_aabb(child.shape, pose * child.pose));
+  for (const CompoundChild& child : children()) box.grow(proxima::world_aabb(child.shape, pose * child.pose));
   return box;
 }
 

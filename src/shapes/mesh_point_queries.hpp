@@ -4,10 +4,10 @@
 // mass_properties and testable without a TriangleMesh.
 
 #include <proxima/shapes/bsp_polyhedron.hpp>
-#include <proxima/spatial/bvh.hpp>
 #include <proxima/shapes/indexed_mesh.hpp>
 #include <proxima/shapes/mass_properties.hpp>
 #include <proxima/shapes/surface_point.hpp>
+#include <proxima/spatial/bvh.hpp>
 
 #include <array>
 #include <cstdint>

@@ -27,8 +27,8 @@
 /// component, an origin beyond 1e30) and meshes whose bounds exceed 1e30 use the binary
 /// traversal instead.
 
-#include <proxima/spatial/bvh.hpp>
 #include <proxima/shapes/triangle_mesh.hpp>
+#include <proxima/spatial/bvh.hpp>
 
 #include <array>
 #include <bit>

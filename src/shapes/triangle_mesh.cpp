@@ -517,7 +517,7 @@ void closest_binary(const TriangleMesh::Data& d, const Ray& ray, const MeshRay& 
 }  // namespace
 
 std::optional<RayHit> TriangleMesh::raycast(const Ray& ray, Real max_t, FaceCulling culling,
-                                                RayTraversal traversal) const {
+                                            RayTraversal traversal) const {
   const Data& d = *data_;
   if (d.bvh.empty() || !(max_t >= Real(0))) return std::nullopt;
   ClosestHit closest(max_t);
@@ -576,10 +576,9 @@ void TriangleMesh::raycast_all(const Ray& ray, Real max_t, std::vector<RayHit>& 
                        }
                        return true;
                      });
-  std::sort(hits.begin() + static_cast<std::ptrdiff_t>(start), hits.end(),
-            [](const RayHit& x, const RayHit& y) {
-              return x.t < y.t || (x.t == y.t && x.sub.triangle < y.sub.triangle);
-            });
+  std::sort(hits.begin() + static_cast<std::ptrdiff_t>(start), hits.end(), [](const RayHit& x, const RayHit& y) {
+    return x.t < y.t || (x.t == y.t && x.sub.triangle < y.sub.triangle);
+  });
 }
 
 }  // namespace proxima

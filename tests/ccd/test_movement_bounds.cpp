@@ -13,8 +13,8 @@
 // of a rotating box (its ball about the origin).
 #include <gtest/gtest.h>
 
-#include <proxima/core/tolerance.hpp>
 #include <proxima/ccd/movement_bounds.hpp>
+#include <proxima/core/tolerance.hpp>
 #include <proxima/shapes/cylinder.hpp>
 #include <proxima/shapes/placed.hpp>
 

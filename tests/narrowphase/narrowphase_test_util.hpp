@@ -15,13 +15,12 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <string>
+#include <variant>
 #include <vector>
 
 #include "narrowphase/mesh_mesh.hpp"
 #include "shapes/shape_visit.hpp"
-#include <string>
-#include <variant>
-
 #include "support/random.hpp"
 
 namespace proxima::test {
@@ -88,7 +87,8 @@ inline std::vector<Vec3> random_cloud(Random& rng, int n, const Vec3& e) {
   return pts;
 }
 
-/// A random shape of type `t` whose size is about `s` (length units).
+/// A random convex shape of type `t` whose size is about `s` (length units); a half-space for
+/// the composite kinds, which have generators of their own where tests need them.
 inline Shape random_shape(Random& rng, ShapeType t, Real s = Real(1)) {
   switch (t) {
     case ShapeType::Point: return Point::create().value();
@@ -123,6 +123,8 @@ inline Shape random_shape(Random& rng, ShapeType t, Real s = Real(1)) {
         if (r.ok()) return r.value();
       }
     case ShapeType::HalfSpace:
+    case ShapeType::TriangleMesh:
+    case ShapeType::Compound:
     case ShapeType::Count: break;
   }
   return HalfSpace::create(rng.unit_vector(), rng.uniform(Real(-0.5), Real(0.5)) * s).value();

@@ -16,13 +16,13 @@
 #include <proxima/shapes/placed.hpp>
 #include <proxima/shapes/shape.hpp>
 
-#include "shapes/shape_visit.hpp"
-
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <optional>
 #include <vector>
+
+#include "shapes/shape_visit.hpp"
 
 namespace proxima::test {
 

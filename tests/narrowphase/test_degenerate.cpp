@@ -10,9 +10,9 @@
 #include <limits>
 #include <string>
 
-#include "shapes/shape_visit.hpp"
 #include "narrowphase/pair_checker.hpp"
 #include "narrowphase/reference_distance.hpp"
+#include "shapes/shape_visit.hpp"
 
 namespace proxima {
 namespace {

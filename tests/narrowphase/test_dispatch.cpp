@@ -205,8 +205,7 @@ TEST(Dispatch, EveryCellAnswersEveryQuery) {
         FirstContact first;
         collide_all(a, pa, b, pb, request, first);
         EXPECT_EQ(first.first.has_value(), !all.contacts.empty());
-        if (first.first)
-          EXPECT_EQ(first.first->point_a, all.contacts.front().point_a) << i << " " << j << " x=" << x;
+        if (first.first) EXPECT_EQ(first.first->point_a, all.contacts.front().point_a) << i << " " << j << " x=" << x;
       }
     }
   }

@@ -10,8 +10,8 @@
 
 #include <cmath>
 
-#include "narrowphase/generic_distance.hpp"
 #include "gjk_reference.hpp"
+#include "narrowphase/generic_distance.hpp"
 #include "support/random.hpp"
 
 namespace proxima {

@@ -16,9 +16,9 @@
 #include <utility>
 #include <vector>
 
-#include "support/solid_test_meshes.hpp"
 #include "narrowphase/narrowphase_test_util.hpp"
 #include "support/random.hpp"
+#include "support/solid_test_meshes.hpp"
 
 namespace proxima {
 namespace {
@@ -182,7 +182,8 @@ TEST(Compound, CompoundAgainstCompoundAgreesWithAllChildPairs) {
     for (const CompoundChild& x : a.children()) {
       for (const CompoundChild& y : b.children()) {
         const ShapeRef gx(x.shape), gy(y.shape);
-        if (gx.type() == ShapeType::TriangleMesh && gy.type() == ShapeType::TriangleMesh) continue;  // skipped below too
+        if (gx.type() == ShapeType::TriangleMesh && gy.type() == ShapeType::TriangleMesh)
+          continue;  // skipped below too
         const DistanceResult d = distance(gx, pa * x.pose, gy, pb * y.pose, request);
         best = std::min(best, d.signed_distance);
         std::vector<ContactPoint> cs;
@@ -364,9 +365,10 @@ TEST(MeshMesh, ShapeRefQueriesAgreeWithAllTrianglePairs) {
       EXPECT_NEAR(d.signed_distance, best, kTol) << k;
       ASSERT_LT(d.sub_a.triangle, ta.size());
       ASSERT_LT(d.sub_b.triangle, tb.size());
-      EXPECT_NEAR(distance(ShapeRef(ta[d.sub_a.triangle]), Transform{}, ShapeRef(tb[d.sub_b.triangle]), Transform{}, request)
-                      .signed_distance,
-                  d.signed_distance, kTol)
+      EXPECT_NEAR(
+          distance(ShapeRef(ta[d.sub_a.triangle]), Transform{}, ShapeRef(tb[d.sub_b.triangle]), Transform{}, request)
+              .signed_distance,
+          d.signed_distance, kTol)
           << k;
     } else {
       EXPECT_LE(d.signed_distance, kTol) << k;

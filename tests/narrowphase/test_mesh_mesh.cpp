@@ -27,9 +27,9 @@
 #include <vector>
 
 #include "narrowphase/mesh_mesh.hpp"
-#include "support/solid_test_meshes.hpp"
 #include "narrowphase/narrowphase_test_util.hpp"
 #include "support/random.hpp"
+#include "support/solid_test_meshes.hpp"
 
 namespace proxima {
 namespace {

@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "narrowphase/pairs_halfspace.hpp"
 #include "narrowphase/pair_reference.hpp"
+#include "narrowphase/pairs_halfspace.hpp"
 #include "support/random.hpp"
 
 namespace proxima {

@@ -9,8 +9,8 @@
 
 #include <string>
 
-#include "narrowphase/pairs_rounded.hpp"
 #include "narrowphase/pair_check.hpp"
+#include "narrowphase/pairs_rounded.hpp"
 #include "support/random.hpp"
 
 namespace proxima {

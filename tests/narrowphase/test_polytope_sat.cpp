@@ -7,9 +7,9 @@
 
 #include <cmath>
 
+#include "gjk_reference.hpp"
 #include "narrowphase/generic_distance.hpp"
 #include "narrowphase/polytope_sat.hpp"
-#include "gjk_reference.hpp"
 #include "support/random.hpp"
 
 namespace proxima {

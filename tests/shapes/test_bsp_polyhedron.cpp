@@ -23,8 +23,8 @@
 #include <string>
 #include <vector>
 
-#include "support/solid_test_meshes.hpp"
 #include "support/random.hpp"
+#include "support/solid_test_meshes.hpp"
 
 namespace proxima {
 namespace {

@@ -14,8 +14,8 @@
 #include <optional>
 #include <vector>
 
-#include "support/solid_test_meshes.hpp"
 #include "support/random.hpp"
+#include "support/solid_test_meshes.hpp"
 #include "tessellation.hpp"
 
 namespace proxima {

@@ -15,8 +15,8 @@
 #include <vector>
 
 #include "shapes/oriented_tree.hpp"
-#include "support/solid_test_meshes.hpp"
 #include "support/random.hpp"
+#include "support/solid_test_meshes.hpp"
 
 namespace proxima {
 namespace {

@@ -23,10 +23,10 @@
 #include <variant>
 #include <vector>
 
-#include "shapes/shape_visit.hpp"
-#include "support/solid_test_meshes.hpp"
 #include "narrowphase/narrowphase_test_util.hpp"
+#include "shapes/shape_visit.hpp"
 #include "support/random.hpp"
+#include "support/solid_test_meshes.hpp"
 
 namespace proxima {
 namespace {
@@ -134,8 +134,7 @@ TEST(TessellationConsistency, DistancesBracketedWhenSeparated) {
       EXPECT_NEAR(glm::length(mesh.point_b - mesh.point_a), mesh.signed_distance, kTol);
       const auto v = c.mesh.triangle(mesh.sub_a.triangle);
       const auto tri = Triangle::create(v[0], v[1], v[2]).value();
-      EXPECT_LE(tri.closest_point(pose.inverse_apply(mesh.point_a)).signed_distance, kTol)
-          << c.name << " case " << k;
+      EXPECT_LE(tri.closest_point(pose.inverse_apply(mesh.point_a)).signed_distance, kTol) << c.name << " case " << k;
       // The same from the other side.
       const DistanceResult back = distance(ShapeRef(probe), pp, ShapeRef(c.mesh), pose);
       EXPECT_NEAR(back.signed_distance, mesh.signed_distance, kTol);
@@ -147,7 +146,8 @@ TEST(TessellationConsistency, DistancesBracketedWhenSeparated) {
 
 /// Height of the support point of `s` (at `pose`) along the world direction `n`.
 Real support_height(const Shape& s, const Transform& pose, const Vec3& n) {
-  return detail::visit_convex(s, [&](const auto& x) { return glm::dot(pose.apply(x.support(pose.inverse_apply_vector(n))), n); });
+  return detail::visit_convex(
+      s, [&](const auto& x) { return glm::dot(pose.apply(x.support(pose.inverse_apply_vector(n))), n); });
 }
 
 // Shallow penetrations. What holds for every contact of a mesh whose triangles lie inside the

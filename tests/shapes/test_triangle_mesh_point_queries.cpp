@@ -19,8 +19,8 @@
 #include <gtest/gtest.h>
 
 #include <proxima/core/tolerance.hpp>
-#include <proxima/shapes/triangle_mesh.hpp>
 #include <proxima/shapes/sphere.hpp>
+#include <proxima/shapes/triangle_mesh.hpp>
 
 #include <atomic>
 #include <cmath>
@@ -32,8 +32,8 @@
 #include <vector>
 
 #include "shapes/mesh_point_queries.hpp"
-#include "support/solid_test_meshes.hpp"
 #include "support/random.hpp"
+#include "support/solid_test_meshes.hpp"
 
 namespace proxima {
 namespace {

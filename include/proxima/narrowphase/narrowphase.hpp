@@ -60,7 +60,7 @@ ContactManifold collide(ShapeRef a, const Transform& pose_a, ShapeRef b, const T
 /// Every contact between the parts of A and B within request.contact_distance, given to
 /// `collector` as found; returns as soon as the collector is done. For two convex shapes,
 /// the points of their manifold.
-void collide_all(ShapeRef a, const Transform& pose_a, ShapeRef b, const Transform& pose_b,
-                 const PairRequest& request, ContactCollector& collector);
+void collide_all(ShapeRef a, const Transform& pose_a, ShapeRef b, const Transform& pose_b, const PairRequest& request,
+                 ContactCollector& collector);
 
 }  // namespace proxima

@@ -42,7 +42,8 @@ concept PointQueryable = requires(const S& s, const Vec3& p) {
 
 /// A convex shape: support mapping, core + radius, bounds, ray cast and point queries.
 template <class S>
-concept ConvexShape = RayCastable<S> && PointQueryable<S> && requires(const S& s, const Vec3& d, const Transform& pose) {
+concept ConvexShape = RayCastable<S> && PointQueryable<S> &&
+    requires(const S& s, const Vec3& d, const Transform& pose) {
   { S::kType } -> std::convertible_to<ShapeType>;
   { s.support(d) } -> std::same_as<Vec3>;
   { s.core_support(d) } -> std::same_as<Vec3>;

@@ -24,7 +24,7 @@ enum class ShapeType : std::uint8_t {
   HalfSpace,
   TriangleMesh,  ///< a surface of triangles with its BVH
   Compound,      ///< child shapes at local poses with a BVH over them
-  Count  ///< number of shape types, not a shape
+  Count          ///< number of shape types, not a shape
 };
 
 /// Number of shape types.

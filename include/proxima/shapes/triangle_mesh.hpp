@@ -9,11 +9,11 @@
 #include <proxima/core/transform.hpp>
 #include <proxima/geometry/aabb.hpp>
 #include <proxima/geometry/ray.hpp>
-#include <proxima/spatial/bvh.hpp>
-#include <proxima/shapes/lazy_slot.hpp>
 #include <proxima/shapes/indexed_mesh.hpp>
+#include <proxima/shapes/lazy_slot.hpp>
 #include <proxima/shapes/mass_properties.hpp>
 #include <proxima/shapes/surface_point.hpp>
+#include <proxima/spatial/bvh.hpp>
 
 #include <array>
 #include <cstdint>
@@ -113,7 +113,7 @@ class TriangleMesh {
   /// The hit's normal faces the ray origin; `sub.triangle` is the triangle index in
   /// triangles(). `traversal` picks the hierarchy (same answer either way). O(log n) typical.
   std::optional<RayHit> raycast(const Ray& ray, Real max_t, FaceCulling culling = FaceCulling::None,
-                                    RayTraversal traversal = RayTraversal::Wide) const;
+                                RayTraversal traversal = RayTraversal::Wide) const;
   /// True when the ray hits any triangle within [0, max_t] (stops at the first found).
   bool raycast_any(const Ray& ray, Real max_t, FaceCulling culling = FaceCulling::None,
                    RayTraversal traversal = RayTraversal::Wide) const;
