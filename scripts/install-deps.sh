@@ -7,6 +7,7 @@ if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
 export DEBIAN_FRONTEND=noninteractive
 packages=(
   build-essential cmake ninja-build pkg-config git
+  ccache                             # compiler cache: a warm cache makes rebuilds fast
   libglm-dev libqhull-dev            # the library: math, convex hulls
   libcli11-dev nlohmann-json3-dev    # the proxima tool
   libassimp-dev                      # the proxima tool: mesh files (OBJ, STL, PLY, glTF)

@@ -1,6 +1,9 @@
 # cmake -P script: configures, builds and runs tests/package/consumer in one of its modes.
 # Inputs (-D): MODE, SOURCE (proxima source dir), WORK (scratch dir), BUILD (proxima build
-# dir, for MODE=installed), GENERATOR.
+# dir, for MODE=installed), GENERATOR, LAUNCHER (compiler launcher such as ccache; optional).
+# The consumers that compile the library from source (subdirectory, fetchcontent) build it
+# unoptimised: they test how the package is consumed, not its speed, and -O0 compiles the
+# library several times faster.
 file(REMOVE_RECURSE "${WORK}")
 file(MAKE_DIRECTORY "${WORK}")
 
@@ -26,7 +29,14 @@ elseif(MODE STREQUAL "fetchcontent")
   endif()
 endif()
 
+set(build_type Release)
+if(NOT MODE STREQUAL "installed")
+  set(build_type Debug)
+endif()
+if(LAUNCHER)
+  list(APPEND extra "-DCMAKE_CXX_COMPILER_LAUNCHER=${LAUNCHER}")
+endif()
 run(${CMAKE_COMMAND} -S "${SOURCE}/tests/package/consumer" -B "${WORK}/build" -G "${GENERATOR}"
-  -DCMAKE_BUILD_TYPE=Release -DPROXIMA_MODE=${MODE} "-DPROXIMA_SOURCE=${SOURCE}" ${extra})
+  -DCMAKE_BUILD_TYPE=${build_type} -DPROXIMA_MODE=${MODE} "-DPROXIMA_SOURCE=${SOURCE}" ${extra})
 run(${CMAKE_COMMAND} --build "${WORK}/build")
 run("${WORK}/build/consumer")
