@@ -121,44 +121,18 @@ DistanceResult compound_distance(const Compound& a, const Transform& pa, ShapeRe
   DistanceResult best;
   best.signed_distance = std::numeric_limits<Real>::infinity();
   Real bound = cutoff;
-  const auto nodes = a.bvh().nodes();
-  const auto prims = a.bvh().primitives();
   const auto kids = a.children();
-  if (nodes.empty()) return best;
   const Aabb box = world_aabb(b, relative(pa, pb));
-  struct Entry {
-    std::uint32_t node;
-    Real gap;
-  };
-  Entry stack[Bvh::kMaxDepth + 2];
-  std::uint32_t top = 0;
-  stack[top++] = {0, detail::aabb_gap(nodes[0].bounds(), box)};
-  while (top != 0) {
-    const Entry e = stack[--top];
-    if (e.gap > bound && e.gap > Real(0)) continue;  // a box gap bounds gaps, not depths
-    const BvhNode& node = nodes[e.node];
-    if (node.is_leaf()) {
-      for (std::uint32_t s = node.first; s != node.first + node.count; ++s) {
-        const std::uint32_t i = prims[s];
-        const DistanceResult d = distance_below(kids[i].shape, pa * kids[i].pose, b, pb, req, bound);
-        if (d.signed_distance < bound || (d.signed_distance == bound && i < best.sub_a.child)) {
-          best = d;
-          best.sub_a.child = i;
-          bound = d.signed_distance;
-        }
-      }
-      continue;
-    }
-    const std::uint32_t l = node.first, r = node.first + 1;
-    const Real gl = detail::aabb_gap(nodes[l].bounds(), box), gr = detail::aabb_gap(nodes[r].bounds(), box);
-    if (gl <= gr) {
-      if (gr <= bound || gr <= Real(0)) stack[top++] = {r, gr};
-      if (gl <= bound || gl <= Real(0)) stack[top++] = {l, gl};
-    } else {
-      if (gl <= bound || gl <= Real(0)) stack[top++] = {l, gl};
-      if (gr <= bound || gr <= Real(0)) stack[top++] = {r, gr};
-    }
-  }
+  a.bvh().traverse_nearest([&](const Aabb& node) { return detail::aabb_gap(node, box); }, bound,
+                           [&](std::uint32_t i) {
+                             const DistanceResult d =
+                                 distance_below(kids[i].shape, pa * kids[i].pose, b, pb, req, bound);
+                             if (d.signed_distance < bound || (d.signed_distance == bound && i < best.sub_a.child)) {
+                               best = d;
+                               best.sub_a.child = i;
+                               bound = d.signed_distance;
+                             }
+                           });
   return best;
 }
 

@@ -74,6 +74,19 @@ void walk(const TriangleMesh& mesh, Enter&& enter, Leaf&& leaf) {
   mesh.bvh().traverse(enter, leaf);
 }
 
+/// Calls f(t, corners, triangle) for each triangle t whose BVH leaf box overlaps `box` (mesh
+/// frame), skipping degenerate triangles; f returns false to stop the walk.
+template <class F>
+void for_each_triangle_near(const TriangleMesh& mesh, const Aabb& box, F&& f) {
+  walk(
+      mesh, [&](const BvhNode& n) { return n.bounds().overlaps(box); },
+      [&](std::uint32_t t) {
+        const std::array<Vec3, 3> v = mesh.triangle(t);
+        const Result<Triangle> tri = Triangle::create(v[0], v[1], v[2]);
+        return !tri || f(t, v, *tri);
+      });
+}
+
 /// Box of the convex shape in the mesh's frame.
 Aabb convex_box_in_mesh(ShapeRef convex, const Transform& pose_mesh, const Transform& pose_convex) {
   const Transform rel = relative(pose_mesh, pose_convex);
@@ -286,18 +299,10 @@ bool mesh_convex_intersect(const TriangleMesh& mesh, const Transform& pose_mesh,
     return halfspace_intersect(mesh, pose_mesh, convex.as<HalfSpace>(), pose_convex, request);
   const Aabb box = convex_box_in_mesh(convex, pose_mesh, pose_convex).inflated(request.contact_distance);
   bool hit = false;
-  walk(
-      mesh, [&](const BvhNode& n) { return n.bounds().overlaps(box); },
-      [&](std::uint32_t t) {
-        const auto v = mesh.triangle(t);
-        auto tri = Triangle::create(v[0], v[1], v[2]);
-        if (!tri) return true;
-        if (intersect(ShapeRef(*tri), pose_mesh, convex, pose_convex, request)) {
-          hit = true;
-          return false;
-        }
-        return true;
-      });
+  for_each_triangle_near(mesh, box, [&](std::uint32_t, const std::array<Vec3, 3>&, const Triangle& tri) {
+    hit = intersect(tri, pose_mesh, convex, pose_convex, request);
+    return !hit;
+  });
   return hit;
 }
 
@@ -309,45 +314,19 @@ DistanceResult mesh_convex_distance(const TriangleMesh& mesh, const Transform& p
   best.signed_distance = kInf;
   Real bound = cutoff;
   const Aabb box = convex_box_in_mesh(convex, pose_mesh, pose_convex);
-  const auto nodes = mesh.bvh().nodes();
-  const auto prims = mesh.bvh().primitives();
-  if (nodes.empty()) return best;
-  struct Entry {
-    std::uint32_t node;
-    Real gap;
-  };
-  Entry stack[Bvh::kMaxDepth + 2];
-  std::uint32_t top = 0;
-  stack[top++] = {0, detail::aabb_gap(nodes[0].bounds(), box)};
-  while (top != 0) {
-    const Entry e = stack[--top];
-    if (e.gap > bound && e.gap > Real(0)) continue;  // a box gap bounds gaps, not depths
-    const BvhNode& node = nodes[e.node];
-    if (node.is_leaf()) {
-      for (std::uint32_t i = node.first; i != node.first + node.count; ++i) {
-        const std::uint32_t t = prims[i];
+  mesh.bvh().traverse_nearest(
+      [&](const Aabb& node) { return detail::aabb_gap(node, box); }, bound,
+      [&](std::uint32_t t) {
         const auto v = mesh.triangle(t);
         auto tri = Triangle::create(v[0], v[1], v[2]);
-        if (!tri) continue;
+        if (!tri) return;
         const DistanceResult r = distance(ShapeRef(*tri), pose_mesh, convex, pose_convex, request);
         if (r.signed_distance < bound || (r.signed_distance == bound && t < best.sub_a.triangle)) {
           bound = r.signed_distance;
           best = r;
           best.sub_a.triangle = t;
         }
-      }
-      continue;
-    }
-    const std::uint32_t l = node.first, rr = node.first + 1;
-    const Real gl = detail::aabb_gap(nodes[l].bounds(), box), gr = detail::aabb_gap(nodes[rr].bounds(), box);
-    if (gl <= gr) {  // nearer popped first
-      if (gr <= bound || gr <= Real(0)) stack[top++] = {rr, gr};
-      if (gl <= bound || gl <= Real(0)) stack[top++] = {l, gl};
-    } else {
-      if (gl <= bound || gl <= Real(0)) stack[top++] = {l, gl};
-      if (gr <= bound || gr <= Real(0)) stack[top++] = {rr, gr};
-    }
-  }
+      });
   return best;
 }
 
@@ -367,79 +346,74 @@ void mesh_convex_collide_all(const TriangleMesh& mesh, const Transform& pose_mes
   sc.pending.clear();
   sc.voided.clear();
   const auto tris = mesh.triangles();
-  walk(
-      mesh, [&](const BvhNode& n) { return n.bounds().overlaps(box); },
-      [&](std::uint32_t t) {
-        const auto v = mesh.triangle(t);
-        auto tri = Triangle::create(v[0], v[1], v[2]);
-        if (!tri) return true;
-        const ContactManifold m = collide(ShapeRef(*tri), pose_mesh, convex, pose_convex, request);
-        if (m.count == 0) return true;
-        // Face normal turned to the shape's side (the triangle is two-sided).
-        const Vec3 n_local = pose_mesh.inverse_apply_vector(m.normal);
-        Vec3 f = tri->normal();
-        Real side = glm::dot(n_local, f);
-        if (std::abs(side) < Real(0.1)) side = glm::dot(center_local - v[0], f);
-        if (side < Real(0)) f = -f;
-        const bool face = glm::dot(n_local, f) >= face_cos;
-        const std::uint8_t active = mesh.active_edges(t);
-        const TriangleIndices& idx = tris[t];
-        bool corrected = false;  // ghost signed distance along the face normal computed yet
-        Real ghost_sd = Real(0);
-        Vec3 ghost_n(Real(0));
-        for (int i = 0; i < m.count; ++i) {
-          ContactPoint c;
-          c = m.points[i];
-          c.sub_a.triangle = t;
-          if (face) {
-            collector.add(c);
-            sc.voided.insert(sc.voided.end(), idx.begin(), idx.end());
-            continue;
-          }
-          const Feature feat = classify(v, pose_mesh.inverse_apply(c.point_a));
-          bool real = true;
-          std::uint32_t v0 = 0, v1 = 0;
-          if (feat.kind == 1) {
-            real = (active >> feat.index) & 1u;
-            v0 = idx[static_cast<std::size_t>(feat.index)];
-            v1 = idx[static_cast<std::size_t>((feat.index + 1) % 3)];
-          } else if (feat.kind == 2) {
-            v0 = v1 = idx[static_cast<std::size_t>(feat.index)];
-            real = vertex_active(mesh, t, v0);
-          }
-          if (real) {
-            collector.add(c);
-            continue;
-          }
-          // Ghost candidate: normal -> face normal, signed distance along it to the triangle.
-          // The side is the one the shape needs the shorter push to clear the plane towards
-          // (a narrow-phase normal near the plane does not say which side the shape is on).
-          if (!corrected) {
-            corrected = true;
-            ghost_n = pose_mesh.apply_vector(f);
-            const Vec3 p0 = pose_mesh.apply(v[0]);
-            Real plane_sd = glm::dot(world_support(convex, pose_convex, -ghost_n) - p0, ghost_n);
-            const Real other_sd = -glm::dot(world_support(convex, pose_convex, ghost_n) - p0, ghost_n);
-            if (other_sd > plane_sd) {
-              ghost_n = -ghost_n;
-              plane_sd = other_sd;
-            }
-            Real sd0 = kInf;
-            for (int j = 0; j < m.count; ++j) sd0 = std::min(sd0, -m.points[j].depth);
-            ghost_sd = plane_sd > cd ? plane_sd
-                                     : directional_signed_distance(*tri, pose_mesh, convex, pose_convex, request,
-                                                                   ghost_n, sd0, m.normal, plane_sd, cd);
-          }
-          const Vec3 fw = ghost_n;
-          const Real sd = ghost_sd;
-          if (sd > cd) continue;
-          c.normal = fw;
-          c.depth = -sd;
-          c.point_b = c.point_a + sd * fw;
-          sc.pending.push_back({c, v0, v1});
+  for_each_triangle_near(mesh, box, [&](std::uint32_t t, const std::array<Vec3, 3>& v, const Triangle& tri) {
+    const ContactManifold m = collide(tri, pose_mesh, convex, pose_convex, request);
+    if (m.count == 0) return true;
+    // Face normal turned to the shape's side (the triangle is two-sided).
+    const Vec3 n_local = pose_mesh.inverse_apply_vector(m.normal);
+    Vec3 f = tri.normal();
+    Real side = glm::dot(n_local, f);
+    if (std::abs(side) < Real(0.1)) side = glm::dot(center_local - v[0], f);
+    if (side < Real(0)) f = -f;
+    const bool face = glm::dot(n_local, f) >= face_cos;
+    const std::uint8_t active = mesh.active_edges(t);
+    const TriangleIndices& idx = tris[t];
+    bool corrected = false;  // ghost signed distance along the face normal computed yet
+    Real ghost_sd = Real(0);
+    Vec3 ghost_n(Real(0));
+    for (int i = 0; i < m.count; ++i) {
+      ContactPoint c;
+      c = m.points[i];
+      c.sub_a.triangle = t;
+      if (face) {
+        collector.add(c);
+        sc.voided.insert(sc.voided.end(), idx.begin(), idx.end());
+        continue;
+      }
+      const Feature feat = classify(v, pose_mesh.inverse_apply(c.point_a));
+      bool real = true;
+      std::uint32_t v0 = 0, v1 = 0;
+      if (feat.kind == 1) {
+        real = (active >> feat.index) & 1u;
+        v0 = idx[static_cast<std::size_t>(feat.index)];
+        v1 = idx[static_cast<std::size_t>((feat.index + 1) % 3)];
+      } else if (feat.kind == 2) {
+        v0 = v1 = idx[static_cast<std::size_t>(feat.index)];
+        real = vertex_active(mesh, t, v0);
+      }
+      if (real) {
+        collector.add(c);
+        continue;
+      }
+      // Ghost candidate: normal -> face normal, signed distance along it to the triangle.
+      // The side is the one the shape needs the shorter push to clear the plane towards
+      // (a narrow-phase normal near the plane does not say which side the shape is on).
+      if (!corrected) {
+        corrected = true;
+        ghost_n = pose_mesh.apply_vector(f);
+        const Vec3 p0 = pose_mesh.apply(v[0]);
+        Real plane_sd = glm::dot(world_support(convex, pose_convex, -ghost_n) - p0, ghost_n);
+        const Real other_sd = -glm::dot(world_support(convex, pose_convex, ghost_n) - p0, ghost_n);
+        if (other_sd > plane_sd) {
+          ghost_n = -ghost_n;
+          plane_sd = other_sd;
         }
-        return !collector.done();
-      });
+        Real sd0 = kInf;
+        for (int j = 0; j < m.count; ++j) sd0 = std::min(sd0, -m.points[j].depth);
+        ghost_sd = plane_sd > cd ? plane_sd
+                                 : directional_signed_distance(tri, pose_mesh, convex, pose_convex, request, ghost_n,
+                                                               sd0, m.normal, plane_sd, cd);
+      }
+      const Vec3 fw = ghost_n;
+      const Real sd = ghost_sd;
+      if (sd > cd) continue;
+      c.normal = fw;
+      c.depth = -sd;
+      c.point_b = c.point_a + sd * fw;
+      sc.pending.push_back({c, v0, v1});
+    }
+    return !collector.done();
+  });
   if (sc.pending.empty() || collector.done()) return;
   std::sort(sc.voided.begin(), sc.voided.end());
   for (const Scratch::Pending& p : sc.pending) {

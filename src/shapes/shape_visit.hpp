@@ -9,26 +9,25 @@
 
 #include <algorithm>
 #include <cmath>
+#include <type_traits>
+#include <utility>
 
 namespace proxima::detail {
 
 /// Calls `f(concrete_shape)` with the convex shape `s` views (one switch, no allocation);
-/// `s` must be convex (is_convex(s.type())).
+/// `s` must be convex (is_convex(s.type())). Unlike visit_shape, `f` is instantiated for the
+/// convex types only, so it may use members only they have (support, core_radius).
 template <class F>
 decltype(auto) visit_convex(ShapeRef s, F&& f) {
-  switch (s.type()) {
-    case ShapeType::Point: return f(s.as<Point>());
-    case ShapeType::Segment: return f(s.as<Segment>());
-    case ShapeType::Triangle: return f(s.as<Triangle>());
-    case ShapeType::Sphere: return f(s.as<Sphere>());
-    case ShapeType::Capsule: return f(s.as<Capsule>());
-    case ShapeType::Box: return f(s.as<Box>());
-    case ShapeType::Cylinder: return f(s.as<Cylinder>());
-    case ShapeType::Cone: return f(s.as<Cone>());
-    case ShapeType::Ellipsoid: return f(s.as<Ellipsoid>());
-    case ShapeType::ConvexHull: return f(s.as<ConvexHull>());
-    default: PROXIMA_ASSERT(s.type() == ShapeType::HalfSpace); return f(s.as<HalfSpace>());
-  }
+  using R = decltype(f(std::declval<const Point&>()));
+  return visit_shape(s, [&](const auto& shape) -> R {
+    if constexpr (is_convex(kShapeTypeOf<std::decay_t<decltype(shape)>>)) {
+      return f(shape);
+    } else {
+      PROXIMA_ASSERT(false && "visit_convex on a mesh or compound");
+      return f(s.as<HalfSpace>());  // not reached for a convex view
+    }
+  });
 }
 
 /// Euclidean distance between two boxes (0 when they overlap or touch): a lower bound on

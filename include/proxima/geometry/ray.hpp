@@ -36,7 +36,7 @@ struct RayHit {
   Vec3 point{Real(0)};   ///< hit point = origin + t * direction
   Vec3 normal{Real(0)};  ///< unit normal at the hit: outward for solids; for surfaces without
                          ///< interior (triangle, plane) the face normal turned to face the ray
-  SubShapeId sub;        ///< the mesh triangle / compound child hit (kNoIndex for a convex shape)
+  SubShapeId sub{};      ///< the mesh triangle / compound child hit (kNoIndex for a convex shape)
 
   /// The hit expressed in the parent frame of `pose` (t unchanged).
   RayHit to_world(const Transform& pose) const { return {t, pose.apply(point), pose.apply_vector(normal), sub}; }

@@ -83,8 +83,8 @@ struct DistanceResult {
   PairStatus status = PairStatus::Separated;
   PairMethod method = PairMethod::Analytic;
   int iterations = 0;  ///< GJK + EPA iterations (0 for analytic routines)
-  SubShapeId sub_a;    ///< part of A holding point_a (kNoIndex fields for a convex A)
-  SubShapeId sub_b;    ///< part of B holding point_b
+  SubShapeId sub_a{};  ///< part of A holding point_a (kNoIndex fields for a convex A)
+  SubShapeId sub_b{};  ///< part of B holding point_b
 };
 
 /// One contact point of a manifold.
@@ -98,8 +98,8 @@ struct ContactPoint {
   /// the same features touch, so a world can match contacts and warm-start impulses.
   /// See make_feature_id.
   std::uint32_t feature_id = 0;
-  SubShapeId sub_a;  ///< part of A this point lies on (kNoIndex fields for a convex A)
-  SubShapeId sub_b;  ///< part of B
+  SubShapeId sub_a{};  ///< part of A this point lies on (kNoIndex fields for a convex A)
+  SubShapeId sub_b{};  ///< part of B
 };
 
 /// Largest number of points in a manifold.

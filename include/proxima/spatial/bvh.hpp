@@ -102,6 +102,40 @@ class Bvh {
     return true;
   }
 
+  /// Branch and bound, nearest first: `gap(box)` is a lower bound on the answer for anything
+  /// in a node's box (a distance, 0 when the box is reached); nodes are visited in
+  /// increasing gap order (the nearer child first) and skipped while their gap exceeds
+  /// `bound`, which `leaf(primitive)` may lower as it finds answers. A gap of 0 or less is
+  /// never skipped: a box gap bounds separations, not penetration depths. Fixed stack.
+  template <class Gap, class Leaf>
+  void traverse_nearest(Gap&& gap, const Real& bound, Leaf&& leaf) const {
+    if (nodes_.empty()) return;
+    struct Entry {
+      std::uint32_t node;
+      Real gap;
+    };
+    Entry stack[kMaxDepth + 2];
+    std::uint32_t top = 0;
+    stack[top++] = {0, gap(nodes_[0].bounds())};
+    const auto worth = [&](Real g) { return g <= bound || g <= Real(0); };
+    while (top != 0) {
+      const Entry e = stack[--top];
+      if (!worth(e.gap)) continue;
+      const BvhNode& node = nodes_[e.node];
+      if (node.is_leaf()) {
+        for (std::uint32_t i = node.first; i != node.first + node.count; ++i) leaf(primitives_[i]);
+        continue;
+      }
+      const std::uint32_t l = node.first, r = node.first + 1;
+      const Real gl = gap(nodes_[l].bounds()), gr = gap(nodes_[r].bounds());
+      const bool left_first = gl <= gr;  // the nearer child is pushed last, popped first
+      const Entry near{left_first ? l : r, left_first ? gl : gr};
+      const Entry far{left_first ? r : l, left_first ? gr : gl};
+      if (worth(far.gap)) stack[top++] = far;
+      if (worth(near.gap)) stack[top++] = near;
+    }
+  }
+
  private:
   std::vector<BvhNode> nodes_;
   std::vector<std::uint32_t> primitives_;
