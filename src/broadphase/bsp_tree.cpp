@@ -410,7 +410,7 @@ struct BspTree::DescentView {
   }
 };
 
-void BspTree::find_pairs(std::vector<ProxyPair>& out, unsigned threads) {
+void BspTree::find_pairs(std::vector<ProxyPair>& out, Executor& executor) {
   out.clear();
   bool rebuilt = false;
   if (overfull_ || degraded_ ||
@@ -419,7 +419,7 @@ void BspTree::find_pairs(std::vector<ProxyPair>& out, unsigned threads) {
     rebuilt = true;
   }
   BroadPhaseStats found;
-  if (!nodes_.empty()) detail::descend_pairs(DescentView{*this}, threads, out, found);
+  if (!nodes_.empty()) detail::descend_pairs(DescentView{*this}, executor, out, found);
   sort_pairs(out, sort_scratch_);
   const BroadPhaseStats st{found.nodes_visited, found.pairs_tested, out.size()};
   stats_ = st;

@@ -335,7 +335,7 @@ struct KdTree::DescentView {
   }
 };
 
-void KdTree::find_pairs(std::vector<ProxyPair>& out, unsigned threads) {
+void KdTree::find_pairs(std::vector<ProxyPair>& out, Executor& executor) {
   out.clear();
   if (!pending_.empty() || dead_ * 4 > records_.size() || (nodes_.empty() && count_ > 0)) {
     rebuild();
@@ -348,7 +348,7 @@ void KdTree::find_pairs(std::vector<ProxyPair>& out, unsigned threads) {
     if (mean > build_overlap_ + static_cast<double>(config_.rebuild_overlap)) rebuild();
   }
   BroadPhaseStats st;
-  if (!nodes_.empty()) detail::descend_pairs(DescentView{*this}, threads, out, st);
+  if (!nodes_.empty()) detail::descend_pairs(DescentView{*this}, executor, out, st);
   sort_pairs(out, sort_scratch_);
   stats_ = {st.nodes_visited, st.pairs_tested, out.size()};
 }

@@ -17,7 +17,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <thread>
 
 namespace proxima {
 
@@ -430,41 +429,46 @@ void LooseTree<Dim>::run_task(const Task& task, std::vector<ProxyPair>& out, Bro
 }
 
 template <int Dim>
-void LooseTree<Dim>::find_pairs(std::vector<ProxyPair>& out) {
+void LooseTree<Dim>::split_tasks(std::size_t wanted) {
+  // Split self(root) into tasks (own part, self of each child, cross of each child pair),
+  // then split the self tasks again while there are few tasks.
+  tasks_.assign(1, Task{root_, kNil});
+  for (int round = 0; round < 3 && tasks_.size() < wanted; ++round) {
+    std::vector<Task> next;
+    for (const Task& t : tasks_) {
+      if (t.b != kNil) {
+        next.push_back(t);
+        continue;
+      }
+      const Node& nd = nodes_[std::size_t(t.a)];
+      next.push_back({t.a, t.a});
+      for (int i = 0; i < kChildren; ++i) {
+        if (nd.child[i] == kNil) continue;
+        next.push_back({nd.child[i], kNil});
+        for (int j = i + 1; j < kChildren; ++j) {
+          if (nd.child[j] != kNil) next.push_back({nd.child[i], nd.child[j]});
+        }
+      }
+    }
+    tasks_.swap(next);
+  }
+}
+
+template <int Dim>
+void LooseTree<Dim>::find_pairs(std::vector<ProxyPair>& out, Executor& executor) {
   out.clear();
   stats_ = {};
   const std::size_t n = proxies_.size();
   if (root_ == kNil || n == 0) return;
   gather();
-  const int threads = std::max(1, std::min(threads_, int(n / 1024) + 1));
-  if (threads == 1) {
+  const std::size_t threads = std::min(executor.concurrency(), n / 1024 + 1);
+  if (threads <= 1) {
     self_pairs(root_, out, stats_);
   } else {
-    // Split self(root) into tasks (own part, self of each child, cross of each child pair),
-    // then split the self tasks again while there are few tasks.
-    tasks_.assign(1, Task{root_, kNil});
-    for (int round = 0; round < 3 && tasks_.size() < std::size_t(threads) * 16; ++round) {
-      std::vector<Task> next;
-      for (const Task& t : tasks_) {
-        if (t.b != kNil) {
-          next.push_back(t);
-          continue;
-        }
-        const Node& nd = nodes_[std::size_t(t.a)];
-        next.push_back({t.a, t.a});
-        for (int i = 0; i < kChildren; ++i) {
-          if (nd.child[i] == kNil) continue;
-          next.push_back({nd.child[i], kNil});
-          for (int j = i + 1; j < kChildren; ++j) {
-            if (nd.child[j] != kNil) next.push_back({nd.child[i], nd.child[j]});
-          }
-        }
-      }
-      tasks_.swap(next);
-    }
+    split_tasks(threads * 16);
     std::vector<BroadPhaseStats> st(tasks_.size());
     parallel_pair_chunks(
-        tasks_.size(), unsigned(threads), out,
+        tasks_.size(), executor, out,
         [&](std::size_t begin, std::size_t end, std::vector<ProxyPair>& part) {
           for (std::size_t k = begin; k < end; ++k) run_task(tasks_[k], part, st[k]);
         },

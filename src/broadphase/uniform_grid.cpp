@@ -22,7 +22,6 @@
 #include <bit>
 #include <cmath>
 #include <limits>
-#include <thread>
 
 namespace proxima::detail {
 
@@ -390,53 +389,45 @@ void CellEngine::pairs_oversized(std::size_t begin, std::size_t end, std::vector
   }
 }
 
-void CellEngine::find_pairs(std::vector<ProxyPair>& out) {
+void CellEngine::find_pairs(std::vector<ProxyPair>& out, Executor& executor) {
   if (dirty_) build();
   out.clear();
   stats_ = {};
   const std::size_t n = proxies_.size();
   if (n == 0) return;
   const std::uint32_t cells = std::uint32_t(cell_start_.size() - 1);
-  const int threads = std::max(1, std::min(threads_, int(n / 1024) + 1));
-  if (threads == 1) {
+  const std::size_t threads = std::min(executor.concurrency(), n / 1024 + 1);
+  if (threads <= 1) {
     pairs_in_cells(0, cells, out, stats_);
     if (mode_ == CellMode::Hierarchical) pairs_across_levels(0, n, out, stats_);
     pairs_oversized(0, oversized_.size(), out, stats_);
   } else {
-    thread_pairs_.resize(std::size_t(threads));
-    std::vector<BroadPhaseStats> st(static_cast<std::size_t>(threads));
-    // Cell chunks of about equal entry counts.
-    std::vector<std::uint32_t> bounds(std::size_t(threads) + 1, cells);
+    // Parts of about equal entry counts (4 per thread), each with its share of the level
+    // probes and of the oversized proxies; per-part lists joined in part order.
+    const std::size_t parts = threads * 4;
+    std::vector<BroadPhaseStats> st(parts);
+    std::vector<std::uint32_t> bounds(parts + 1, cells);
     bounds[0] = 0;
     const std::size_t total = entries_.size();
     std::uint32_t c = 0;
-    for (int t = 1; t < threads; ++t) {
-      const std::size_t target = total * std::size_t(t) / std::size_t(threads);
+    for (std::size_t p = 1; p < parts; ++p) {
+      const std::size_t target = total * p / parts;
       while (c < cells && cell_start_[c] < target) ++c;
-      bounds[std::size_t(t)] = c;
+      bounds[p] = c;
     }
-    auto work = [&](int t) {
-      auto& mine = thread_pairs_[std::size_t(t)];
-      mine.clear();
-      const auto tt = std::size_t(t);
-      const auto nt = std::size_t(threads);
-      pairs_in_cells(bounds[tt], bounds[tt + 1], mine, st[tt]);
-      if (mode_ == CellMode::Hierarchical) pairs_across_levels(n * tt / nt, n * (tt + 1) / nt, mine, st[tt]);
-      pairs_oversized(oversized_.size() * tt / nt, oversized_.size() * (tt + 1) / nt, mine, st[tt]);
-    };
-    std::vector<std::thread> pool;
-    pool.reserve(std::size_t(threads) - 1);
-    for (int t = 1; t < threads; ++t) pool.emplace_back(work, t);
-    work(0);
-    for (std::thread& th : pool) th.join();
-    std::size_t count = 0;
-    for (const auto& v : thread_pairs_) count += v.size();
-    out.reserve(count);
-    for (int t = 0; t < threads; ++t) {
-      const auto& v = thread_pairs_[std::size_t(t)];
-      out.insert(out.end(), v.begin(), v.end());
-      stats_.nodes_visited += st[std::size_t(t)].nodes_visited;
-      stats_.pairs_tested += st[std::size_t(t)].pairs_tested;
+    run_pair_chunks(parts, parts, executor, part_pairs_, out,
+                    [&](std::size_t begin, std::size_t end, std::vector<ProxyPair>& mine) {
+                      for (std::size_t p = begin; p < end; ++p) {
+                        pairs_in_cells(bounds[p], bounds[p + 1], mine, st[p]);
+                        if (mode_ == CellMode::Hierarchical)
+                          pairs_across_levels(n * p / parts, n * (p + 1) / parts, mine, st[p]);
+                        pairs_oversized(oversized_.size() * p / parts, oversized_.size() * (p + 1) / parts, mine,
+                                        st[p]);
+                      }
+                    });
+    for (const BroadPhaseStats& s : st) {
+      stats_.nodes_visited += s.nodes_visited;
+      stats_.pairs_tested += s.pairs_tested;
     }
   }
   sort_pairs_radix(out, sort_scratch_);
@@ -693,7 +684,7 @@ std::size_t CellEngine::memory_bytes() const {
                       capacity_bytes(cell_start_) + capacity_bytes(cell_key_) + capacity_bytes(table_) +
                       capacity_bytes(entries_) + capacity_bytes(oversized_) + capacity_bytes(is_oversized_) +
                       capacity_bytes(sort_scratch_);
-  for (const auto& v : thread_pairs_) bytes += capacity_bytes(v);
+  for (const auto& v : part_pairs_) bytes += capacity_bytes(v);
   return bytes + proxies_.size() * (sizeof(ProxyRecord) + sizeof(ProxyId));
 }
 

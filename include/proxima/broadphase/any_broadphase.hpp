@@ -9,6 +9,7 @@
 
 #include <proxima/broadphase/broadphase.hpp>
 #include <proxima/broadphase/pair_tracker.hpp>
+#include <proxima/core/executor.hpp>
 #include <proxima/core/result.hpp>
 
 #include <memory>
@@ -30,7 +31,7 @@ class AnyBroadPhase {
 
   /// Registry name of the wrapped structure ("sap", "tree", ...).
   virtual std::string_view name() const = 0;
-  /// True when find_pairs(out, threads) really uses several threads.
+  /// True when find_pairs(out, executor) really runs on the executor.
   virtual bool parallel() const = 0;
 
   /// As BroadPhaseStructure::insert.
@@ -43,9 +44,11 @@ class AnyBroadPhase {
   virtual BroadPhaseStatus update(std::span<const ProxyUpdate> updates) = 0;
   /// As BroadPhaseStructure::rebuild.
   virtual void rebuild() = 0;
-  /// Every pair, sorted; on `threads` threads (0 = hardware concurrency) where the structure
-  /// supports it (parallel()), else serially. Identical output either way.
-  virtual void find_pairs(std::vector<ProxyPair>& out, unsigned threads = 1) = 0;
+  /// Every pair, sorted; on `executor` where the structure supports it (parallel()), else
+  /// serially on the calling thread. Identical output either way.
+  virtual void find_pairs(std::vector<ProxyPair>& out, Executor& executor) = 0;
+  /// Every pair, sorted, on the calling thread.
+  void find_pairs(std::vector<ProxyPair>& out) { find_pairs(out, serial_executor()); }
   /// As BroadPhaseStructure::query_aabb.
   virtual void query_aabb(const Aabb& box, const OverlapQueryCallback& on_overlap) const = 0;
   /// As BroadPhaseStructure::query_point.
@@ -61,8 +64,8 @@ class AnyBroadPhase {
 
   /// Finds the pairs (kept in pairs()) and returns the delta against the previous call
   /// (the first call reports every pair as begun).
-  const PairDelta& update_pairs(unsigned threads = 1) {
-    find_pairs(pairs_, threads);
+  const PairDelta& update_pairs(Executor& executor = serial_executor()) {
+    find_pairs(pairs_, executor);
     return tracker_.update(pairs_);
   }
   /// The pairs of the last update_pairs call, sorted.
@@ -75,10 +78,10 @@ class AnyBroadPhase {
   PairTracker tracker_;
 };
 
-/// True when S offers find_pairs(out, threads).
+/// True when S offers find_pairs(out, executor).
 template <class S>
-concept ParallelBroadPhase = requires(S& s, std::vector<ProxyPair>& out, unsigned threads) {
-  { s.find_pairs(out, threads) } -> std::same_as<void>;
+concept ParallelBroadPhase = requires(S& s, std::vector<ProxyPair>& out, Executor& executor) {
+  { s.find_pairs(out, executor) } -> std::same_as<void>;
 };
 
 /// AnyBroadPhase around a BroadPhaseStructure held by value.
@@ -87,6 +90,8 @@ class BroadPhaseAdapter final : public AnyBroadPhase {
  public:
   /// Wraps `structure` under registry name `name` (a string literal or other static text).
   explicit BroadPhaseAdapter(std::string_view name, S structure = S()) : name_(name), s_(std::move(structure)) {}
+
+  using AnyBroadPhase::find_pairs;
 
   std::string_view name() const override { return name_; }
   bool parallel() const override { return ParallelBroadPhase<S>; }
@@ -97,11 +102,11 @@ class BroadPhaseAdapter final : public AnyBroadPhase {
   BroadPhaseStatus update(ProxyId id, const Aabb& box) override { return s_.update(id, box); }
   BroadPhaseStatus update(std::span<const ProxyUpdate> updates) override { return s_.update(updates); }
   void rebuild() override { s_.rebuild(); }
-  void find_pairs(std::vector<ProxyPair>& out, unsigned threads = 1) override {
+  void find_pairs(std::vector<ProxyPair>& out, Executor& executor) override {
     if constexpr (ParallelBroadPhase<S>) {
-      s_.find_pairs(out, threads);
+      s_.find_pairs(out, executor);
     } else {
-      (void)threads;
+      (void)executor;
       s_.find_pairs(out);
     }
   }

@@ -11,10 +11,11 @@
 /// - Two proxies form a pair when their boxes overlap or touch (closed intervals on all three
 ///   axes), at least one of them is Moving, and their filters accept each other.
 /// - find_pairs reports every pair exactly once as (lo, hi) with lo < hi, sorted by (lo, hi):
-///   the order is deterministic and independent of insertion history and thread count.
+///   the order is deterministic and independent of insertion history and executor.
 /// - A rejected call (non-finite or inverted box, unknown or duplicate id) changes nothing.
-/// - Parallel pair finding is an optional overload `find_pairs(out, threads)` (threads = 0:
-///   hardware concurrency) whose output is identical to the serial one; structures offering it
+/// - Parallel pair finding is an optional overload `find_pairs(out, executor)` (Executor,
+///   core/executor.hpp; the structures start no threads of their own) whose output is
+///   identical to the serial one for every executor and thread count; structures offering it
 ///   satisfy ParallelBroadPhase (any_broadphase.hpp), and parallel_pairs.hpp has a helper
 ///   (parallel_pair_chunks: per-chunk outputs concatenated, then sort_pairs).
 /// Shared pieces: pair_tracker.hpp (sort_pairs radix sort, begun/ended deltas), brute_force.hpp

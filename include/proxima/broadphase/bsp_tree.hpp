@@ -31,6 +31,7 @@
 
 #include <proxima/broadphase/broadphase.hpp>
 #include <proxima/broadphase/pair_tracker.hpp>
+#include <proxima/core/executor.hpp>
 
 #include <cstdint>
 #include <span>
@@ -67,10 +68,9 @@ class BspTree {
   /// Rebuilds the planes over the current boxes. O(n log n).
   void rebuild();
   /// Every pair (see broadphase.hpp), sorted. May rebuild first.
-  void find_pairs(std::vector<ProxyPair>& out) { find_pairs(out, 1); }
-  /// As above with the per-proxy searches split over `threads` std::threads (0 = hardware
-  /// concurrency); identical output.
-  void find_pairs(std::vector<ProxyPair>& out, unsigned threads);
+  void find_pairs(std::vector<ProxyPair>& out) { find_pairs(out, serial_executor()); }
+  /// As above with the tree descent split into tasks run by `executor`; identical output.
+  void find_pairs(std::vector<ProxyPair>& out, Executor& executor);
 
   /// Every proxy whose box overlaps `box` (closed); stops when the callback returns false.
   void query_aabb(const Aabb& box, const OverlapQueryCallback& on_overlap) const;

@@ -26,8 +26,9 @@
 /// - find_pairs descends tree against tree (a simultaneous traversal of node pairs: both
 ///   nodes split at once when both are internal; a stack sized once from the tree heights;
 ///   branch-free pushes), tests the real boxes at leaf pairs, and radix-sorts the result
-///   (sort_pairs). With threads > 1 the top node pairs are split between std::threads, each
-///   writing its own list; the sorted union is identical to the serial result.
+///   (sort_pairs). With an executor of several threads the top node pairs are split into
+///   tasks run by the executor, each chunk of tasks writing its own list; the sorted union is
+///   identical to the serial result.
 ///
 /// Complexity: insert/remove O(log n) expected; update O(1) while inside the fat box;
 /// find_pairs O(n log n + k) typical; queries O(log n + k) typical; rebuild O(n log n).
@@ -35,6 +36,8 @@
 
 #include <proxima/broadphase/broadphase.hpp>
 #include <proxima/broadphase/pair_tracker.hpp>
+#include <proxima/broadphase/parallel_pairs.hpp>
+#include <proxima/core/executor.hpp>
 
 #include <cstdint>
 #include <span>
@@ -48,8 +51,6 @@ struct DynamicAabbTreeConfig {
   Real margin_fraction = Real(0.1);
   /// Smallest fat-box margin of moving proxies, in length units (>= 0).
   Real margin_min = Real(0);
-  /// Threads used by find_pairs (1 = serial, 0 = std::thread::hardware_concurrency()).
-  unsigned threads = 1;
   /// Apply SAH tree rotations after each insertion.
   bool rotations = true;
   /// A batch update that would reinsert more than this fraction of the moving leaves refits
@@ -79,10 +80,10 @@ class DynamicAabbTree {
   BroadPhaseStatus update(std::span<const ProxyUpdate> updates);
   /// Rebuilds both trees with binned SAH (fat boxes kept). O(n log n).
   void rebuild();
-  /// Every pair (see broadphase.hpp), sorted; `out` is cleared first. Uses config threads.
-  void find_pairs(std::vector<ProxyPair>& out) { find_pairs(out, config_.threads); }
-  /// As above on `threads` threads (1 = serial, 0 = hardware concurrency); identical output.
-  void find_pairs(std::vector<ProxyPair>& out, unsigned threads);
+  /// Every pair (see broadphase.hpp), sorted; `out` is cleared first. On the calling thread.
+  void find_pairs(std::vector<ProxyPair>& out) { find_pairs(out, serial_executor()); }
+  /// As above with the descent split into tasks run by `executor`; identical output.
+  void find_pairs(std::vector<ProxyPair>& out, Executor& executor);
 
   /// Calls `on_overlap` for every proxy whose box overlaps `box` (closed); stops when it
   /// returns false. A non-finite or inverted box reports nothing.
@@ -108,8 +109,6 @@ class DynamicAabbTree {
   int height() const;
   /// Number of nodes in use in both trees.
   std::size_t node_count() const;
-  /// Sets the thread count of find_pairs (1 = serial, 0 = hardware concurrency).
-  void set_threads(unsigned threads) { config_.threads = threads; }
   /// The fat box of a proxy (its leaf's box); the empty box for an unknown id.
   Aabb fat_box(ProxyId id) const;
 
@@ -169,6 +168,7 @@ class DynamicAabbTree {
     bool cross;  ///< a in moving tree, b in static tree
   };
   void collide_task(const PairTask& task, std::vector<ProxyPair>& out, BroadPhaseStats& st) const;
+  void split_tasks(std::vector<PairTask>& tasks, std::size_t wanted) const;
 
   DynamicAabbTreeConfig config_;
   Tree static_;
@@ -176,6 +176,7 @@ class DynamicAabbTree {
   std::vector<Proxy> proxies_;
   std::size_t count_ = 0;
   PairSortScratch sort_scratch_;
+  PairChunkLists chunk_lists_;  ///< per-chunk pair lists of the parallel find_pairs
   mutable BroadPhaseStats stats_;
 };
 

@@ -19,13 +19,14 @@
 /// - Pair finding: a simultaneous descent of the tree against itself on the subtree boxes
 ///   kept by the refit (self of a node = self of each child + cross of the children; cross
 ///   of two nodes with overlapping boxes descends into the children; two leaves test their
-///   records), each pair met once; top tasks split among threads; results sorted.
+///   records), each pair met once; top tasks run by the executor; results sorted.
 ///
 /// Complexity: build O(n log n); update O(log n); queries O(log n + k) for well-spread data;
 /// find_pairs O(n log n + k) plus any refit/rebuild. Not safe for concurrent calls.
 
 #include <proxima/broadphase/broadphase.hpp>
 #include <proxima/broadphase/pair_tracker.hpp>
+#include <proxima/core/executor.hpp>
 
 #include <cstdint>
 #include <span>
@@ -59,10 +60,9 @@ class KdTree {
   /// Rebuilds the tree from scratch over every proxy (median splits). O(n log n).
   void rebuild();
   /// Every pair (see broadphase.hpp), sorted. May refit or rebuild first.
-  void find_pairs(std::vector<ProxyPair>& out) { find_pairs(out, 1); }
-  /// As above with the per-proxy searches split over `threads` std::threads (0 = hardware
-  /// concurrency); identical output.
-  void find_pairs(std::vector<ProxyPair>& out, unsigned threads);
+  void find_pairs(std::vector<ProxyPair>& out) { find_pairs(out, serial_executor()); }
+  /// As above with the tree descent split into tasks run by `executor`; identical output.
+  void find_pairs(std::vector<ProxyPair>& out, Executor& executor);
 
   /// Every proxy whose box overlaps `box` (closed); stops when the callback returns false.
   void query_aabb(const Aabb& box, const OverlapQueryCallback& on_overlap) const;

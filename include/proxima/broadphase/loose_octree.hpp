@@ -18,14 +18,15 @@
 /// child subtree, self of each child, cross of each child pair; cross(A, B) = own boxes of
 /// each against the other subtree, then the child pairs whose tight boxes overlap (the
 /// Ericson 6.5.3 BVH-BVH descent with the octree nodes as volumes); no per-box walk from the
-/// root. The top tasks (self and cross of the first levels) are split among threads
-/// (set_thread_count); pairs are radix-sorted. O(n + nodes + node pairs met + k') with k' the
+/// root. The top tasks (self and cross of the first levels) are run by the executor of
+/// find_pairs(out, executor); pairs are radix-sorted. O(n + nodes + node pairs met + k') with k' the
 /// candidate pairs of overlapping tight boxes.
 /// Queries walk the nodes whose loose bounds the box, point or ray meets.
 
 #include <proxima/broadphase/broadphase.hpp>
 #include <proxima/broadphase/pair_tracker.hpp>
 #include <proxima/broadphase/proxy_table.hpp>
+#include <proxima/core/executor.hpp>
 
 #include <cstdint>
 #include <span>
@@ -52,13 +53,10 @@ class LooseTree {
   BroadPhaseStatus update(std::span<const ProxyUpdate> updates);
   /// Rebuilds the tree around the current boxes (fits the root, resets the depth limit).
   void rebuild();
-  /// Every pair, sorted (broadphase.hpp).
-  void find_pairs(std::vector<ProxyPair>& out);
-  /// Every pair, sorted, found by `threads` threads (same output as serial).
-  void find_pairs(std::vector<ProxyPair>& out, unsigned threads) {
-    set_thread_count(int(threads));
-    find_pairs(out);
-  }
+  /// Every pair, sorted (broadphase.hpp), on the calling thread.
+  void find_pairs(std::vector<ProxyPair>& out) { find_pairs(out, serial_executor()); }
+  /// Every pair, sorted, with the top tasks run by `executor` (same output as serial).
+  void find_pairs(std::vector<ProxyPair>& out, Executor& executor);
   /// Proxies whose box overlaps `box` (closed), each once.
   void query_aabb(const Aabb& box, const OverlapQueryCallback& on_overlap) const;
   /// Proxies whose box contains `point`, each once.
@@ -72,8 +70,6 @@ class LooseTree {
   BroadPhaseStats stats() const { return stats_; }
   /// Number of proxies.
   std::size_t size() const { return proxies_.size(); }
-  /// Worker threads used by find_pairs (1 = the calling thread only).
-  void set_thread_count(int threads) { threads_ = threads < 1 ? 1 : threads; }
   /// Number of live nodes.
   std::size_t node_count() const { return nodes_.size() - free_.size(); }
   /// Depth of the deepest live node (root = 0). O(nodes).
@@ -114,6 +110,7 @@ class LooseTree {
     std::int32_t b;
   };
   void gather();
+  void split_tasks(std::size_t wanted);
   void run_task(const Task& task, std::vector<ProxyPair>& out, BroadPhaseStats& st) const;
   void own_pairs(std::int32_t node, std::vector<ProxyPair>& out, BroadPhaseStats& st) const;
   void self_pairs(std::int32_t node, std::vector<ProxyPair>& out, BroadPhaseStats& st) const;
@@ -132,7 +129,6 @@ class LooseTree {
   std::vector<std::int32_t> free_;
   std::int32_t root_ = kNil;
   Real min_half_ = 0;  // nodes are not split below this half size
-  int threads_ = 1;
   // find_pairs scratch (step 1 of find_pairs), by node unless said otherwise.
   std::vector<Item> items_;               // by gathered position
   std::vector<std::uint32_t> own_begin_;  // first gathered position of the node's own boxes

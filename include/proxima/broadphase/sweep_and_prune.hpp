@@ -20,13 +20,14 @@
 /// two axes other than the sweep axis, one sorted sweep per cell; a pair found in several
 /// cells is reported only by the cell holding the min corner of the two boxes' intersection.
 ///
-/// Parallel pair finding: `find_pairs(out, threads)` splits the sweep over `threads`
-/// std::threads (0 = hardware concurrency); each thread fills its own list; the lists are
-/// concatenated and sorted, so the output is identical to the serial one.
+/// Parallel pair finding: `find_pairs(out, executor)` splits the sweep into chunks of boxes
+/// (mbp: of cells) run by the executor; each chunk fills its own list; the lists are
+/// concatenated in chunk order and sorted, so the output is identical to the serial one.
 /// Queries (aabb, point, ray) scan the stored boxes linearly (O(n)).
 
 #include <proxima/broadphase/broadphase.hpp>
 #include <proxima/broadphase/pair_tracker.hpp>
+#include <proxima/core/executor.hpp>
 
 #include <cstdint>
 #include <span>
@@ -114,9 +115,9 @@ class SweepAndPrune : public SweepStorage {
   /// Re-chooses the sweep axis and re-sorts both lists from scratch.
   void rebuild();
   /// Every pair, sorted. O(n + swaps + overlaps on the sweep axis).
-  void find_pairs(std::vector<ProxyPair>& out) { find_pairs(out, 1); }
-  /// As above on `threads` threads (0 = hardware concurrency); identical output.
-  void find_pairs(std::vector<ProxyPair>& out, unsigned threads);
+  void find_pairs(std::vector<ProxyPair>& out) { find_pairs(out, serial_executor()); }
+  /// As above with the sweep run by `executor`; identical output.
+  void find_pairs(std::vector<ProxyPair>& out, Executor& executor);
   /// Current sweep axis (0, 1, 2).
   int axis() const { return axis_; }
 
@@ -134,9 +135,9 @@ class SortedSweep : public SweepStorage {
   /// Nothing to rebuild (every find_pairs sorts from scratch).
   void rebuild() {}
   /// Every pair, sorted. O(n + overlaps on the sweep axis).
-  void find_pairs(std::vector<ProxyPair>& out) { find_pairs(out, 1); }
-  /// As above on `threads` threads (0 = hardware concurrency); identical output.
-  void find_pairs(std::vector<ProxyPair>& out, unsigned threads);
+  void find_pairs(std::vector<ProxyPair>& out) { find_pairs(out, serial_executor()); }
+  /// As above with the sweep run by `executor`; identical output.
+  void find_pairs(std::vector<ProxyPair>& out, Executor& executor);
 
  private:
   int static_axis_ = -1;
@@ -150,9 +151,9 @@ class MultiBoxPruning : public SweepStorage {
   /// Nothing to rebuild (the grid is laid over the current bounds every call).
   void rebuild() {}
   /// Every pair, sorted.
-  void find_pairs(std::vector<ProxyPair>& out) { find_pairs(out, 1); }
-  /// As above on `threads` threads (0 = hardware concurrency); identical output.
-  void find_pairs(std::vector<ProxyPair>& out, unsigned threads);
+  void find_pairs(std::vector<ProxyPair>& out) { find_pairs(out, serial_executor()); }
+  /// As above with the sweep run by `executor`; identical output.
+  void find_pairs(std::vector<ProxyPair>& out, Executor& executor);
 
  private:
   std::vector<std::vector<ProxyId>> cell_moving_;

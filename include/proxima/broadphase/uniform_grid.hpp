@@ -26,7 +26,9 @@
 /// steady state (buffers keep their capacity).
 
 #include <proxima/broadphase/broadphase.hpp>
+#include <proxima/broadphase/parallel_pairs.hpp>
 #include <proxima/broadphase/proxy_table.hpp>
+#include <proxima/core/executor.hpp>
 
 #include <cstdint>
 #include <span>
@@ -54,14 +56,13 @@ class CellEngine {
   BroadPhaseStatus update(ProxyId id, const Aabb& box);
   BroadPhaseStatus update(std::span<const ProxyUpdate> updates);
   void rebuild();
-  void find_pairs(std::vector<ProxyPair>& out);
+  void find_pairs(std::vector<ProxyPair>& out, Executor& executor);
   void query_aabb(const Aabb& box, const OverlapQueryCallback& on_overlap) const;
   void query_point(const Vec3& point, const OverlapQueryCallback& on_overlap) const;
   void query_ray(const Ray& ray, Real max_t, const RayQueryCallback& on_ray) const;
   bool validate() const;
   BroadPhaseStats stats() const { return stats_; }
   std::size_t size() const { return proxies_.size(); }
-  void set_thread_count(int threads) { threads_ = threads < 1 ? 1 : threads; }
   Real cell_size() const { return cell_; }
   std::size_t cell_count() const { return cell_start_.empty() ? 0 : cell_start_.size() - 1; }
   std::size_t entry_count() const { return entries_.size(); }
@@ -109,7 +110,6 @@ class CellEngine {
   Aabb bounds_;        // dense grid world bounds (grow only, reset by rebuild())
   std::int32_t dims_[3] = {1, 1, 1};
   std::uint32_t level_mask_ = 0;  // hgrid: occupied levels
-  int threads_ = 1;
   bool dirty_ = true;
 
   detail::ProxyTable proxies_;
@@ -122,7 +122,7 @@ class CellEngine {
   std::vector<Entry> entries_;              // entries sorted by cell
   std::vector<std::uint32_t> oversized_;    // dense slots of oversized proxies
   std::vector<std::uint8_t> is_oversized_;  // per dense slot
-  std::vector<std::vector<ProxyPair>> thread_pairs_;
+  PairChunkLists part_pairs_;               // per-part pair lists of the parallel find_pairs
   std::vector<ProxyPair> sort_scratch_;
   mutable BroadPhaseStats stats_;
 };
@@ -149,13 +149,11 @@ class CellBroadPhase {
   BroadPhaseStatus update(std::span<const ProxyUpdate> updates) { return engine_.update(updates); }
   /// Re-chooses the cell size (and the dense grid's world bounds) and bins every proxy.
   void rebuild() { engine_.rebuild(); }
-  /// Every pair, sorted (broadphase.hpp).
-  void find_pairs(std::vector<ProxyPair>& out) { engine_.find_pairs(out); }
-  /// Every pair, sorted, found by `threads` threads (same output as serial).
-  void find_pairs(std::vector<ProxyPair>& out, unsigned threads) {
-    engine_.set_thread_count(int(threads));
-    engine_.find_pairs(out);
-  }
+  /// Every pair, sorted (broadphase.hpp), on the calling thread.
+  void find_pairs(std::vector<ProxyPair>& out) { engine_.find_pairs(out, serial_executor()); }
+  /// Every pair, sorted, with the cells split into parts run by `executor` (same output as
+  /// serial).
+  void find_pairs(std::vector<ProxyPair>& out, Executor& executor) { engine_.find_pairs(out, executor); }
   /// Proxies whose box overlaps `box` (closed), each once.
   void query_aabb(const Aabb& box, const OverlapQueryCallback& on_overlap) const {
     engine_.query_aabb(box, on_overlap);
@@ -175,8 +173,6 @@ class CellBroadPhase {
   BroadPhaseStats stats() const { return engine_.stats(); }
   /// Number of proxies.
   std::size_t size() const { return engine_.size(); }
-  /// Worker threads used by find_pairs (1 = the calling thread only).
-  void set_thread_count(int threads) { engine_.set_thread_count(threads); }
   /// Cell size of the last build (level 0 for the hierarchical grid).
   Real cell_size() const { return engine_.cell_size(); }
   /// Bytes held by the structure's buffers (capacity).
