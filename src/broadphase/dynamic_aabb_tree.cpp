@@ -21,12 +21,11 @@
 
 #include <proxima/broadphase/dynamic_aabb_tree.hpp>
 #include <proxima/broadphase/pair_tracker.hpp>
+#include <proxima/broadphase/query_support.hpp>
 #include <proxima/core/tolerance.hpp>
 #include <proxima/geometry/raycast.hpp>
 
 #include <algorithm>
-
-#include "broadphase/tree_support.hpp"
 
 namespace proxima {
 
@@ -712,74 +711,6 @@ void DynamicAabbTree::find_pairs(std::vector<ProxyPair>& out, Executor& executor
   }
   sort_pairs(out, sort_scratch_);
   st.pairs_found = out.size();
-  stats_ = st;
-}
-
-// ---- queries ----------------------------------------------------------------------------------
-
-void DynamicAabbTree::query_aabb(const Aabb& box, const OverlapQueryCallback& on_overlap) const {
-  BroadPhaseStats st;
-  if (detail::query_box_ok(box)) {
-    for (const Tree* tree : {&moving_, &static_}) {
-      if (tree->root == kNull) continue;
-      detail::TraversalStack<std::uint32_t, 256> stack;
-      stack.push(tree->root);
-      bool stop = false;
-      while (!stack.empty() && !stop) {
-        const std::uint32_t index = stack.pop();
-        const Node& n = tree->nodes[index];
-        ++st.nodes_visited;
-        if (!n.box.overlaps(box)) continue;
-        if (n.is_leaf()) {
-          ++st.pairs_tested;
-          if (tree->real[index].overlaps(box)) {
-            ++st.pairs_found;
-            if (!on_overlap(n.child2)) stop = true;
-          }
-          continue;
-        }
-        stack.push(n.child1);
-        stack.push(n.child2);
-      }
-      if (stop) break;
-    }
-  }
-  stats_ = st;
-}
-
-void DynamicAabbTree::query_point(const Vec3& point, const OverlapQueryCallback& on_overlap) const {
-  detail::run_point_query(point, stats_, [&](const Aabb& b) { query_aabb(b, on_overlap); });
-}
-
-void DynamicAabbTree::query_ray(const Ray& ray, Real max_t, const RayQueryCallback& on_ray) const {
-  BroadPhaseStats st;
-  if (detail::ray_input_ok(ray, max_t)) {
-    const detail::SlabRay slab(ray);
-    Real limit = max_t;
-    bool stop = false;
-    for (const Tree* tree : {&moving_, &static_}) {
-      if (tree->root == kNull || stop) continue;
-      detail::TraversalStack<std::uint32_t, 256> stack;
-      stack.push(tree->root);
-      while (!stack.empty() && !stop) {
-        const std::uint32_t index = stack.pop();
-        const Node& n = tree->nodes[index];
-        ++st.nodes_visited;
-        Real t;
-        if (!slab.enter(n.box, limit, t)) continue;
-        if (n.is_leaf()) {
-          ++st.pairs_tested;
-          const auto hit = geometry::ray_aabb(ray, limit, tree->real[index]);
-          if (!hit) continue;
-          ++st.pairs_found;
-          if (!detail::apply_ray_result(on_ray(n.child2, hit->t), limit)) stop = true;
-          continue;
-        }
-        stack.push(n.child1);
-        stack.push(n.child2);
-      }
-    }
-  }
   stats_ = st;
 }
 

@@ -29,28 +29,6 @@ std::size_t capacity_bytes(const std::vector<T>& v) {
   return v.capacity() * sizeof(T);
 }
 
-// Slab test of the clipped ray against a node's loose bounds on the first `dims` axes.
-bool ray_meets(const Ray& ray, Real max_t, const Aabb& box, int dims) {
-  Real t0 = 0;
-  Real t1 = max_t;
-  for (int k = 0; k < dims; ++k) {
-    const Real o = ray.origin[k];
-    const Real d = ray.direction[k];
-    if (d == Real(0)) {
-      if (o < box.min[k] || o > box.max[k]) return false;
-      continue;
-    }
-    Real ta = (box.min[k] - o) / d;
-    Real tb = (box.max[k] - o) / d;
-    if (ta > tb) std::swap(ta, tb);
-    t0 = std::max(t0, ta);
-    t1 = std::min(t1, tb);
-    // A small slack: the node test only prunes, the boxes themselves are tested exactly.
-    if (t0 > t1 + std::abs(t1) * Real(1e-4) + Real(1e-30)) return false;
-  }
-  return true;
-}
-
 }  // namespace
 
 template <int Dim>
@@ -483,57 +461,26 @@ void LooseTree<Dim>::find_pairs(std::vector<ProxyPair>& out, Executor& executor)
 }
 
 template <int Dim>
-bool LooseTree<Dim>::query_node(std::int32_t node, const Aabb& box, const OverlapQueryCallback& on_overlap) const {
-  const Node& n = nodes_[std::size_t(node)];
-  ++stats_.nodes_visited;
-  for (std::uint32_t id = n.first; id != kNone; id = next_[id]) {
-    ++stats_.pairs_tested;
-    if (proxies_[id].box.overlaps(box) && !on_overlap(id)) return false;
-  }
-  for (const std::int32_t child : n.child) {
-    if (child == kNil || !nodes_[std::size_t(child)].loose.overlaps(box)) continue;
-    if (!query_node(child, box, on_overlap)) return false;
+bool LooseTree<Dim>::ray_meets(const Ray& ray, Real max_t, const Aabb& loose) {
+  // Slab test of the clipped ray against a node's loose bounds on the partitioned axes.
+  Real t0 = 0;
+  Real t1 = max_t;
+  for (int k = 0; k < Dim; ++k) {
+    const Real o = ray.origin[k];
+    const Real d = ray.direction[k];
+    if (d == Real(0)) {
+      if (o < loose.min[k] || o > loose.max[k]) return false;
+      continue;
+    }
+    Real ta = (loose.min[k] - o) / d;
+    Real tb = (loose.max[k] - o) / d;
+    if (ta > tb) std::swap(ta, tb);
+    t0 = std::max(t0, ta);
+    t1 = std::min(t1, tb);
+    // A small slack: the node test only prunes, the boxes themselves are tested exactly.
+    if (t0 > t1 + std::abs(t1) * Real(1e-4) + Real(1e-30)) return false;
   }
   return true;
-}
-
-template <int Dim>
-void LooseTree<Dim>::query_aabb(const Aabb& box, const OverlapQueryCallback& on_overlap) const {
-  stats_ = {};
-  if (root_ == kNil || !box.is_valid() || !nodes_[std::size_t(root_)].loose.overlaps(box)) return;
-  query_node(root_, box, on_overlap);
-}
-
-template <int Dim>
-void LooseTree<Dim>::query_point(const Vec3& point, const OverlapQueryCallback& on_overlap) const {
-  query_aabb(Aabb::from_point(point), on_overlap);
-}
-
-template <int Dim>
-void LooseTree<Dim>::query_ray(const Ray& ray, Real max_t, const RayQueryCallback& on_ray) const {
-  stats_ = {};
-  if (root_ == kNil) return;
-  Real limit = max_t;
-  std::vector<std::int32_t> stack{root_};
-  while (!stack.empty()) {
-    const std::int32_t node = stack.back();
-    stack.pop_back();
-    const Node& n = nodes_[std::size_t(node)];
-    if (!ray_meets(ray, limit, n.loose, Dim)) continue;
-    ++stats_.nodes_visited;
-    for (std::uint32_t id = n.first; id != kNone; id = next_[id]) {
-      ++stats_.pairs_tested;
-      Real t = 0;
-      if (!detail::ray_enters_box(ray, limit, proxies_[id].box, t)) continue;
-      const Real next = on_ray(id, t);
-      if (next < 0) continue;
-      if (next == 0) return;
-      limit = std::min(limit, next);
-    }
-    for (const std::int32_t child : n.child) {
-      if (child != kNil) stack.push_back(child);
-    }
-  }
 }
 
 template <int Dim>

@@ -211,43 +211,6 @@ BroadPhaseStatus SweepStorage::update(std::span<const ProxyUpdate> updates) {
   return BroadPhaseStatus::Ok;
 }
 
-void SweepStorage::query_aabb(const Aabb& box, const OverlapQueryCallback& on_overlap) const {
-  stats_ = {};
-  for (std::size_t id = 0; id < state_.size(); ++id) {
-    if (state_[id] == kAbsent) continue;
-    ++stats_.pairs_tested;
-    if (!box_[id].overlaps(box)) continue;
-    ++stats_.pairs_found;
-    if (!on_overlap(static_cast<ProxyId>(id))) return;
-  }
-}
-
-void SweepStorage::query_point(const Vec3& point, const OverlapQueryCallback& on_overlap) const {
-  stats_ = {};
-  for (std::size_t id = 0; id < state_.size(); ++id) {
-    if (state_[id] == kAbsent) continue;
-    ++stats_.pairs_tested;
-    if (!box_[id].contains(point)) continue;
-    ++stats_.pairs_found;
-    if (!on_overlap(static_cast<ProxyId>(id))) return;
-  }
-}
-
-void SweepStorage::query_ray(const Ray& ray, Real max_t, const RayQueryCallback& on_ray) const {
-  stats_ = {};
-  for (std::size_t id = 0; id < state_.size(); ++id) {
-    if (state_[id] == kAbsent) continue;
-    ++stats_.pairs_tested;
-    const auto hit = geometry::ray_aabb(ray, max_t, box_[id]);
-    if (!hit || hit->t > max_t) continue;
-    ++stats_.pairs_found;
-    const Real r = on_ray(static_cast<ProxyId>(id), hit->t);
-    if (r < Real(0)) continue;
-    if (r == Real(0)) return;
-    max_t = std::min(max_t, r);
-  }
-}
-
 bool SweepStorage::validate() const {
   const std::size_t n = state_.size();
   if (box_.size() != n || filter_.size() != n || listed_.size() != n) return false;

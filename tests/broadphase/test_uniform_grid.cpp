@@ -224,13 +224,13 @@ TEST(UniformGrid, RayMarchMatchesEveryBoxItEnters) {
         if (const auto hit = geometry::ray_aabb(ray, max_t, boxes[id])) want[id] = hit->t;
       }
       std::map<ProxyId, Real> got;
-      s.query_ray(ray, max_t, [&](ProxyId id, Real t) {
+      const BroadPhaseStats st = s.query_ray(ray, max_t, [&](ProxyId id, Real t) {
         EXPECT_FALSE(got.count(id)) << "reported twice: " << id;
         got[id] = t;
         return Real(-1);
       });
       EXPECT_EQ(got, want) << "query " << q;
-      tested += s.stats().pairs_tested;
+      tested += st.pairs_tested;
       // Closest hit: the callback clips the ray to each hit.
       Real best = max_t;
       for (const auto& [id, t] : want) best = std::min(best, t);

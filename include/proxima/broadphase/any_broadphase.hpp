@@ -1,7 +1,9 @@
 #pragma once
 /// @file any_broadphase.hpp
 /// AnyBroadPhase: a type-erased broad phase (one virtual call per operation, never per
-/// element) for the CLI, benchmarks and applications that pick a structure at run time.
+/// element) for the CLI, benchmarks and applications that pick a structure at run time. It is
+/// the one place where query callbacks are type-erased (FunctionRef: one indirect call per
+/// reported proxy); the concrete structures call their callable directly.
 /// It wraps any BroadPhaseStructure, forwards every call, and holds a PairTracker so
 /// `update_pairs()` returns the pairs begun and ended since its previous call.
 /// `make_broadphase(name)` builds one by name from the registry (broadphase_registry.cpp);
@@ -49,15 +51,15 @@ class AnyBroadPhase {
   virtual void find_pairs(std::vector<ProxyPair>& out, Executor& executor) = 0;
   /// Every pair, sorted, on the calling thread.
   void find_pairs(std::vector<ProxyPair>& out) { find_pairs(out, serial_executor()); }
-  /// As BroadPhaseStructure::query_aabb.
-  virtual void query_aabb(const Aabb& box, const OverlapQueryCallback& on_overlap) const = 0;
-  /// As BroadPhaseStructure::query_point.
-  virtual void query_point(const Vec3& point, const OverlapQueryCallback& on_overlap) const = 0;
-  /// As BroadPhaseStructure::query_ray.
-  virtual void query_ray(const Ray& ray, Real max_t, const RayQueryCallback& on_ray) const = 0;
+  /// As BroadPhaseStructure::query_aabb; returns the query's counters.
+  virtual BroadPhaseStats query_aabb(const Aabb& box, OverlapQueryCallback on_overlap) const = 0;
+  /// As BroadPhaseStructure::query_point; returns the query's counters.
+  virtual BroadPhaseStats query_point(const Vec3& point, OverlapQueryCallback on_overlap) const = 0;
+  /// As BroadPhaseStructure::query_ray; returns the query's counters.
+  virtual BroadPhaseStats query_ray(const Ray& ray, Real max_t, RayQueryCallback on_ray) const = 0;
   /// As BroadPhaseStructure::validate.
   virtual bool validate() const = 0;
-  /// As BroadPhaseStructure::stats.
+  /// As BroadPhaseStructure::stats (the last find_pairs' counters).
   virtual BroadPhaseStats stats() const = 0;
   /// As BroadPhaseStructure::size.
   virtual std::size_t size() const = 0;
@@ -110,14 +112,14 @@ class BroadPhaseAdapter final : public AnyBroadPhase {
       s_.find_pairs(out);
     }
   }
-  void query_aabb(const Aabb& box, const OverlapQueryCallback& on_overlap) const override {
-    s_.query_aabb(box, on_overlap);
+  BroadPhaseStats query_aabb(const Aabb& box, OverlapQueryCallback on_overlap) const override {
+    return s_.query_aabb(box, on_overlap);
   }
-  void query_point(const Vec3& point, const OverlapQueryCallback& on_overlap) const override {
-    s_.query_point(point, on_overlap);
+  BroadPhaseStats query_point(const Vec3& point, OverlapQueryCallback on_overlap) const override {
+    return s_.query_point(point, on_overlap);
   }
-  void query_ray(const Ray& ray, Real max_t, const RayQueryCallback& on_ray) const override {
-    s_.query_ray(ray, max_t, on_ray);
+  BroadPhaseStats query_ray(const Ray& ray, Real max_t, RayQueryCallback on_ray) const override {
+    return s_.query_ray(ray, max_t, on_ray);
   }
   bool validate() const override { return s_.validate(); }
   BroadPhaseStats stats() const override { return s_.stats(); }

@@ -32,12 +32,14 @@
 ///
 /// Complexity: insert/remove O(log n) expected; update O(1) while inside the fat box;
 /// find_pairs O(n log n + k) typical; queries O(log n + k) typical; rebuild O(n log n).
-/// Not safe for concurrent calls (const queries update the statistics).
+/// Queries may run concurrently with each other, not with changes.
 
 #include <proxima/broadphase/broadphase.hpp>
 #include <proxima/broadphase/pair_tracker.hpp>
 #include <proxima/broadphase/parallel_pairs.hpp>
+#include <proxima/broadphase/query_support.hpp>
 #include <proxima/core/executor.hpp>
+#include <proxima/geometry/raycast.hpp>
 
 #include <cstdint>
 #include <span>
@@ -86,18 +88,23 @@ class DynamicAabbTree {
   void find_pairs(std::vector<ProxyPair>& out, Executor& executor);
 
   /// Calls `on_overlap` for every proxy whose box overlaps `box` (closed); stops when it
-  /// returns false. A non-finite or inverted box reports nothing.
-  void query_aabb(const Aabb& box, const OverlapQueryCallback& on_overlap) const;
+  /// returns false. A non-finite or inverted box reports nothing. Returns the counters.
+  template <OverlapCallback OnOverlap>
+  BroadPhaseStats query_aabb(const Aabb& box, OnOverlap&& on_overlap) const;
   /// Calls `on_overlap` for every proxy whose box contains `point` (boundary included).
-  void query_point(const Vec3& point, const OverlapQueryCallback& on_overlap) const;
+  template <OverlapCallback OnOverlap>
+  BroadPhaseStats query_point(const Vec3& point, OnOverlap&& on_overlap) const {
+    return detail::run_point_query(point, [&](const Aabb& b) { return query_aabb(b, on_overlap); });
+  }
   /// Calls `on_ray` for every proxy whose box the ray enters within [0, max_t] (see
-  /// RayQueryCallback); the callback's answer clips the ray for the rest of the search.
-  void query_ray(const Ray& ray, Real max_t, const RayQueryCallback& on_ray) const;
+  /// RayCallback); the callback's answer clips the ray for the rest of the search.
+  template <RayCallback OnRay>
+  BroadPhaseStats query_ray(const Ray& ray, Real max_t, OnRay&& on_ray) const;
 
   /// Checks every invariant: parent links, children inside parents, fat boxes containing the
   /// real boxes, heights, leaf counts, free list, proxy table. O(n).
   bool validate() const;
-  /// Counters of the last find_pairs or query.
+  /// Counters of the last find_pairs.
   BroadPhaseStats stats() const { return stats_; }
   /// Number of proxies.
   std::size_t size() const { return count_; }
@@ -177,9 +184,69 @@ class DynamicAabbTree {
   std::size_t count_ = 0;
   PairSortScratch sort_scratch_;
   PairChunkLists chunk_lists_;  ///< per-chunk pair lists of the parallel find_pairs
-  mutable BroadPhaseStats stats_;
+  BroadPhaseStats stats_;
 };
 
 static_assert(BroadPhaseStructure<DynamicAabbTree>);
+
+// ---- queries (templates on the callback) ------------------------------------------------
+
+template <OverlapCallback OnOverlap>
+BroadPhaseStats DynamicAabbTree::query_aabb(const Aabb& box, OnOverlap&& on_overlap) const {
+  BroadPhaseStats st;
+  if (!detail::query_box_ok(box)) return st;
+  for (const Tree* tree : {&moving_, &static_}) {
+    if (tree->root == kNull) continue;
+    detail::TraversalStack<std::uint32_t, 256> stack;
+    stack.push(tree->root);
+    while (!stack.empty()) {
+      const std::uint32_t index = stack.pop();
+      const Node& n = tree->nodes[index];
+      ++st.nodes_visited;
+      if (!n.box.overlaps(box)) continue;
+      if (!n.is_leaf()) {
+        stack.push(n.child1);
+        stack.push(n.child2);
+        continue;
+      }
+      ++st.pairs_tested;
+      if (!tree->real[index].overlaps(box)) continue;
+      ++st.pairs_found;
+      if (!on_overlap(n.child2)) return st;
+    }
+  }
+  return st;
+}
+
+template <RayCallback OnRay>
+BroadPhaseStats DynamicAabbTree::query_ray(const Ray& ray, Real max_t, OnRay&& on_ray) const {
+  BroadPhaseStats st;
+  if (!detail::ray_input_ok(ray, max_t)) return st;
+  const detail::SlabRay slab(ray);
+  Real limit = max_t;
+  for (const Tree* tree : {&moving_, &static_}) {
+    if (tree->root == kNull) continue;
+    detail::TraversalStack<std::uint32_t, 256> stack;
+    stack.push(tree->root);
+    while (!stack.empty()) {
+      const std::uint32_t index = stack.pop();
+      const Node& n = tree->nodes[index];
+      ++st.nodes_visited;
+      Real t;
+      if (!slab.enter(n.box, limit, t)) continue;
+      if (!n.is_leaf()) {
+        stack.push(n.child1);
+        stack.push(n.child2);
+        continue;
+      }
+      ++st.pairs_tested;
+      const auto hit = geometry::ray_aabb(ray, limit, tree->real[index]);
+      if (!hit) continue;
+      ++st.pairs_found;
+      if (!detail::apply_ray_result(on_ray(n.child2, hit->t), limit)) return st;
+    }
+  }
+  return st;
+}
 
 }  // namespace proxima

@@ -28,6 +28,7 @@
 #include <proxima/broadphase/proxy_table.hpp>
 #include <proxima/core/executor.hpp>
 
+#include <algorithm>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -57,16 +58,21 @@ class LooseTree {
   void find_pairs(std::vector<ProxyPair>& out) { find_pairs(out, serial_executor()); }
   /// Every pair, sorted, with the top tasks run by `executor` (same output as serial).
   void find_pairs(std::vector<ProxyPair>& out, Executor& executor);
-  /// Proxies whose box overlaps `box` (closed), each once.
-  void query_aabb(const Aabb& box, const OverlapQueryCallback& on_overlap) const;
-  /// Proxies whose box contains `point`, each once.
-  void query_point(const Vec3& point, const OverlapQueryCallback& on_overlap) const;
+  /// Proxies whose box overlaps `box` (closed), each once; returns the query's counters.
+  template <OverlapCallback OnOverlap>
+  BroadPhaseStats query_aabb(const Aabb& box, OnOverlap&& on_overlap) const;
+  /// Proxies whose box contains `point`, each once; returns the query's counters.
+  template <OverlapCallback OnOverlap>
+  BroadPhaseStats query_point(const Vec3& point, OnOverlap&& on_overlap) const {
+    return query_aabb(Aabb::from_point(point), on_overlap);
+  }
   /// Proxies whose box the ray enters at t <= the current max fraction (t of
   /// geometry::ray_aabb), nodes pruned by their loose bounds against the clipped ray.
-  void query_ray(const Ray& ray, Real max_t, const RayQueryCallback& on_ray) const;
+  template <RayCallback OnRay>
+  BroadPhaseStats query_ray(const Ray& ray, Real max_t, OnRay&& on_ray) const;
   /// Checks the links, counts and that every box lies in its node's loose bounds. O(n + nodes).
   bool validate() const;
-  /// Counters of the last find_pairs / query.
+  /// Counters of the last find_pairs.
   BroadPhaseStats stats() const { return stats_; }
   /// Number of proxies.
   std::size_t size() const { return proxies_.size(); }
@@ -119,7 +125,9 @@ class LooseTree {
                         std::vector<ProxyPair>& out, BroadPhaseStats& st) const;
   void test_items(std::uint32_t begin, std::uint32_t end, std::uint32_t begin2, std::uint32_t end2,
                   std::vector<ProxyPair>& out, BroadPhaseStats& st) const;
-  bool query_node(std::int32_t node, const Aabb& box, const OverlapQueryCallback& on_overlap) const;
+  template <class OnOverlap>
+  bool query_node(std::int32_t node, const Aabb& box, OnOverlap& on_overlap, BroadPhaseStats& st) const;
+  static bool ray_meets(const Ray& ray, Real max_t, const Aabb& loose);
 
   detail::ProxyTable proxies_;
   std::vector<std::int32_t> node_of_;  // by id
@@ -137,13 +145,69 @@ class LooseTree {
   std::vector<std::int32_t> order_;       // nodes in depth-first order
   std::vector<Task> tasks_;
   PairSortScratch sort_scratch_;
-  mutable BroadPhaseStats stats_;
+  BroadPhaseStats stats_;
 };
 
 /// Loose octree ("octree").
 using LooseOctree = LooseTree<3>;
 /// Loose quadtree on x, y ("quadtree").
 using LooseQuadtree = LooseTree<2>;
+
+// ---- queries (templates on the callback) ------------------------------------------------
+
+template <int Dim>
+template <class OnOverlap>
+bool LooseTree<Dim>::query_node(std::int32_t node, const Aabb& box, OnOverlap& on_overlap, BroadPhaseStats& st) const {
+  const Node& n = nodes_[std::size_t(node)];
+  ++st.nodes_visited;
+  for (std::uint32_t id = n.first; id != kNone; id = next_[id]) {
+    ++st.pairs_tested;
+    if (proxies_[id].box.overlaps(box) && !on_overlap(id)) return false;
+  }
+  for (const std::int32_t child : n.child) {
+    if (child == kNil || !nodes_[std::size_t(child)].loose.overlaps(box)) continue;
+    if (!query_node(child, box, on_overlap, st)) return false;
+  }
+  return true;
+}
+
+template <int Dim>
+template <OverlapCallback OnOverlap>
+BroadPhaseStats LooseTree<Dim>::query_aabb(const Aabb& box, OnOverlap&& on_overlap) const {
+  BroadPhaseStats st;
+  if (root_ == kNil || !box.is_valid() || !nodes_[std::size_t(root_)].loose.overlaps(box)) return st;
+  query_node(root_, box, on_overlap, st);
+  return st;
+}
+
+template <int Dim>
+template <RayCallback OnRay>
+BroadPhaseStats LooseTree<Dim>::query_ray(const Ray& ray, Real max_t, OnRay&& on_ray) const {
+  BroadPhaseStats st;
+  if (root_ == kNil) return st;
+  Real limit = max_t;
+  std::vector<std::int32_t> stack{root_};
+  while (!stack.empty()) {
+    const std::int32_t node = stack.back();
+    stack.pop_back();
+    const Node& n = nodes_[std::size_t(node)];
+    if (!ray_meets(ray, limit, n.loose)) continue;
+    ++st.nodes_visited;
+    for (std::uint32_t id = n.first; id != kNone; id = next_[id]) {
+      ++st.pairs_tested;
+      Real t = 0;
+      if (!detail::ray_enters_box(ray, limit, proxies_[id].box, t)) continue;
+      const Real next = on_ray(id, t);
+      if (next < 0) continue;
+      if (next == 0) return st;
+      limit = std::min(limit, next);
+    }
+    for (const std::int32_t child : n.child) {
+      if (child != kNil) stack.push_back(child);
+    }
+  }
+  return st;
+}
 
 extern template class LooseTree<2>;
 extern template class LooseTree<3>;

@@ -28,7 +28,9 @@
 #include <proxima/broadphase/broadphase.hpp>
 #include <proxima/broadphase/pair_tracker.hpp>
 #include <proxima/core/executor.hpp>
+#include <proxima/geometry/raycast.hpp>
 
+#include <algorithm>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -67,15 +69,23 @@ class SweepStorage {
   BroadPhaseStatus update(ProxyId id, const Aabb& box);
   /// Replaces several boxes; all or nothing; a repeated id ends with its last box.
   BroadPhaseStatus update(std::span<const ProxyUpdate> updates);
-  /// Proxies whose box overlaps or touches `box` (linear scan).
-  void query_aabb(const Aabb& box, const OverlapQueryCallback& on_overlap) const;
-  /// Proxies whose box contains `point` (linear scan).
-  void query_point(const Vec3& point, const OverlapQueryCallback& on_overlap) const;
-  /// Proxies hit by the ray at t <= the current max fraction (linear scan, ray_aabb's t).
-  void query_ray(const Ray& ray, Real max_t, const RayQueryCallback& on_ray) const;
+  /// Proxies whose box overlaps or touches `box` (linear scan); returns the counters.
+  template <OverlapCallback OnOverlap>
+  BroadPhaseStats query_aabb(const Aabb& box, OnOverlap&& on_overlap) const {
+    return scan([&](const Aabb& b) { return b.overlaps(box); }, on_overlap);
+  }
+  /// Proxies whose box contains `point` (linear scan); returns the counters.
+  template <OverlapCallback OnOverlap>
+  BroadPhaseStats query_point(const Vec3& point, OnOverlap&& on_overlap) const {
+    return scan([&](const Aabb& b) { return b.contains(point); }, on_overlap);
+  }
+  /// Proxies hit by the ray at t <= the current max fraction (linear scan, ray_aabb's t);
+  /// returns the counters.
+  template <RayCallback OnRay>
+  BroadPhaseStats query_ray(const Ray& ray, Real max_t, OnRay&& on_ray) const;
   /// Checks the lists against the id table and every stored box.
   bool validate() const;
-  /// Counters of the last find_pairs or query.
+  /// Counters of the last find_pairs.
   BroadPhaseStats stats() const { return stats_; }
   /// Number of proxies.
   std::size_t size() const { return count_; }
@@ -90,6 +100,9 @@ class SweepStorage {
   void gather(const std::vector<ProxyId>& order, int axis, SweepList& list) const;
   /// Sorts `ids` by box min on `axis` (radix sort).
   void radix_sort_ids(std::vector<ProxyId>& ids, int axis);
+  /// Reports every present proxy whose box passes `hit` until `on_overlap` returns false.
+  template <class Hit, class OnOverlap>
+  BroadPhaseStats scan(const Hit& hit, OnOverlap& on_overlap) const;
 
   std::vector<Aabb> box_;
   std::vector<ProxyFilter> filter_;
@@ -100,7 +113,7 @@ class SweepStorage {
   std::size_t count_ = 0;
   bool static_dirty_ = true;      // static list changed since static_list_ was built
   std::size_t moving_added_ = 0;  // moving ids appended since the last sort
-  mutable BroadPhaseStats stats_;
+  BroadPhaseStats stats_;
   // Scratch of the sorts.
   std::vector<std::uint64_t> keys_;
   std::vector<std::uint64_t> keys_tmp_;
@@ -160,6 +173,38 @@ class MultiBoxPruning : public SweepStorage {
   std::vector<std::vector<ProxyId>> cell_static_;
   std::vector<SweepList> cell_lists_;  // 2 per cell: moving, static
 };
+
+// ---- queries (templates on the callback) ------------------------------------------------
+
+template <class Hit, class OnOverlap>
+BroadPhaseStats SweepStorage::scan(const Hit& hit, OnOverlap& on_overlap) const {
+  BroadPhaseStats st;
+  for (std::size_t id = 0; id < state_.size(); ++id) {
+    if (state_[id] == kAbsent) continue;
+    ++st.pairs_tested;
+    if (!hit(box_[id])) continue;
+    ++st.pairs_found;
+    if (!on_overlap(static_cast<ProxyId>(id))) break;
+  }
+  return st;
+}
+
+template <RayCallback OnRay>
+BroadPhaseStats SweepStorage::query_ray(const Ray& ray, Real max_t, OnRay&& on_ray) const {
+  BroadPhaseStats st;
+  for (std::size_t id = 0; id < state_.size(); ++id) {
+    if (state_[id] == kAbsent) continue;
+    ++st.pairs_tested;
+    const auto hit = geometry::ray_aabb(ray, max_t, box_[id]);
+    if (!hit || hit->t > max_t) continue;
+    ++st.pairs_found;
+    const Real r = on_ray(static_cast<ProxyId>(id), hit->t);
+    if (r < Real(0)) continue;
+    if (r == Real(0)) break;
+    max_t = std::min(max_t, r);
+  }
+  return st;
+}
 
 static_assert(BroadPhaseStructure<SweepAndPrune>);
 static_assert(BroadPhaseStructure<SortedSweep>);
