@@ -113,7 +113,7 @@ TEST(MeshRaycastPeers, SharedRayWorkloadMatchesEmbree) {
   ThreadPool pool(4);
   ASSERT_EQ(raycast_batch(mesh, batch, out, pool).value(), hits);
   for (std::size_t i = 0; i < batch.size(); ++i) {
-    ASSERT_EQ(out[i].triangle, ours[i] ? ours[i]->sub.triangle : kNoIndex);
+    ASSERT_EQ(out[i].sub.triangle, ours[i] ? ours[i]->sub.triangle : kNoIndex);
     if (ours[i]) {
       ASSERT_EQ(out[i].t, ours[i]->t);
     }
