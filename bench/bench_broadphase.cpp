@@ -35,6 +35,7 @@
 #include <proxima/broadphase/kd_tree.hpp>
 #include <proxima/broadphase/loose_octree.hpp>
 #include <proxima/broadphase/uniform_grid.hpp>
+#include <proxima/core/executor.hpp>
 
 #include <csignal>
 #include <ctime>
@@ -139,20 +140,30 @@ class Runner {
   virtual const std::vector<ProxyPair>& pairs() const = 0;
 };
 
-/// True when S offers find_pairs(out, threads).
+/// True when S offers find_pairs(out, executor).
 template <class S>
-constexpr bool kParallel = requires(S& s, std::vector<ProxyPair>& out) {
-  s.find_pairs(out, 2u);
+constexpr bool kParallel = requires(S& s, std::vector<ProxyPair>& out, proxima::Executor& executor) {
+  s.find_pairs(out, executor);
 };
+
+/// The executor of a run on `threads` threads: the serial executor for 1, else a ThreadPool
+/// started once per thread count and kept for the whole program (outside the timings). The
+/// parent of run_large's child processes starts none before forking (only runners use it).
+proxima::Executor& executor_for(int threads) {
+  if (threads <= 1) return proxima::serial_executor();
+  static std::map<int, std::unique_ptr<proxima::ThreadPool>> pools;
+  std::unique_ptr<proxima::ThreadPool>& pool = pools[threads];
+  if (!pool) pool = std::make_unique<proxima::ThreadPool>(std::size_t(threads));
+  return *pool;
+}
 
 /// A Proxima structure (templated: no virtual call inside).
 template <class S>
 class ProximaRunner final : public Runner {
  public:
-  explicit ProximaRunner(int threads) : threads_(threads) {}
+  explicit ProximaRunner(int threads) : executor_(&executor_for(threads)) {}
   void build(const std::vector<BoxD>& boxes) override {
     s_ = std::make_unique<S>();
-    if constexpr (requires(S & s) { s.set_thread_count(2); }) s_->set_thread_count(threads_);
     for (std::size_t i = 0; i < boxes.size(); ++i)
       s_->insert(ProxyId(i), to_aabb(boxes[i]), proxima::ProxyKind::Moving, {});
     s_->rebuild();
@@ -164,7 +175,7 @@ class ProximaRunner final : public Runner {
   }
   void find_pairs() override {
     if constexpr (kParallel<S>) {
-      s_->find_pairs(pairs_, unsigned(threads_));
+      s_->find_pairs(pairs_, *executor_);
     } else {
       s_->find_pairs(pairs_);
     }
@@ -172,7 +183,7 @@ class ProximaRunner final : public Runner {
   const std::vector<ProxyPair>& pairs() const override { return pairs_; }
 
  private:
-  int threads_;
+  proxima::Executor* executor_;
   std::unique_ptr<S> s_;
   std::vector<ProxyUpdate> updates_;
   std::vector<ProxyPair> pairs_;
@@ -182,7 +193,7 @@ class ProximaRunner final : public Runner {
 /// A Proxima structure through the type-erased registry (one virtual call per operation).
 class RegistryRunner final : public Runner {
  public:
-  RegistryRunner(std::string name, int threads) : name_(std::move(name)), threads_(threads) {}
+  RegistryRunner(std::string name, int threads) : name_(std::move(name)), executor_(&executor_for(threads)) {}
   void build(const std::vector<BoxD>& boxes) override {
     auto made = proxima::make_broadphase(name_);
     if (!made) throw std::runtime_error(made.error().what());
@@ -196,12 +207,12 @@ class RegistryRunner final : public Runner {
     for (std::size_t k = 0; k < moved.size(); ++k) updates_[k] = {moved[k], to_aabb(boxes[moved[k]])};
     s_->update(std::span<const ProxyUpdate>(updates_));
   }
-  void find_pairs() override { s_->find_pairs(pairs_, unsigned(threads_)); }
+  void find_pairs() override { s_->find_pairs(pairs_, *executor_); }
   const std::vector<ProxyPair>& pairs() const override { return pairs_; }
 
  private:
   std::string name_;
-  int threads_;
+  proxima::Executor* executor_;
   std::unique_ptr<proxima::AnyBroadPhase> s_;
   std::vector<ProxyUpdate> updates_;
   std::vector<ProxyPair> pairs_;

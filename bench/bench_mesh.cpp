@@ -6,7 +6,7 @@
 ///   BM_MeshCreate/<mesh>      TriangleMesh::create without repair (BVH, adjacency, edges)
 ///   BM_Rays/Proxima           TriangleMesh::raycast, every W5 ray (single thread)
 ///   BM_Rays/ProximaLeaf/<n>   the same with a BVH of leaves of at most n triangles
-///   BM_Rays/ProximaBatch      raycast_batch with every hardware thread
+///   BM_Rays/ProximaBatch      raycast_batch on a ThreadPool of every hardware thread
 ///   BM_Rays/Embree            rtcIntersect1, robust scene, high build quality, 1 thread
 ///   BM_Rays/Bullet            btBvhTriangleMeshShape::performRaycast with a
 ///                             btTriangleRaycastCallback keeping the closest hit
@@ -132,12 +132,13 @@ void BM_RaysProximaLeaf(benchmark::State& state) {
 void BM_RaysProximaBatch(benchmark::State& state) {
   std::vector<proxima::RayHit> out(g_batch.size());
   std::size_t hits = 0;
+  proxima::ThreadPool pool;  // every hardware thread
   for (auto _ : state) {
-    hits = proxima::raycast_batch(*g_ray_mesh, g_batch, out).value();
+    hits = proxima::raycast_batch(*g_ray_mesh, g_batch, out, pool).value();
     benchmark::DoNotOptimize(out.data());
   }
   state.counters["hits"] = double(hits);
-  state.counters["threads"] = double(std::thread::hardware_concurrency());
+  state.counters["threads"] = double(pool.concurrency());
   state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()) * static_cast<std::int64_t>(g_batch.size()));
 }
 

@@ -15,6 +15,7 @@ packages=(
   libcgal-dev                        # exact reference computations in tests
   clang-format                       # the formatting test
   libbenchmark-dev                   # benchmarks
+  libtbb-dev                         # the oneTBB executor example (examples/tbb_executor.cpp)
   # Peer libraries: references for the cross-validation tests and the side-by-side
   # benchmarks only; the library never links them.
   libfcl-dev libccd-dev libbullet-dev libode-dev libembree-dev

@@ -16,7 +16,7 @@ struct BenchBroadphaseOptions {
   std::string structure = "grid";  ///< registry name (make_broadphase)
   std::string workload;            ///< W1 file
   int frames = 0;                  ///< frames to run; 0: the file's frames= value
-  unsigned threads = 1;            ///< threads for find_pairs (structures that support them)
+  unsigned threads = 1;            ///< threads of the ThreadPool running find_pairs (parallel structures)
   bool progress = false;           ///< draw a progress bar on `err` (the CLI: when it is a terminal)
   bool check = true;               ///< compute the reference checksum
 };

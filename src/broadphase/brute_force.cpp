@@ -2,7 +2,6 @@
 /// The reference broad phase (see brute_force.hpp for the steps).
 
 #include <proxima/broadphase/brute_force.hpp>
-#include <proxima/geometry/raycast.hpp>
 
 #include <algorithm>
 
@@ -45,10 +44,6 @@ void BruteForceBroadPhase::Set::set_box(std::size_t slot, const Aabb& b) {
   max_x[slot] = b.max.x;
   max_y[slot] = b.max.y;
   max_z[slot] = b.max.z;
-}
-
-Aabb BruteForceBroadPhase::Set::get_box(std::size_t slot) const {
-  return {Vec3(min_x[slot], min_y[slot], min_z[slot]), Vec3(max_x[slot], max_y[slot], max_z[slot])};
 }
 
 ProxyId BruteForceBroadPhase::Set::erase(std::size_t slot) {
@@ -179,50 +174,6 @@ void BruteForceBroadPhase::find_pairs(std::vector<ProxyPair>& out) {
   stats_.nodes_visited = nm;
   sort_pairs(out, sort_scratch_);
   stats_.pairs_found = out.size();
-}
-
-template <class Visit>
-void BruteForceBroadPhase::for_each_box(Visit&& visit) const {
-  for (const Set* s : {&moving_, &static_}) {
-    for (std::size_t i = 0; i < s->size(); ++i) {
-      if (!visit(s->id[i], s->get_box(i))) return;
-    }
-  }
-}
-
-void BruteForceBroadPhase::query_aabb(const Aabb& box, const OverlapQueryCallback& on_overlap) const {
-  stats_ = {};
-  for_each_box([&](ProxyId id, const Aabb& b) {
-    ++stats_.pairs_tested;
-    if (!b.overlaps(box)) return true;
-    ++stats_.pairs_found;
-    return on_overlap(id);
-  });
-}
-
-void BruteForceBroadPhase::query_point(const Vec3& point, const OverlapQueryCallback& on_overlap) const {
-  stats_ = {};
-  for_each_box([&](ProxyId id, const Aabb& b) {
-    ++stats_.pairs_tested;
-    if (!b.contains(point)) return true;
-    ++stats_.pairs_found;
-    return on_overlap(id);
-  });
-}
-
-void BruteForceBroadPhase::query_ray(const Ray& ray, Real max_t, const RayQueryCallback& on_ray) const {
-  stats_ = {};
-  for_each_box([&](ProxyId id, const Aabb& b) {
-    ++stats_.pairs_tested;
-    const auto hit = geometry::ray_aabb(ray, max_t, b);
-    if (!hit || hit->t > max_t) return true;
-    ++stats_.pairs_found;
-    const Real r = on_ray(id, hit->t);
-    if (r < Real(0)) return true;
-    if (r == Real(0)) return false;
-    max_t = std::min(max_t, r);
-    return true;
-  });
 }
 
 bool BruteForceBroadPhase::validate() const {

@@ -34,35 +34,10 @@
 #include <limits>
 
 #include "broadphase/tree_pair_descent.hpp"
-#include "broadphase/tree_support.hpp"
 
 namespace proxima {
 
 namespace {
-
-struct Interval {
-  Real lo;
-  Real hi;
-};
-
-/// Projection of a box on a unit normal, padded to contain the exact projection.
-Interval project(const Vec3& n, const Aabb& b) {
-  Real lo = Real(0);
-  Real hi = Real(0);
-  Real scale = Real(0);
-  for (int a = 0; a < 3; ++a) {
-    if (n[a] >= Real(0)) {
-      lo += n[a] * b.min[a];
-      hi += n[a] * b.max[a];
-    } else {
-      lo += n[a] * b.max[a];
-      hi += n[a] * b.min[a];
-    }
-    scale += std::abs(n[a]) * std::max(std::abs(b.min[a]), std::abs(b.max[a]));
-  }
-  const Real pad = Real(8) * kEpsilon * scale + std::numeric_limits<Real>::min();
-  return {lo - pad, hi + pad};
-}
 
 bool is_oblique(const Vec3& n) {
   int nonzero = 0;
@@ -317,72 +292,6 @@ BroadPhaseStatus BspTree::update(std::span<const ProxyUpdate> updates) {
   return BroadPhaseStatus::Ok;
 }
 
-// ---- queries ----------------------------------------------------------------------------------
-
-template <class Visit>
-void BspTree::visit_box(const Aabb& box, BroadPhaseStats& st, Visit&& visit) const {
-  if (nodes_.empty()) return;
-  detail::TraversalStack<std::uint32_t, 192> stack;
-  stack.push(0);
-  while (!stack.empty()) {
-    const std::uint32_t index = stack.pop();
-    const Node& n = nodes_[index];
-    ++st.nodes_visited;
-    if (!n.bounds.overlaps(box)) continue;
-    for (const ProxyId id : n.items) {
-      ++st.pairs_tested;
-      if (proxies_[id].box.overlaps(box) && !visit(id)) return;
-    }
-    if (!n.internal()) continue;
-    const Interval iv = project(n.normal, box);
-    if (n.middle != kNull) stack.push(n.middle);
-    if (iv.hi >= n.front_min) stack.push(n.front);
-    if (iv.lo <= n.back_max) stack.push(n.back);
-  }
-}
-
-void BspTree::query_aabb(const Aabb& box, const OverlapQueryCallback& on_overlap) const {
-  stats_ = detail::run_box_query(box, on_overlap,
-                                 [this](const Aabb& b, BroadPhaseStats& st, auto&& visit) { visit_box(b, st, visit); });
-}
-
-void BspTree::query_point(const Vec3& point, const OverlapQueryCallback& on_overlap) const {
-  detail::run_point_query(point, stats_, [&](const Aabb& b) { query_aabb(b, on_overlap); });
-}
-
-void BspTree::query_ray(const Ray& ray, Real max_t, const RayQueryCallback& on_ray) const {
-  BroadPhaseStats st;
-  if (detail::ray_input_ok(ray, max_t) && !nodes_.empty()) {
-    const detail::SlabRay slab(ray);
-    Real limit = max_t;
-    detail::TraversalStack<std::uint32_t, 192> stack;
-    stack.push(0);
-    bool stop = false;
-    while (!stack.empty() && !stop) {
-      const Node& n = nodes_[stack.pop()];
-      ++st.nodes_visited;
-      Real t;
-      if (!slab.enter(n.bounds, limit, t)) continue;
-      for (const ProxyId id : n.items) {
-        ++st.pairs_tested;
-        const auto hit = geometry::ray_aabb(ray, limit, proxies_[id].box);
-        if (!hit) continue;
-        ++st.pairs_found;
-        if (!detail::apply_ray_result(on_ray(id, hit->t), limit)) {
-          stop = true;
-          break;
-        }
-      }
-      if (n.internal()) {
-        if (n.middle != kNull) stack.push(n.middle);
-        stack.push(n.front);
-        stack.push(n.back);
-      }
-    }
-  }
-  stats_ = st;
-}
-
 // ---- pairs ------------------------------------------------------------------------------------
 
 /// The tree for detail::TreePairDescent: proxies at any node, subtree boxes `bounds`.
@@ -410,7 +319,7 @@ struct BspTree::DescentView {
   }
 };
 
-void BspTree::find_pairs(std::vector<ProxyPair>& out, unsigned threads) {
+void BspTree::find_pairs(std::vector<ProxyPair>& out, Executor& executor) {
   out.clear();
   bool rebuilt = false;
   if (overfull_ || degraded_ ||
@@ -419,7 +328,7 @@ void BspTree::find_pairs(std::vector<ProxyPair>& out, unsigned threads) {
     rebuilt = true;
   }
   BroadPhaseStats found;
-  if (!nodes_.empty()) detail::descend_pairs(DescentView{*this}, threads, out, found);
+  if (!nodes_.empty()) detail::descend_pairs(DescentView{*this}, executor, out, found);
   sort_pairs(out, sort_scratch_);
   const BroadPhaseStats st{found.nodes_visited, found.pairs_tested, out.size()};
   stats_ = st;

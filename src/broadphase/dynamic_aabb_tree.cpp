@@ -13,21 +13,19 @@
 ///    in depth-first order for locality.
 /// 4. find_pairs: simultaneous descent of node pairs (moving x moving, moving x static) with a
 ///    fixed stack, splitting the node of larger area; leaf pairs test the real boxes and filters.
-///    Threads split the top node pairs; each keeps its own output; results are sorted.
+///    An executor of several threads runs the top node pairs as tasks; each chunk of tasks
+///    keeps its own output; results are sorted.
 /// References: E. Catto, Box2D v3 dynamic_tree.c (design); J. Bittner et al. 2013 (insertion
 /// search); A. Kopta et al. 2012 (rotations); I. Wald 2007 (binned SAH); C. Ericson,
 /// Real-Time Collision Detection, 6.2 and 6.5.
 
 #include <proxima/broadphase/dynamic_aabb_tree.hpp>
 #include <proxima/broadphase/pair_tracker.hpp>
+#include <proxima/broadphase/query_support.hpp>
 #include <proxima/core/tolerance.hpp>
 #include <proxima/geometry/raycast.hpp>
 
 #include <algorithm>
-#include <atomic>
-#include <thread>
-
-#include "broadphase/tree_support.hpp"
 
 namespace proxima {
 
@@ -650,7 +648,43 @@ void DynamicAabbTree::collide_task(const PairTask& task, std::vector<ProxyPair>&
   st.pairs_tested += tested;
 }
 
-void DynamicAabbTree::find_pairs(std::vector<ProxyPair>& out, unsigned thread_count) {
+void DynamicAabbTree::split_tasks(std::vector<PairTask>& tasks, std::size_t wanted) const {
+  // Same rules as collide_task, one level per round, until there are `wanted` tasks.
+  for (int round = 0; round < 24 && tasks.size() < wanted; ++round) {
+    std::vector<PairTask> next;
+    next.reserve(tasks.size() * 3);
+    bool expanded = false;
+    for (const PairTask& t : tasks) {
+      const Node& a = moving_.nodes[t.a];
+      if (!t.cross && t.a == t.b) {
+        if (a.is_leaf()) continue;
+        next.push_back({a.child1, a.child1, false});
+        next.push_back({a.child2, a.child2, false});
+        next.push_back({a.child1, a.child2, false});
+        expanded = true;
+        continue;
+      }
+      const Node& b = (t.cross ? static_ : moving_).nodes[t.b];
+      if (!a.box.overlaps(b.box)) continue;
+      if (a.is_leaf() && b.is_leaf()) {
+        next.push_back(t);
+        continue;
+      }
+      expanded = true;
+      if (b.is_leaf() || (!a.is_leaf() && a.box.surface_area() >= b.box.surface_area())) {
+        next.push_back({a.child1, t.b, t.cross});
+        next.push_back({a.child2, t.b, t.cross});
+      } else {
+        next.push_back({t.a, b.child1, t.cross});
+        next.push_back({t.a, b.child2, t.cross});
+      }
+    }
+    tasks.swap(next);
+    if (!expanded) break;
+  }
+}
+
+void DynamicAabbTree::find_pairs(std::vector<ProxyPair>& out, Executor& executor) {
   out.clear();
   BroadPhaseStats st;
   std::vector<PairTask> tasks;
@@ -658,141 +692,25 @@ void DynamicAabbTree::find_pairs(std::vector<ProxyPair>& out, unsigned thread_co
     tasks.push_back({moving_.root, moving_.root, false});
     if (static_.root != kNull) tasks.push_back({moving_.root, static_.root, true});
   }
-  unsigned threads = thread_count == 0 ? std::max(1u, std::thread::hardware_concurrency()) : thread_count;
-  if (moving_.leaves < 256) threads = 1;
-
+  const std::size_t threads = moving_.leaves < 256 ? 1 : executor.concurrency();
   if (threads <= 1) {
     for (const PairTask& t : tasks) collide_task(t, out, st);
   } else {
-    // Split the top of the traversal into independent node-pair tasks (same rules as
-    // collide_task), until there are enough to balance the threads.
-    const std::size_t wanted = static_cast<std::size_t>(threads) * 16;
-    for (int round = 0; round < 24 && tasks.size() < wanted; ++round) {
-      std::vector<PairTask> next;
-      next.reserve(tasks.size() * 3);
-      bool expanded = false;
-      for (const PairTask& t : tasks) {
-        const Node& a = moving_.nodes[t.a];
-        if (!t.cross && t.a == t.b) {
-          if (a.is_leaf()) continue;
-          next.push_back({a.child1, a.child1, false});
-          next.push_back({a.child2, a.child2, false});
-          next.push_back({a.child1, a.child2, false});
-          expanded = true;
-          continue;
-        }
-        const Node& b = (t.cross ? static_ : moving_).nodes[t.b];
-        if (!a.box.overlaps(b.box)) continue;
-        if (a.is_leaf() && b.is_leaf()) {
-          next.push_back(t);
-          continue;
-        }
-        expanded = true;
-        if (b.is_leaf() || (!a.is_leaf() && a.box.surface_area() >= b.box.surface_area())) {
-          next.push_back({a.child1, t.b, t.cross});
-          next.push_back({a.child2, t.b, t.cross});
-        } else {
-          next.push_back({t.a, b.child1, t.cross});
-          next.push_back({t.a, b.child2, t.cross});
-        }
-      }
-      tasks.swap(next);
-      if (!expanded) break;
-    }
-    std::vector<std::vector<ProxyPair>> outs(threads);
-    std::vector<BroadPhaseStats> stats(threads);
-    std::atomic<std::size_t> cursor{0};
-    auto worker = [&](unsigned t) {
-      for (;;) {
-        const std::size_t i = cursor.fetch_add(1, std::memory_order_relaxed);
-        if (i >= tasks.size()) break;
-        collide_task(tasks[i], outs[t], stats[t]);
-      }
-    };
-    std::vector<std::thread> pool;
-    pool.reserve(threads - 1);
-    for (unsigned t = 1; t < threads; ++t) pool.emplace_back(worker, t);
-    worker(0);
-    for (std::thread& th : pool) th.join();
-    std::size_t total = 0;
-    for (const auto& o : outs) total += o.size();
-    out.reserve(total);
-    for (unsigned t = 0; t < threads; ++t) {
-      out.insert(out.end(), outs[t].begin(), outs[t].end());
-      st.nodes_visited += stats[t].nodes_visited;
-      st.pairs_tested += stats[t].pairs_tested;
+    // Independent node-pair tasks from the top of the traversal, in chunks run by the
+    // executor; per-task counters, per-chunk lists joined in chunk order.
+    split_tasks(tasks, threads * 16);
+    std::vector<BroadPhaseStats> per(tasks.size());
+    run_pair_chunks(tasks.size(), threads * 16, executor, chunk_lists_, out,
+                    [&](std::size_t begin, std::size_t end, std::vector<ProxyPair>& list) {
+                      for (std::size_t k = begin; k < end; ++k) collide_task(tasks[k], list, per[k]);
+                    });
+    for (const BroadPhaseStats& s : per) {
+      st.nodes_visited += s.nodes_visited;
+      st.pairs_tested += s.pairs_tested;
     }
   }
   sort_pairs(out, sort_scratch_);
   st.pairs_found = out.size();
-  stats_ = st;
-}
-
-// ---- queries ----------------------------------------------------------------------------------
-
-void DynamicAabbTree::query_aabb(const Aabb& box, const OverlapQueryCallback& on_overlap) const {
-  BroadPhaseStats st;
-  if (detail::query_box_ok(box)) {
-    for (const Tree* tree : {&moving_, &static_}) {
-      if (tree->root == kNull) continue;
-      detail::TraversalStack<std::uint32_t, 256> stack;
-      stack.push(tree->root);
-      bool stop = false;
-      while (!stack.empty() && !stop) {
-        const std::uint32_t index = stack.pop();
-        const Node& n = tree->nodes[index];
-        ++st.nodes_visited;
-        if (!n.box.overlaps(box)) continue;
-        if (n.is_leaf()) {
-          ++st.pairs_tested;
-          if (tree->real[index].overlaps(box)) {
-            ++st.pairs_found;
-            if (!on_overlap(n.child2)) stop = true;
-          }
-          continue;
-        }
-        stack.push(n.child1);
-        stack.push(n.child2);
-      }
-      if (stop) break;
-    }
-  }
-  stats_ = st;
-}
-
-void DynamicAabbTree::query_point(const Vec3& point, const OverlapQueryCallback& on_overlap) const {
-  detail::run_point_query(point, stats_, [&](const Aabb& b) { query_aabb(b, on_overlap); });
-}
-
-void DynamicAabbTree::query_ray(const Ray& ray, Real max_t, const RayQueryCallback& on_ray) const {
-  BroadPhaseStats st;
-  if (detail::ray_input_ok(ray, max_t)) {
-    const detail::SlabRay slab(ray);
-    Real limit = max_t;
-    bool stop = false;
-    for (const Tree* tree : {&moving_, &static_}) {
-      if (tree->root == kNull || stop) continue;
-      detail::TraversalStack<std::uint32_t, 256> stack;
-      stack.push(tree->root);
-      while (!stack.empty() && !stop) {
-        const std::uint32_t index = stack.pop();
-        const Node& n = tree->nodes[index];
-        ++st.nodes_visited;
-        Real t;
-        if (!slab.enter(n.box, limit, t)) continue;
-        if (n.is_leaf()) {
-          ++st.pairs_tested;
-          const auto hit = geometry::ray_aabb(ray, limit, tree->real[index]);
-          if (!hit) continue;
-          ++st.pairs_found;
-          if (!detail::apply_ray_result(on_ray(n.child2, hit->t), limit)) stop = true;
-          continue;
-        }
-        stack.push(n.child1);
-        stack.push(n.child2);
-      }
-    }
-  }
   stats_ = st;
 }
 

@@ -25,7 +25,6 @@
 #include <algorithm>
 
 #include "broadphase/tree_pair_descent.hpp"
-#include "broadphase/tree_support.hpp"
 
 namespace proxima {
 
@@ -199,112 +198,31 @@ BroadPhaseStatus KdTree::update(std::span<const ProxyUpdate> updates) {
 
 // ---- queries ----------------------------------------------------------------------------------
 
-template <class Visit>
-void KdTree::visit_box(const Aabb& box, BroadPhaseStats& st, Visit&& visit) const {
-  if (!nodes_.empty()) {
-    detail::TraversalStack<std::uint32_t, 192> stack;
-    stack.push(0);
-    while (!stack.empty()) {
-      const Node& n = nodes_[stack.pop()];
-      ++st.nodes_visited;
-      if (n.leaf) {
-        for (std::uint32_t i = n.begin; i < n.begin + n.count; ++i) {
-          const Record& r = records_[i];
-          if (r.id == kDead) continue;
-          ++st.pairs_tested;
-          if (r.box.overlaps(box) && !visit(r.id)) return;
-        }
-        continue;
-      }
-      const auto index = static_cast<std::uint32_t>(&n - nodes_.data());
-      if (box.max[n.axis] >= n.clip_right) stack.push(n.right);
-      if (box.min[n.axis] <= n.clip_left) stack.push(index + 1);
+void KdTree::push_children(const Node& n, std::uint32_t index, const Ray& ray, const RayEntry& e, Real limit,
+                           detail::TraversalStack<RayEntry, 192>& stack) {
+  // Parameter intervals need no slack: a clip plane is one of its subtree's box coordinates
+  // and the bound is computed as ray_aabb computes a slab, (plane - origin) / direction,
+  // which rounding keeps monotone in the plane.
+  const Real o = ray.origin[n.axis];
+  const Real d = ray.direction[n.axis];
+  const Real t1 = std::min(e.t1, limit);
+  // Left child: points with coordinate <= clip_left; right child: >= clip_right.
+  auto clip = [&](Real plane, bool below, Real& lo, Real& hi) {
+    lo = e.t0;
+    hi = t1;
+    if (d == Real(0)) return below ? o <= plane : o >= plane;
+    const Real t = (plane - o) / d;
+    if ((d > Real(0)) == below) {
+      hi = std::min(hi, t);  // inside while the parameter is <= t
+    } else {
+      lo = std::max(lo, t);  // inside once the parameter is >= t
     }
-  }
-  for (const ProxyId id : pending_) {
-    ++st.pairs_tested;
-    if (proxies_[id].box.overlaps(box) && !visit(id)) return;
-  }
-}
-
-void KdTree::query_aabb(const Aabb& box, const OverlapQueryCallback& on_overlap) const {
-  stats_ = detail::run_box_query(box, on_overlap,
-                                 [this](const Aabb& b, BroadPhaseStats& st, auto&& visit) { visit_box(b, st, visit); });
-}
-
-void KdTree::query_point(const Vec3& point, const OverlapQueryCallback& on_overlap) const {
-  detail::run_point_query(point, stats_, [&](const Aabb& b) { query_aabb(b, on_overlap); });
-}
-
-void KdTree::query_ray(const Ray& ray, Real max_t, const RayQueryCallback& on_ray) const {
-  BroadPhaseStats st;
-  stats_ = st;
-  if (!detail::ray_input_ok(ray, max_t)) return;
-  Real limit = max_t;
-  auto test = [&](ProxyId id, const Aabb& box) {
-    ++st.pairs_tested;
-    const auto hit = geometry::ray_aabb(ray, limit, box);
-    if (!hit) return true;
-    ++st.pairs_found;
-    return detail::apply_ray_result(on_ray(id, hit->t), limit);
+    return lo <= hi;
   };
-  // Pending proxies first (usually none), then the tree with per-node parameter intervals.
-  for (const ProxyId id : pending_) {
-    if (!test(id, proxies_[id].box)) {
-      stats_ = st;
-      return;
-    }
-  }
-  if (!nodes_.empty()) {
-    // Parameter intervals need no slack: a clip plane is one of its subtree's box coordinates
-    // and the bound is computed as ray_aabb computes a slab, (plane - origin) / direction,
-    // which rounding keeps monotone in the plane.
-    struct Entry {
-      std::uint32_t node;
-      Real t0;
-      Real t1;
-    };
-    detail::TraversalStack<Entry, 192> stack;
-    stack.push({0, Real(0), max_t});
-    while (!stack.empty()) {
-      const Entry e = stack.pop();
-      if (e.t0 > limit) continue;
-      const Node& n = nodes_[e.node];
-      ++st.nodes_visited;
-      if (n.leaf) {
-        for (std::uint32_t i = n.begin; i < n.begin + n.count; ++i) {
-          const Record& r = records_[i];
-          if (r.id == kDead) continue;
-          if (!test(r.id, r.box)) {
-            stats_ = st;
-            return;
-          }
-        }
-        continue;
-      }
-      const Real o = ray.origin[n.axis];
-      const Real d = ray.direction[n.axis];
-      const Real t1 = std::min(e.t1, limit);
-      // Left child: points with coordinate <= clip_left; right child: >= clip_right.
-      auto clip = [&](Real plane, bool below, Real& lo, Real& hi) {
-        lo = e.t0;
-        hi = t1;
-        if (d == Real(0)) return below ? o <= plane : o >= plane;
-        const Real t = (plane - o) / d;
-        if ((d > Real(0)) == below) {
-          hi = std::min(hi, t);  // inside while the parameter is <= t
-        } else {
-          lo = std::max(lo, t);  // inside once the parameter is >= t
-        }
-        return lo <= hi;
-      };
-      Real lo;
-      Real hi;
-      if (clip(n.clip_right, false, lo, hi)) stack.push({n.right, lo, hi});
-      if (clip(n.clip_left, true, lo, hi)) stack.push({e.node + 1, lo, hi});
-    }
-  }
-  stats_ = st;
+  Real lo;
+  Real hi;
+  if (clip(n.clip_right, false, lo, hi)) stack.push({n.right, lo, hi});
+  if (clip(n.clip_left, true, lo, hi)) stack.push({index + 1, lo, hi});
 }
 
 // ---- pairs ------------------------------------------------------------------------------------
@@ -335,7 +253,7 @@ struct KdTree::DescentView {
   }
 };
 
-void KdTree::find_pairs(std::vector<ProxyPair>& out, unsigned threads) {
+void KdTree::find_pairs(std::vector<ProxyPair>& out, Executor& executor) {
   out.clear();
   if (!pending_.empty() || dead_ * 4 > records_.size() || (nodes_.empty() && count_ > 0)) {
     rebuild();
@@ -348,7 +266,7 @@ void KdTree::find_pairs(std::vector<ProxyPair>& out, unsigned threads) {
     if (mean > build_overlap_ + static_cast<double>(config_.rebuild_overlap)) rebuild();
   }
   BroadPhaseStats st;
-  if (!nodes_.empty()) detail::descend_pairs(DescentView{*this}, threads, out, st);
+  if (!nodes_.empty()) detail::descend_pairs(DescentView{*this}, executor, out, st);
   sort_pairs(out, sort_scratch_);
   stats_ = {st.nodes_visited, st.pairs_tested, out.size()};
 }

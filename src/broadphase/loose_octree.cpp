@@ -17,7 +17,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <thread>
 
 namespace proxima {
 
@@ -28,28 +27,6 @@ ProxyPair ordered(ProxyId a, ProxyId b) { return a < b ? ProxyPair{a, b} : Proxy
 template <class T>
 std::size_t capacity_bytes(const std::vector<T>& v) {
   return v.capacity() * sizeof(T);
-}
-
-// Slab test of the clipped ray against a node's loose bounds on the first `dims` axes.
-bool ray_meets(const Ray& ray, Real max_t, const Aabb& box, int dims) {
-  Real t0 = 0;
-  Real t1 = max_t;
-  for (int k = 0; k < dims; ++k) {
-    const Real o = ray.origin[k];
-    const Real d = ray.direction[k];
-    if (d == Real(0)) {
-      if (o < box.min[k] || o > box.max[k]) return false;
-      continue;
-    }
-    Real ta = (box.min[k] - o) / d;
-    Real tb = (box.max[k] - o) / d;
-    if (ta > tb) std::swap(ta, tb);
-    t0 = std::max(t0, ta);
-    t1 = std::min(t1, tb);
-    // A small slack: the node test only prunes, the boxes themselves are tested exactly.
-    if (t0 > t1 + std::abs(t1) * Real(1e-4) + Real(1e-30)) return false;
-  }
-  return true;
 }
 
 }  // namespace
@@ -430,41 +407,46 @@ void LooseTree<Dim>::run_task(const Task& task, std::vector<ProxyPair>& out, Bro
 }
 
 template <int Dim>
-void LooseTree<Dim>::find_pairs(std::vector<ProxyPair>& out) {
+void LooseTree<Dim>::split_tasks(std::size_t wanted) {
+  // Split self(root) into tasks (own part, self of each child, cross of each child pair),
+  // then split the self tasks again while there are few tasks.
+  tasks_.assign(1, Task{root_, kNil});
+  for (int round = 0; round < 3 && tasks_.size() < wanted; ++round) {
+    std::vector<Task> next;
+    for (const Task& t : tasks_) {
+      if (t.b != kNil) {
+        next.push_back(t);
+        continue;
+      }
+      const Node& nd = nodes_[std::size_t(t.a)];
+      next.push_back({t.a, t.a});
+      for (int i = 0; i < kChildren; ++i) {
+        if (nd.child[i] == kNil) continue;
+        next.push_back({nd.child[i], kNil});
+        for (int j = i + 1; j < kChildren; ++j) {
+          if (nd.child[j] != kNil) next.push_back({nd.child[i], nd.child[j]});
+        }
+      }
+    }
+    tasks_.swap(next);
+  }
+}
+
+template <int Dim>
+void LooseTree<Dim>::find_pairs(std::vector<ProxyPair>& out, Executor& executor) {
   out.clear();
   stats_ = {};
   const std::size_t n = proxies_.size();
   if (root_ == kNil || n == 0) return;
   gather();
-  const int threads = std::max(1, std::min(threads_, int(n / 1024) + 1));
-  if (threads == 1) {
+  const std::size_t threads = std::min(executor.concurrency(), n / 1024 + 1);
+  if (threads <= 1) {
     self_pairs(root_, out, stats_);
   } else {
-    // Split self(root) into tasks (own part, self of each child, cross of each child pair),
-    // then split the self tasks again while there are few tasks.
-    tasks_.assign(1, Task{root_, kNil});
-    for (int round = 0; round < 3 && tasks_.size() < std::size_t(threads) * 16; ++round) {
-      std::vector<Task> next;
-      for (const Task& t : tasks_) {
-        if (t.b != kNil) {
-          next.push_back(t);
-          continue;
-        }
-        const Node& nd = nodes_[std::size_t(t.a)];
-        next.push_back({t.a, t.a});
-        for (int i = 0; i < kChildren; ++i) {
-          if (nd.child[i] == kNil) continue;
-          next.push_back({nd.child[i], kNil});
-          for (int j = i + 1; j < kChildren; ++j) {
-            if (nd.child[j] != kNil) next.push_back({nd.child[i], nd.child[j]});
-          }
-        }
-      }
-      tasks_.swap(next);
-    }
+    split_tasks(threads * 16);
     std::vector<BroadPhaseStats> st(tasks_.size());
     parallel_pair_chunks(
-        tasks_.size(), unsigned(threads), out,
+        tasks_.size(), executor, out,
         [&](std::size_t begin, std::size_t end, std::vector<ProxyPair>& part) {
           for (std::size_t k = begin; k < end; ++k) run_task(tasks_[k], part, st[k]);
         },
@@ -479,57 +461,26 @@ void LooseTree<Dim>::find_pairs(std::vector<ProxyPair>& out) {
 }
 
 template <int Dim>
-bool LooseTree<Dim>::query_node(std::int32_t node, const Aabb& box, const OverlapQueryCallback& on_overlap) const {
-  const Node& n = nodes_[std::size_t(node)];
-  ++stats_.nodes_visited;
-  for (std::uint32_t id = n.first; id != kNone; id = next_[id]) {
-    ++stats_.pairs_tested;
-    if (proxies_[id].box.overlaps(box) && !on_overlap(id)) return false;
-  }
-  for (const std::int32_t child : n.child) {
-    if (child == kNil || !nodes_[std::size_t(child)].loose.overlaps(box)) continue;
-    if (!query_node(child, box, on_overlap)) return false;
+bool LooseTree<Dim>::ray_meets(const Ray& ray, Real max_t, const Aabb& loose) {
+  // Slab test of the clipped ray against a node's loose bounds on the partitioned axes.
+  Real t0 = 0;
+  Real t1 = max_t;
+  for (int k = 0; k < Dim; ++k) {
+    const Real o = ray.origin[k];
+    const Real d = ray.direction[k];
+    if (d == Real(0)) {
+      if (o < loose.min[k] || o > loose.max[k]) return false;
+      continue;
+    }
+    Real ta = (loose.min[k] - o) / d;
+    Real tb = (loose.max[k] - o) / d;
+    if (ta > tb) std::swap(ta, tb);
+    t0 = std::max(t0, ta);
+    t1 = std::min(t1, tb);
+    // A small slack: the node test only prunes, the boxes themselves are tested exactly.
+    if (t0 > t1 + std::abs(t1) * Real(1e-4) + Real(1e-30)) return false;
   }
   return true;
-}
-
-template <int Dim>
-void LooseTree<Dim>::query_aabb(const Aabb& box, const OverlapQueryCallback& on_overlap) const {
-  stats_ = {};
-  if (root_ == kNil || !box.is_valid() || !nodes_[std::size_t(root_)].loose.overlaps(box)) return;
-  query_node(root_, box, on_overlap);
-}
-
-template <int Dim>
-void LooseTree<Dim>::query_point(const Vec3& point, const OverlapQueryCallback& on_overlap) const {
-  query_aabb(Aabb::from_point(point), on_overlap);
-}
-
-template <int Dim>
-void LooseTree<Dim>::query_ray(const Ray& ray, Real max_t, const RayQueryCallback& on_ray) const {
-  stats_ = {};
-  if (root_ == kNil) return;
-  Real limit = max_t;
-  std::vector<std::int32_t> stack{root_};
-  while (!stack.empty()) {
-    const std::int32_t node = stack.back();
-    stack.pop_back();
-    const Node& n = nodes_[std::size_t(node)];
-    if (!ray_meets(ray, limit, n.loose, Dim)) continue;
-    ++stats_.nodes_visited;
-    for (std::uint32_t id = n.first; id != kNone; id = next_[id]) {
-      ++stats_.pairs_tested;
-      Real t = 0;
-      if (!detail::ray_enters_box(ray, limit, proxies_[id].box, t)) continue;
-      const Real next = on_ray(id, t);
-      if (next < 0) continue;
-      if (next == 0) return;
-      limit = std::min(limit, next);
-    }
-    for (const std::int32_t child : n.child) {
-      if (child != kNil) stack.push_back(child);
-    }
-  }
 }
 
 template <int Dim>

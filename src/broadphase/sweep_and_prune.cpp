@@ -136,16 +136,16 @@ std::uint64_t sweep_static_side(const SweepList& moving, const SweepList& static
   return tested;
 }
 
-/// All pairs of one moving list and one static list, serial or on threads (unsorted).
+/// All pairs of one moving list and one static list, on `executor` (unsorted).
 template <class Accept>
-std::uint64_t sweep_all(const SweepList& moving, const SweepList& statics, unsigned threads,
+std::uint64_t sweep_all(const SweepList& moving, const SweepList& statics, Executor& executor,
                         std::vector<ProxyPair>& out, const Accept& accept) {
   std::atomic<std::uint64_t> tested{0};
-  parallel_pair_chunks(moving.size(), threads, out, [&](std::size_t b, std::size_t e, std::vector<ProxyPair>& o) {
+  parallel_pair_chunks(moving.size(), executor, out, [&](std::size_t b, std::size_t e, std::vector<ProxyPair>& o) {
     tested += sweep_self(moving, b, e, o, accept) + sweep_moving_side(moving, statics, b, e, o, accept);
   });
   if (moving.size() > 0) {
-    parallel_pair_chunks(statics.size(), threads, out, [&](std::size_t b, std::size_t e, std::vector<ProxyPair>& o) {
+    parallel_pair_chunks(statics.size(), executor, out, [&](std::size_t b, std::size_t e, std::vector<ProxyPair>& o) {
       tested += sweep_static_side(moving, statics, b, e, o, accept);
     });
   }
@@ -209,43 +209,6 @@ BroadPhaseStatus SweepStorage::update(std::span<const ProxyUpdate> updates) {
     if (state_[u.id] == kStatic) static_dirty_ = true;
   }
   return BroadPhaseStatus::Ok;
-}
-
-void SweepStorage::query_aabb(const Aabb& box, const OverlapQueryCallback& on_overlap) const {
-  stats_ = {};
-  for (std::size_t id = 0; id < state_.size(); ++id) {
-    if (state_[id] == kAbsent) continue;
-    ++stats_.pairs_tested;
-    if (!box_[id].overlaps(box)) continue;
-    ++stats_.pairs_found;
-    if (!on_overlap(static_cast<ProxyId>(id))) return;
-  }
-}
-
-void SweepStorage::query_point(const Vec3& point, const OverlapQueryCallback& on_overlap) const {
-  stats_ = {};
-  for (std::size_t id = 0; id < state_.size(); ++id) {
-    if (state_[id] == kAbsent) continue;
-    ++stats_.pairs_tested;
-    if (!box_[id].contains(point)) continue;
-    ++stats_.pairs_found;
-    if (!on_overlap(static_cast<ProxyId>(id))) return;
-  }
-}
-
-void SweepStorage::query_ray(const Ray& ray, Real max_t, const RayQueryCallback& on_ray) const {
-  stats_ = {};
-  for (std::size_t id = 0; id < state_.size(); ++id) {
-    if (state_[id] == kAbsent) continue;
-    ++stats_.pairs_tested;
-    const auto hit = geometry::ray_aabb(ray, max_t, box_[id]);
-    if (!hit || hit->t > max_t) continue;
-    ++stats_.pairs_found;
-    const Real r = on_ray(static_cast<ProxyId>(id), hit->t);
-    if (r < Real(0)) continue;
-    if (r == Real(0)) return;
-    max_t = std::min(max_t, r);
-  }
 }
 
 bool SweepStorage::validate() const {
@@ -395,7 +358,7 @@ void SweepAndPrune::rebuild() {
   moving_added_ = 0;
 }
 
-void SweepAndPrune::find_pairs(std::vector<ProxyPair>& out, unsigned threads) {
+void SweepAndPrune::find_pairs(std::vector<ProxyPair>& out, Executor& executor) {
   out.clear();
   stats_ = {};
   if (compact(static_, kStatic) > 0) static_dirty_ = true;
@@ -425,7 +388,7 @@ void SweepAndPrune::find_pairs(std::vector<ProxyPair>& out, unsigned threads) {
     static_dirty_ = false;
   }
   gather(moving_, axis_, moving_list_);
-  stats_.pairs_tested = sweep_all(moving_list_, static_list_, threads, out, AcceptAll{});
+  stats_.pairs_tested = sweep_all(moving_list_, static_list_, executor, out, AcceptAll{});
   stats_.nodes_visited = moving_list_.size() + static_list_.size();
   sort_pairs(out, pair_scratch_);
   stats_.pairs_found = out.size();
@@ -433,7 +396,7 @@ void SweepAndPrune::find_pairs(std::vector<ProxyPair>& out, unsigned threads) {
 
 // ---- SortedSweep -------------------------------------------------------------------------
 
-void SortedSweep::find_pairs(std::vector<ProxyPair>& out, unsigned threads) {
+void SortedSweep::find_pairs(std::vector<ProxyPair>& out, Executor& executor) {
   out.clear();
   stats_ = {};
   if (compact(static_, kStatic) > 0) static_dirty_ = true;
@@ -447,7 +410,7 @@ void SortedSweep::find_pairs(std::vector<ProxyPair>& out, unsigned threads) {
     static_dirty_ = false;
   }
   gather(moving_, axis, moving_list_);
-  stats_.pairs_tested = sweep_all(moving_list_, static_list_, threads, out, AcceptAll{});
+  stats_.pairs_tested = sweep_all(moving_list_, static_list_, executor, out, AcceptAll{});
   stats_.nodes_visited = moving_list_.size() + static_list_.size();
   sort_pairs(out, pair_scratch_);
   stats_.pairs_found = out.size();
@@ -455,7 +418,7 @@ void SortedSweep::find_pairs(std::vector<ProxyPair>& out, unsigned threads) {
 
 // ---- MultiBoxPruning ---------------------------------------------------------------------
 
-void MultiBoxPruning::find_pairs(std::vector<ProxyPair>& out, unsigned threads) {
+void MultiBoxPruning::find_pairs(std::vector<ProxyPair>& out, Executor& executor) {
   out.clear();
   stats_ = {};
   compact(static_, kStatic);
@@ -531,7 +494,7 @@ void MultiBoxPruning::find_pairs(std::vector<ProxyPair>& out, unsigned threads) 
   }
   std::atomic<std::uint64_t> tested_all{0};
   parallel_pair_chunks(
-      cells, threads, out,
+      cells, executor, out,
       [&](std::size_t begin, std::size_t end, std::vector<ProxyPair>& o) {
         std::uint64_t t = 0;
         for (std::size_t c = begin; c < end; ++c) {
@@ -542,7 +505,7 @@ void MultiBoxPruning::find_pairs(std::vector<ProxyPair>& out, unsigned threads) 
           auto owner = [&](const SweepRecord& p, const SweepRecord& q) {
             return cell_b(std::max(p.min_b, q.min_b)) == ci && cell_c(std::max(p.min_c, q.min_c)) == cj;
           };
-          t += sweep_all(cell_lists_[2 * c], cell_lists_[2 * c + 1], 1, o, owner);
+          t += sweep_all(cell_lists_[2 * c], cell_lists_[2 * c + 1], serial_executor(), o, owner);
         }
         tested_all += t;
       },

@@ -156,24 +156,24 @@ class TreePairDescent {
   BroadPhaseStats& st_;
 };
 
-/// Every pair of a non-empty tree into `out` (unsorted; appended), on `threads` threads (0 =
-/// hardware concurrency): with one thread self(root); otherwise the split tasks taken by the
-/// threads (parallel_pair_chunks, which allocates per chunk as the task lists do here).
+/// Every pair of a non-empty tree into `out` (unsorted; appended), on `executor`: with
+/// concurrency 1 self(root) inline; otherwise the split tasks run by the executor
+/// (parallel_pair_chunks, which allocates per chunk as the task lists do here).
 /// Counters add to `st`.
 template <class T>
-void descend_pairs(const T& tree, unsigned threads, std::vector<ProxyPair>& out, BroadPhaseStats& st) {
-  threads = resolve_thread_count(threads);
+void descend_pairs(const T& tree, Executor& executor, std::vector<ProxyPair>& out, BroadPhaseStats& st) {
+  const std::size_t threads = executor.concurrency();
   if (threads <= 1) {
     TreePairDescent<T>(tree, out, st).self(tree.root());
     return;
   }
   std::vector<DescentTask> tasks;
   std::vector<std::uint32_t> own_nodes;
-  TreePairDescent<T>::split(tree, 8, std::size_t{threads} * 16, tasks, own_nodes);
+  TreePairDescent<T>::split(tree, 8, threads * 16, tasks, own_nodes);
   const std::size_t owns = own_nodes.size();
   std::vector<BroadPhaseStats> per(owns + tasks.size());
   parallel_pair_chunks(
-      per.size(), threads, out,
+      per.size(), executor, out,
       [&](std::size_t begin, std::size_t end, std::vector<ProxyPair>& list) {
         for (std::size_t k = begin; k < end; ++k) {
           TreePairDescent<T> d(tree, list, per[k]);

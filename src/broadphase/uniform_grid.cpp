@@ -22,7 +22,6 @@
 #include <bit>
 #include <cmath>
 #include <limits>
-#include <thread>
 
 namespace proxima::detail {
 
@@ -31,7 +30,6 @@ namespace {
 constexpr std::int64_t kMaxCellsPerProxy = 64;
 constexpr std::int32_t kHashHalfRange = 1 << 18;  // hashed coordinates in [-2^18, 2^18)
 constexpr int kMaxLevels = 32;
-constexpr std::uint32_t kNoCell = 0xffffffffu;
 
 std::uint64_t pack_key(std::int32_t level, std::int32_t x, std::int32_t y, std::int32_t z) {
   return (std::uint64_t(level) << 57) | (std::uint64_t(x + kHashHalfRange) << 38) |
@@ -201,8 +199,7 @@ int CellEngine::level_of(const Aabb& box) const {
   return level;
 }
 
-std::uint32_t CellEngine::find_cell(std::int32_t level, std::int32_t x, std::int32_t y, std::int32_t z) const {
-  if (mode_ == CellMode::Dense) return std::uint32_t((z * dims_[1] + y) * dims_[0] + x);
+std::uint32_t CellEngine::find_hashed_cell(std::int32_t level, std::int32_t x, std::int32_t y, std::int32_t z) const {
   if (table_.empty()) return kNoCell;
   const std::uint64_t key = pack_key(level, x, y, z);
   const std::size_t mask = table_.size() - 1;
@@ -390,75 +387,53 @@ void CellEngine::pairs_oversized(std::size_t begin, std::size_t end, std::vector
   }
 }
 
-void CellEngine::find_pairs(std::vector<ProxyPair>& out) {
+void CellEngine::find_pairs(std::vector<ProxyPair>& out, Executor& executor) {
   if (dirty_) build();
   out.clear();
   stats_ = {};
   const std::size_t n = proxies_.size();
   if (n == 0) return;
   const std::uint32_t cells = std::uint32_t(cell_start_.size() - 1);
-  const int threads = std::max(1, std::min(threads_, int(n / 1024) + 1));
-  if (threads == 1) {
+  const std::size_t threads = std::min(executor.concurrency(), n / 1024 + 1);
+  if (threads <= 1) {
     pairs_in_cells(0, cells, out, stats_);
     if (mode_ == CellMode::Hierarchical) pairs_across_levels(0, n, out, stats_);
     pairs_oversized(0, oversized_.size(), out, stats_);
   } else {
-    thread_pairs_.resize(std::size_t(threads));
-    std::vector<BroadPhaseStats> st(static_cast<std::size_t>(threads));
-    // Cell chunks of about equal entry counts.
-    std::vector<std::uint32_t> bounds(std::size_t(threads) + 1, cells);
+    // Parts of about equal entry counts (4 per thread), each with its share of the level
+    // probes and of the oversized proxies; per-part lists joined in part order.
+    const std::size_t parts = threads * 4;
+    std::vector<BroadPhaseStats> st(parts);
+    std::vector<std::uint32_t> bounds(parts + 1, cells);
     bounds[0] = 0;
     const std::size_t total = entries_.size();
     std::uint32_t c = 0;
-    for (int t = 1; t < threads; ++t) {
-      const std::size_t target = total * std::size_t(t) / std::size_t(threads);
+    for (std::size_t p = 1; p < parts; ++p) {
+      const std::size_t target = total * p / parts;
       while (c < cells && cell_start_[c] < target) ++c;
-      bounds[std::size_t(t)] = c;
+      bounds[p] = c;
     }
-    auto work = [&](int t) {
-      auto& mine = thread_pairs_[std::size_t(t)];
-      mine.clear();
-      const auto tt = std::size_t(t);
-      const auto nt = std::size_t(threads);
-      pairs_in_cells(bounds[tt], bounds[tt + 1], mine, st[tt]);
-      if (mode_ == CellMode::Hierarchical) pairs_across_levels(n * tt / nt, n * (tt + 1) / nt, mine, st[tt]);
-      pairs_oversized(oversized_.size() * tt / nt, oversized_.size() * (tt + 1) / nt, mine, st[tt]);
-    };
-    std::vector<std::thread> pool;
-    pool.reserve(std::size_t(threads) - 1);
-    for (int t = 1; t < threads; ++t) pool.emplace_back(work, t);
-    work(0);
-    for (std::thread& th : pool) th.join();
-    std::size_t count = 0;
-    for (const auto& v : thread_pairs_) count += v.size();
-    out.reserve(count);
-    for (int t = 0; t < threads; ++t) {
-      const auto& v = thread_pairs_[std::size_t(t)];
-      out.insert(out.end(), v.begin(), v.end());
-      stats_.nodes_visited += st[std::size_t(t)].nodes_visited;
-      stats_.pairs_tested += st[std::size_t(t)].pairs_tested;
+    run_pair_chunks(parts, parts, executor, part_pairs_, out,
+                    [&](std::size_t begin, std::size_t end, std::vector<ProxyPair>& mine) {
+                      for (std::size_t p = begin; p < end; ++p) {
+                        pairs_in_cells(bounds[p], bounds[p + 1], mine, st[p]);
+                        if (mode_ == CellMode::Hierarchical)
+                          pairs_across_levels(n * p / parts, n * (p + 1) / parts, mine, st[p]);
+                        pairs_oversized(oversized_.size() * p / parts, oversized_.size() * (p + 1) / parts, mine,
+                                        st[p]);
+                      }
+                    });
+    for (const BroadPhaseStats& s : st) {
+      stats_.nodes_visited += s.nodes_visited;
+      stats_.pairs_tested += s.pairs_tested;
     }
   }
   sort_pairs_radix(out, sort_scratch_);
   stats_.pairs_found = out.size();
 }
 
-bool CellEngine::scan_query(const Aabb& box, const OverlapQueryCallback& on_overlap) const {
-  for (const ProxyId id : proxies_.ids()) {
-    ++stats_.pairs_tested;
-    if (proxies_[id].box.overlaps(box) && !on_overlap(id)) return false;
-  }
-  return true;
-}
-
-void CellEngine::query_aabb(const Aabb& box, const OverlapQueryCallback& on_overlap) const {
-  stats_ = {};
-  if (!box.is_valid()) return;
-  if (dirty_ || proxies_.size() == 0) {
-    scan_query(box, on_overlap);
-    return;
-  }
-  // Cell ranges per occupied level; fall back to a scan when they cover too many cells.
+bool CellEngine::cells_within_budget(const Aabb& box) const {
+  // Cells of the box's ranges over the occupied levels, against a budget of the entry count.
   const std::int64_t budget = std::max<std::int64_t>(64, std::int64_t(entries_.size()));
   std::int64_t cells = 0;
   const std::uint32_t levels = mode_ == CellMode::Hierarchical ? level_mask_ : 1u;
@@ -467,179 +442,95 @@ void CellEngine::query_aabb(const Aabb& box, const OverlapQueryCallback& on_over
     cells +=
         std::int64_t(r.hi[0] - r.lo[0] + 1) * std::int64_t(r.hi[1] - r.lo[1] + 1) * std::int64_t(r.hi[2] - r.lo[2] + 1);
   }
-  if (cells > budget) {
-    scan_query(box, on_overlap);
-    return;
-  }
-  for (std::uint32_t m = levels; m != 0; m &= m - 1) {
-    const Range r = range_of(box, std::countr_zero(m));
-    for (std::int32_t z = r.lo[2]; z <= r.hi[2]; ++z) {
-      for (std::int32_t y = r.lo[1]; y <= r.hi[1]; ++y) {
-        for (std::int32_t x = r.lo[0]; x <= r.hi[0]; ++x) {
-          const std::uint32_t c = find_cell(r.level, x, y, z);
-          if (c == kNoCell) continue;
-          ++stats_.nodes_visited;
-          const std::uint32_t bits = (x == r.lo[0] ? 1u : 0u) | (y == r.lo[1] ? 2u : 0u) | (z == r.lo[2] ? 4u : 0u);
-          for (std::uint32_t i = cell_start_[c]; i < cell_start_[c + 1]; ++i) {
-            const Entry& o = entries_[i];
-            ++stats_.pairs_tested;
-            if ((bits | o.bits) != 7u || !overlaps(box.min, box.max, o.min, o.max)) continue;
-            if (!on_overlap(o.id)) return;
-          }
-        }
-      }
-    }
-  }
-  const auto ids = proxies_.ids();
-  for (const std::uint32_t s : oversized_) {
-    ++stats_.pairs_tested;
-    if (proxies_[ids[s]].box.overlaps(box) && !on_overlap(ids[s])) return;
-  }
+  return cells <= budget;
 }
 
-void CellEngine::query_point(const Vec3& point, const OverlapQueryCallback& on_overlap) const {
-  query_aabb(Aabb::from_point(point), on_overlap);
-}
+// ---- the dense-grid ray march (CellEngine::march_ray in uniform_grid.hpp) ------------------
+// March the cells the segment crosses, slab by slab along the axis of the largest direction
+// component (a 3D DDA made conservative: each slab's stretch of the segment is widened by
+// `eps` and every cell its box touches is visited, so rounding cannot skip a cell). A box is
+// reported in the first visited cell of its range only, found by recomputing the earlier
+// slabs' cell rectangles (no marks).
 
-void CellEngine::query_ray(const Ray& ray, Real max_t, const RayQueryCallback& on_ray) const {
-  stats_ = {};
-  if (mode_ == CellMode::Dense && !dirty_ && proxies_.size() != 0 && march_ray(ray, max_t, on_ray)) return;
-  Real limit = max_t;
-  for (const ProxyId id : proxies_.ids()) {
-    ++stats_.pairs_tested;
-    Real t = 0;
-    if (!ray_enters_box(ray, limit, proxies_[id].box, t)) continue;
-    const Real next = on_ray(id, t);
-    if (next < 0) continue;
-    if (next == 0) return;
-    limit = std::min(limit, next);
-  }
-}
-
-bool CellEngine::march_ray(const Ray& ray, Real max_t, const RayQueryCallback& on_ray) const {
-  // Dense grid, built: march the cells the segment crosses, slab by slab along the axis of
-  // the largest direction component (a 3D DDA made conservative: each slab's stretch of the
-  // segment is widened by `eps` and every cell its box touches is visited, so rounding cannot
-  // skip a cell). A box is reported in the first visited cell of its range only, found by
-  // recomputing the earlier slabs' cell rectangles (no marks). Returns false, having called
-  // nothing, for input it leaves to the scan (zero or non-finite direction, NaN).
-  double o[3];
-  double d[3];
-  int a = 0;
+bool CellEngine::start_march(const Ray& ray, Real max_t, RayMarch& m) const {
+  // Input left to the scan: a zero or non-finite direction, NaN.
+  m.a = 0;
   for (int k = 0; k < 3; ++k) {
-    o[k] = double(ray.origin[k]);
-    d[k] = double(ray.direction[k]);
-    if (!std::isfinite(o[k]) || !std::isfinite(d[k])) return false;
-    if (std::abs(d[k]) > std::abs(d[a])) a = k;
+    m.o[k] = double(ray.origin[k]);
+    m.d[k] = double(ray.direction[k]);
+    if (!std::isfinite(m.o[k]) || !std::isfinite(m.d[k])) return false;
+    if (std::abs(m.d[k]) > std::abs(m.d[m.a])) m.a = k;
   }
-  if (d[a] == 0 || !(max_t >= Real(0))) return false;
+  if (m.d[m.a] == 0 || !(max_t >= Real(0))) return false;
+  m.b = (m.a + 1) % 3;
+  m.c = (m.a + 2) % 3;
   const double cell = double(cell_);
   double reach = 0;
   for (int k = 0; k < 3; ++k) reach = std::max(reach, std::abs(double(origin_[k])) + double(dims_[k]) * cell);
-  const double eps = 1e-3 * cell + 64.0 * double(std::numeric_limits<Real>::epsilon()) * reach;
+  m.eps = 1e-3 * cell + 64.0 * double(std::numeric_limits<Real>::epsilon()) * reach;
   // Clip the segment to the grid's cells, widened by eps.
-  double t_in = 0;
-  double t_out = double(max_t);
+  m.t_in = 0;
+  m.t_out = double(max_t);
   for (int k = 0; k < 3; ++k) {
-    const double lo = double(origin_[k]) - eps;
-    const double hi = double(origin_[k]) + double(dims_[k]) * cell + eps;
-    if (d[k] == 0) {
-      if (o[k] < lo || o[k] > hi) t_out = -1;
+    const double lo = double(origin_[k]) - m.eps;
+    const double hi = double(origin_[k]) + double(dims_[k]) * cell + m.eps;
+    if (m.d[k] == 0) {
+      if (m.o[k] < lo || m.o[k] > hi) m.t_out = -1;
       continue;
     }
-    double ta = (lo - o[k]) / d[k];
-    double tb = (hi - o[k]) / d[k];
+    double ta = (lo - m.o[k]) / m.d[k];
+    double tb = (hi - m.o[k]) / m.d[k];
     if (ta > tb) std::swap(ta, tb);
-    t_in = std::max(t_in, ta);
-    t_out = std::min(t_out, tb);
+    m.t_in = std::max(m.t_in, ta);
+    m.t_out = std::min(m.t_out, tb);
   }
-  Real limit = max_t;
-  const int b = (a + 1) % 3;
-  const int c = (a + 2) % 3;
   auto slab_of = [&](double t) {
-    const double x = std::floor((o[a] + t * d[a] - double(origin_[a])) / cell);
-    return std::int32_t(std::clamp(x, 0.0, double(dims_[a] - 1)));
+    const double x = std::floor((m.o[m.a] + t * m.d[m.a] - double(origin_[m.a])) / cell);
+    return std::int32_t(std::clamp(x, 0.0, double(dims_[m.a] - 1)));
   };
-  // Cell rectangle (axes b, c) of slab s; false when the segment misses the widened slab.
-  struct Rect {
-    std::int32_t lo[2];
-    std::int32_t hi[2];
-    double t0;
-  };
-  auto rect_of = [&](std::int32_t s, Rect& r) {
-    const double x0 = double(origin_[a]) + double(s) * cell - eps;
-    const double x1 = double(origin_[a]) + double(s + 1) * cell + eps;
-    double ta = (x0 - o[a]) / d[a];
-    double tb = (x1 - o[a]) / d[a];
-    if (ta > tb) std::swap(ta, tb);
-    ta = std::max(ta, t_in);
-    tb = std::min(tb, t_out);
-    if (ta > tb) return false;
-    r.t0 = ta;
-    const int axes[2] = {b, c};
-    for (int j = 0; j < 2; ++j) {
-      const int k = axes[j];
-      const double pa = o[k] + ta * d[k];
-      const double pb = o[k] + tb * d[k];
-      const double lo = std::floor((std::min(pa, pb) - eps - double(origin_[k])) / cell);
-      const double hi = std::floor((std::max(pa, pb) + eps - double(origin_[k])) / cell);
-      r.lo[j] = std::int32_t(std::clamp(lo, 0.0, double(dims_[k] - 1)));
-      r.hi[j] = std::int32_t(std::clamp(hi, 0.0, double(dims_[k] - 1)));
-    }
-    return true;
-  };
-  if (t_in <= t_out) {
-    const std::int32_t first = slab_of(t_in);
-    const std::int32_t last = slab_of(t_out);
-    const std::int32_t step = d[a] > 0 ? 1 : -1;
-    for (std::int32_t s = first;; s += step) {
-      Rect r{};
-      if (rect_of(s, r)) {
-        if (r.t0 > double(limit) + eps / std::abs(d[a])) break;  // later slabs start later still
-        std::int32_t xyz[3];
-        xyz[a] = s;
-        for (std::int32_t u = r.lo[0]; u <= r.hi[0]; ++u) {
-          for (std::int32_t v = r.lo[1]; v <= r.hi[1]; ++v) {
-            xyz[b] = u;
-            xyz[c] = v;
-            const std::uint32_t cell_index = find_cell(0, xyz[0], xyz[1], xyz[2]);
-            ++stats_.nodes_visited;
-            for (std::uint32_t i = cell_start_[cell_index]; i < cell_start_[cell_index + 1]; ++i) {
-              const Entry& e = entries_[i];
-              const Range g = range_of(Aabb{e.min, e.max}, 0);
-              // First visited cell of the box's range: first of this slab's rectangle, and
-              // no earlier slab of its range met it.
-              if (u != std::max(r.lo[0], g.lo[b]) || v != std::max(r.lo[1], g.lo[c])) continue;
-              bool seen = false;
-              for (std::int32_t q = s - step; !seen && q >= g.lo[a] && q <= g.hi[a] && q - first != -step; q -= step) {
-                Rect earlier{};
-                seen = rect_of(q, earlier) && earlier.lo[0] <= g.hi[b] && g.lo[b] <= earlier.hi[0] &&
-                       earlier.lo[1] <= g.hi[c] && g.lo[c] <= earlier.hi[1];
-              }
-              if (seen) continue;
-              ++stats_.pairs_tested;
-              Real t = 0;
-              if (!ray_enters_box(ray, limit, Aabb{e.min, e.max}, t)) continue;
-              const Real next = on_ray(e.id, t);
-              if (next < 0) continue;
-              if (next == 0) return true;
-              limit = std::min(limit, next);
-            }
-          }
-        }
-      }
-      if (s == last) break;
-    }
+  m.first = slab_of(m.t_in);
+  m.last = slab_of(m.t_out);
+  m.step = m.d[m.a] > 0 ? 1 : -1;
+  return true;
+}
+
+bool CellEngine::slab_rect(const RayMarch& m, std::int32_t s, SlabRect& r) const {
+  // False when the segment misses the widened slab.
+  const double cell = double(cell_);
+  const double x0 = double(origin_[m.a]) + double(s) * cell - m.eps;
+  const double x1 = double(origin_[m.a]) + double(s + 1) * cell + m.eps;
+  double ta = (x0 - m.o[m.a]) / m.d[m.a];
+  double tb = (x1 - m.o[m.a]) / m.d[m.a];
+  if (ta > tb) std::swap(ta, tb);
+  ta = std::max(ta, m.t_in);
+  tb = std::min(tb, m.t_out);
+  if (ta > tb) return false;
+  r.t0 = ta;
+  const int axes[2] = {m.b, m.c};
+  for (int j = 0; j < 2; ++j) {
+    const int k = axes[j];
+    const double pa = m.o[k] + ta * m.d[k];
+    const double pb = m.o[k] + tb * m.d[k];
+    const double lo = std::floor((std::min(pa, pb) - m.eps - double(origin_[k])) / cell);
+    const double hi = std::floor((std::max(pa, pb) + m.eps - double(origin_[k])) / cell);
+    r.lo[j] = std::int32_t(std::clamp(lo, 0.0, double(dims_[k] - 1)));
+    r.hi[j] = std::int32_t(std::clamp(hi, 0.0, double(dims_[k] - 1)));
   }
-  const auto ids = proxies_.ids();
-  for (const std::uint32_t slot : oversized_) {
-    ++stats_.pairs_tested;
-    Real t = 0;
-    if (!ray_enters_box(ray, limit, proxies_[ids[slot]].box, t)) continue;
-    const Real next = on_ray(ids[slot], t);
-    if (next < 0) continue;
-    if (next == 0) return true;
-    limit = std::min(limit, next);
+  return true;
+}
+
+bool CellEngine::first_visit(const RayMarch& m, const Entry& e, std::int32_t s, std::int32_t u, std::int32_t v,
+                             const SlabRect& r) const {
+  // First visited cell of the box's range: first of this slab's rectangle, and no earlier
+  // slab of its range met it.
+  const Range g = range_of(Aabb{e.min, e.max}, 0);
+  if (u != std::max(r.lo[0], g.lo[m.b]) || v != std::max(r.lo[1], g.lo[m.c])) return false;
+  for (std::int32_t q = s - m.step; q >= g.lo[m.a] && q <= g.hi[m.a] && q - m.first != -m.step; q -= m.step) {
+    SlabRect earlier{};
+    if (slab_rect(m, q, earlier) && earlier.lo[0] <= g.hi[m.b] && g.lo[m.b] <= earlier.hi[0] &&
+        earlier.lo[1] <= g.hi[m.c] && g.lo[m.c] <= earlier.hi[1]) {
+      return false;
+    }
   }
   return true;
 }
@@ -693,7 +584,7 @@ std::size_t CellEngine::memory_bytes() const {
                       capacity_bytes(cell_start_) + capacity_bytes(cell_key_) + capacity_bytes(table_) +
                       capacity_bytes(entries_) + capacity_bytes(oversized_) + capacity_bytes(is_oversized_) +
                       capacity_bytes(sort_scratch_);
-  for (const auto& v : thread_pairs_) bytes += capacity_bytes(v);
+  for (const auto& v : part_pairs_) bytes += capacity_bytes(v);
   return bytes + proxies_.size() * (sizeof(ProxyRecord) + sizeof(ProxyId));
 }
 

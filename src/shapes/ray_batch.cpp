@@ -1,14 +1,17 @@
 /// @file ray_batch.cpp
-/// raycast_batch: splits the rays into equal contiguous ranges, one per thread (the calling
-/// thread takes the first), each thread writing only its own slice of the output, so the
-/// result is independent of the thread count and of scheduling.
+/// raycast_batch. Steps:
+/// 1. Check the output size.
+/// 2. Cut the rays into B equal contiguous blocks: B = min(4 x the executor's concurrency,
+///    R / min_rays_per_task), at least 1; one block runs inline on the caller.
+/// 3. The executor runs the blocks; each block casts its rays, writes only its own slice of
+///    `hits` and adds its hit count to an atomic total (a sum: independent of the order).
+/// The result is therefore independent of the executor, the thread count and scheduling.
 
 #include <proxima/shapes/ray_batch.hpp>
 
 #include <algorithm>
+#include <atomic>
 #include <string>
-#include <thread>
-#include <vector>
 
 namespace proxima {
 namespace {
@@ -31,29 +34,29 @@ std::size_t cast_range(const TriangleMesh& mesh, std::span<const BatchRay> rays,
 }  // namespace
 
 Result<std::size_t> raycast_batch(const TriangleMesh& mesh, std::span<const BatchRay> rays, std::span<RayHit> hits,
-                                  const RayBatchOptions& options) {
+                                  Executor& executor, const RayBatchOptions& options) {
   if (hits.size() < rays.size())
     return make_error(ErrorCode::InvalidArgument, "hits",
                       "room for " + std::to_string(hits.size()) + " results, " + std::to_string(rays.size()) + " rays");
   const std::size_t n = rays.size();
-  std::size_t threads = options.threads != 0 ? options.threads : std::max(1u, std::thread::hardware_concurrency());
-  const std::size_t per_thread = std::max<std::size_t>(1, options.min_rays_per_thread);
-  threads = std::max<std::size_t>(1, std::min(threads, n / per_thread));
-  if (threads <= 1) return cast_range(mesh, rays, hits, options.culling, 0, n);
+  const std::size_t per_task = std::max<std::size_t>(1, options.min_rays_per_task);
+  const std::size_t blocks = std::max<std::size_t>(1, std::min(4 * executor.concurrency(), n / per_task));
+  if (executor.concurrency() <= 1 || blocks <= 1) return cast_range(mesh, rays, hits, options.culling, 0, n);
 
-  std::vector<std::size_t> counts(threads, 0);
-  std::vector<std::thread> workers;
-  workers.reserve(threads - 1);
-  auto range_begin = [&](std::size_t k) { return n * k / threads; };
-  for (std::size_t k = 1; k < threads; ++k) {
-    workers.emplace_back(
-        [&, k] { counts[k] = cast_range(mesh, rays, hits, options.culling, range_begin(k), range_begin(k + 1)); });
-  }
-  counts[0] = cast_range(mesh, rays, hits, options.culling, 0, range_begin(1));
-  for (std::thread& w : workers) w.join();
-  std::size_t total = 0;
-  for (std::size_t c : counts) total += c;
-  return total;
+  std::atomic<std::size_t> total{0};
+  executor.run(blocks, [&](std::size_t first, std::size_t last) {
+    std::size_t count = 0;
+    for (std::size_t b = first; b < last; ++b) {
+      count += cast_range(mesh, rays, hits, options.culling, n * b / blocks, n * (b + 1) / blocks);
+    }
+    total.fetch_add(count, std::memory_order_relaxed);
+  });
+  return total.load();
+}
+
+Result<std::size_t> raycast_batch(const TriangleMesh& mesh, std::span<const BatchRay> rays, std::span<RayHit> hits,
+                                  const RayBatchOptions& options) {
+  return raycast_batch(mesh, rays, hits, serial_executor(), options);
 }
 
 }  // namespace proxima

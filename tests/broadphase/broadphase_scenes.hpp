@@ -22,13 +22,15 @@
 ///   PROXIMA_BROADPHASE_DIFFERENTIAL_SUITE(MyGrid, [] { return UniformGrid(); }, 20)
 /// defines one test per standard scene, or call run_differential<MyGrid>(scene, frames) in a
 /// TEST yourself (structures that are not default-constructible: the overload taking an
-/// instance).
+/// instance). `OnExecutor(structure, executor)` runs the harness on a structure's parallel
+/// find_pairs(out, executor).
 
 #include <gtest/gtest.h>
 
 #include <proxima/broadphase/broadphase.hpp>
 #include <proxima/broadphase/brute_force.hpp>
 #include <proxima/broadphase/pair_tracker.hpp>
+#include <proxima/core/executor.hpp>
 #include <proxima/core/tolerance.hpp>
 
 #include <algorithm>
@@ -44,6 +46,41 @@
 #include "support/random.hpp"
 
 namespace proxima::test {
+
+/// A structure S whose find_pairs(out) is S's find_pairs(out, executor): the harnesses then
+/// drive the parallel path. Forwards everything else. The executor must outlive it.
+template <class S>
+class OnExecutor {
+ public:
+  OnExecutor(S structure, Executor& executor) : s_(std::move(structure)), executor_(&executor) {}
+  BroadPhaseStatus insert(ProxyId id, const Aabb& box, ProxyKind kind, ProxyFilter filter = {}) {
+    return s_.insert(id, box, kind, filter);
+  }
+  BroadPhaseStatus remove(ProxyId id) { return s_.remove(id); }
+  BroadPhaseStatus update(ProxyId id, const Aabb& box) { return s_.update(id, box); }
+  BroadPhaseStatus update(std::span<const ProxyUpdate> updates) { return s_.update(updates); }
+  void rebuild() { s_.rebuild(); }
+  void find_pairs(std::vector<ProxyPair>& out) { s_.find_pairs(out, *executor_); }
+  template <class F>
+  decltype(auto) query_aabb(const Aabb& box, F&& on_overlap) const {
+    return s_.query_aabb(box, on_overlap);
+  }
+  template <class F>
+  decltype(auto) query_point(const Vec3& point, F&& on_overlap) const {
+    return s_.query_point(point, on_overlap);
+  }
+  template <class F>
+  decltype(auto) query_ray(const Ray& ray, Real max_t, F&& on_ray) const {
+    return s_.query_ray(ray, max_t, on_ray);
+  }
+  bool validate() const { return s_.validate(); }
+  BroadPhaseStats stats() const { return s_.stats(); }
+  std::size_t size() const { return s_.size(); }
+
+ private:
+  S s_;
+  Executor* executor_;
+};
 
 /// Where the centres of a scene's boxes lie and how big the boxes are.
 enum class SceneLayout {

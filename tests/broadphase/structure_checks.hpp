@@ -15,6 +15,7 @@
 #include <set>
 #include <vector>
 
+#include "core/executor_set.hpp"
 #include "support/random.hpp"
 
 namespace proxima::test {
@@ -137,9 +138,10 @@ void expect_queries_match(const S& s, const ReferenceScene& ref, Random& rng, Re
   }
 }
 
-/// find_pairs(out, threads) for 1, 2 and 5 threads against an O(n^2) loop on 3000 boxes
-/// (varying sizes, clusters, touching boxes; static boxes and filters included): enough boxes
-/// for the structures' parallel splits.
+/// find_pairs(out, executor) on every executor of the test set (serial, pools of 1, 2, 3 and 8
+/// threads, a scrambled order) against an O(n^2) loop on 3000 boxes (varying sizes,
+/// clusters, touching boxes; static boxes and filters included): enough boxes for the
+/// structures' parallel splits.
 template <class Make>
 void expect_threaded_pairs_match_o2_loop(Make make) {
   for (const SceneKind kind : {SceneKind::Varying, SceneKind::Clustered, SceneKind::Touching}) {
@@ -161,10 +163,10 @@ void expect_threaded_pairs_match_o2_loop(Make make) {
           want.push_back({a, b});
       }
     }
-    for (const unsigned threads : {1u, 2u, 5u}) {
+    for (NamedExecutor& e : test_executors()) {
       std::vector<ProxyPair> got;
-      s.find_pairs(got, threads);
-      EXPECT_EQ(got, want) << "threads " << threads;
+      s.find_pairs(got, *e.executor);
+      EXPECT_EQ(got, want) << "executor " << e.name;
     }
   }
 }

@@ -7,6 +7,7 @@
 
 #include "broadphase/broadphase_scenes.hpp"
 #include "broadphase/tree_structure_checks.hpp"
+#include "core/executor_set.hpp"
 
 namespace proxima {
 namespace {
@@ -17,12 +18,11 @@ static_assert(BroadPhaseStructure<DynamicAabbTree>);
 PROXIMA_BROADPHASE_DIFFERENTIAL_SUITE(
     DynamicAabbTreeScenes, [] { return DynamicAabbTree(); }, 12);
 
-DynamicAabbTree threaded_batch_rebuild_tree() {
+test::OnExecutor<DynamicAabbTree> threaded_batch_rebuild_tree() {
   DynamicAabbTreeConfig c;
-  c.threads = 3;
   c.refit_fraction = Real(0.01);
   c.rebuild_degradation = Real(0);
-  return DynamicAabbTree(c);
+  return test::OnExecutor(DynamicAabbTree(c), test::shared_pool(3));
 }
 PROXIMA_BROADPHASE_DIFFERENTIAL_SUITE(DynamicAabbTreeThreadedScenes, threaded_batch_rebuild_tree, 6);
 
@@ -38,11 +38,10 @@ TEST(DynamicAabbTree, StandardScenesWithoutRotations) {
 
 TEST(DynamicAabbTree, StandardScenesThreadedAndBatchRebuild) {
   DynamicAabbTreeConfig c;
-  c.threads = 4;
   c.refit_fraction = Real(0.01);       // nearly every batch refits the moving tree
   c.rebuild_degradation = Real(0.05);  // and often rebuilds it
   c.margin_fraction = Real(0);         // every motion leaves the fat box
-  test::run_standard_scenes([c] { return DynamicAabbTree(c); });
+  test::run_standard_scenes([c] { return test::OnExecutor(DynamicAabbTree(c), test::shared_pool(4)); });
 }
 
 TEST(DynamicAabbTree, StandardScenesRefitOnly) {
@@ -110,9 +109,8 @@ TEST(DynamicAabbTree, RebuildLowersSahCost) {
 TEST(DynamicAabbTree, ParallelEqualsSerial) {
   test::Random rng(31);
   DynamicAabbTree serial;
-  DynamicAabbTreeConfig c;
-  c.threads = 4;
-  DynamicAabbTree parallel(c);
+  DynamicAabbTree parallel;
+  ThreadPool pool(4);
   std::vector<Aabb> boxes;
   for (ProxyId i = 0; i < 6000; ++i) {
     const Vec3 p = rng.vec3(-40, 40);
@@ -126,7 +124,7 @@ TEST(DynamicAabbTree, ParallelEqualsSerial) {
   std::vector<ProxyPair> b;
   for (int frame = 0; frame < 5; ++frame) {
     serial.find_pairs(a);
-    parallel.find_pairs(b);
+    parallel.find_pairs(b, pool);
     ASSERT_FALSE(a.empty());
     ASSERT_EQ(a, b) << frame;
     EXPECT_EQ(serial.stats().pairs_tested, parallel.stats().pairs_tested);
@@ -141,8 +139,8 @@ TEST(DynamicAabbTree, ParallelEqualsSerial) {
     ASSERT_EQ(serial.update(updates), BroadPhaseStatus::Ok);
     ASSERT_EQ(parallel.update(updates), BroadPhaseStatus::Ok);
   }
-  parallel.set_threads(0);  // hardware concurrency
-  parallel.find_pairs(b);
+  ThreadPool hardware;  // hardware concurrency
+  parallel.find_pairs(b, hardware);
   serial.find_pairs(a);
   EXPECT_EQ(a, b);
 }

@@ -1,5 +1,6 @@
 // Sweep-and-prune structures (sap, sap_oneshot, mbp) against the brute-force reference on
-// every standard scene (the differential harness), plus parallel output identical to serial.
+// every standard scene (the differential harness), plus parallel output identical to serial
+// on every executor of the test set.
 #include <gtest/gtest.h>
 
 #include <proxima/broadphase/brute_force.hpp>
@@ -8,6 +9,7 @@
 #include <vector>
 
 #include "broadphase/broadphase_scenes.hpp"
+#include "core/executor_set.hpp"
 
 namespace proxima {
 namespace {
@@ -45,7 +47,7 @@ TEST(MultiBoxPruning, FlatWorldMatchesReference) {
   ref.find_pairs(want);
   EXPECT_EQ(got, want);
   EXPECT_GT(want.size(), 100u);
-  mbp.find_pairs(got, 4);
+  mbp.find_pairs(got, test::shared_pool(4));
   EXPECT_EQ(got, want);
 }
 
@@ -71,21 +73,22 @@ void check_parallel_identical(std::uint64_t seed) {
     }
   }
   std::vector<ProxyPair> serial, parallel;
+  std::vector<test::NamedExecutor> executors = test::test_executors();
   for (int frame = 0; frame < 3; ++frame) {
     s.find_pairs(serial);
-    for (unsigned threads : {2u, 3u, 8u, 0u}) {
-      s.find_pairs(parallel, threads);
-      EXPECT_EQ(parallel, serial) << "threads " << threads;
+    for (test::NamedExecutor& e : executors) {
+      s.find_pairs(parallel, *e.executor);
+      EXPECT_EQ(parallel, serial) << "executor " << e.name;
     }
     for (ProxyId id = 0; id < 20000; id += 3) ASSERT_EQ(s.update(id, gen.moved(gen.box())), BroadPhaseStatus::Ok);
   }
-  // The first 3000 proxies alone against the reference, on threads.
+  // The first 3000 proxies alone against the reference, on a pool.
   S small;
   for (ProxyId id : ref.ids())
     ASSERT_EQ(small.insert(id, ref.box(id), ref.kind(id), ref.filter(id)), BroadPhaseStatus::Ok);
   std::vector<ProxyPair> want;
   ref.find_pairs(want);
-  small.find_pairs(parallel, 4);
+  small.find_pairs(parallel, test::shared_pool(4));
   EXPECT_EQ(parallel, want);
 }
 

@@ -10,6 +10,7 @@
 
 #include "broadphase/broadphase_scenes.hpp"
 #include "broadphase/structure_checks.hpp"
+#include "core/executor_set.hpp"
 
 namespace proxima {
 namespace {
@@ -22,13 +23,7 @@ PROXIMA_BROADPHASE_DIFFERENTIAL_SUITE(
 PROXIMA_BROADPHASE_DIFFERENTIAL_SUITE(
     HierarchicalGridDifferential, [] { return HierarchicalGrid(); }, 12);
 PROXIMA_BROADPHASE_DIFFERENTIAL_SUITE(
-    ThreadedHashDifferential,
-    [] {
-      SpatialHash s;
-      s.set_thread_count(2);
-      return s;
-    },
-    6);
+    ThreadedHashDifferential, [] { return test::OnExecutor(SpatialHash(), test::shared_pool(2)); }, 6);
 
 template <class S>
 class CellStructureTest : public testing::Test {};
@@ -61,7 +56,6 @@ TYPED_TEST(CellStructureTest, FixedCellSizes) {
 TYPED_TEST(CellStructureTest, TwoThreadsSameResult) {
   TypeParam one;
   TypeParam two;
-  two.set_thread_count(2);
   test::Random rng(5);
   for (ProxyId id = 0; id < 5000; ++id) {
     const Aabb box = test::random_box(rng, test::SceneKind::Varying, Real(30));
@@ -71,7 +65,7 @@ TYPED_TEST(CellStructureTest, TwoThreadsSameResult) {
   std::vector<ProxyPair> a;
   std::vector<ProxyPair> b;
   one.find_pairs(a);
-  two.find_pairs(b);
+  two.find_pairs(b, test::shared_pool(2));
   EXPECT_GT(a.size(), 100u);
   EXPECT_EQ(a, b);
   EXPECT_TRUE(std::is_sorted(a.begin(), a.end()));
@@ -230,13 +224,13 @@ TEST(UniformGrid, RayMarchMatchesEveryBoxItEnters) {
         if (const auto hit = geometry::ray_aabb(ray, max_t, boxes[id])) want[id] = hit->t;
       }
       std::map<ProxyId, Real> got;
-      s.query_ray(ray, max_t, [&](ProxyId id, Real t) {
+      const BroadPhaseStats st = s.query_ray(ray, max_t, [&](ProxyId id, Real t) {
         EXPECT_FALSE(got.count(id)) << "reported twice: " << id;
         got[id] = t;
         return Real(-1);
       });
       EXPECT_EQ(got, want) << "query " << q;
-      tested += s.stats().pairs_tested;
+      tested += st.pairs_tested;
       // Closest hit: the callback clips the ray to each hit.
       Real best = max_t;
       for (const auto& [id, t] : want) best = std::min(best, t);

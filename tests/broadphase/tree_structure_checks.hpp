@@ -14,6 +14,7 @@
 #include <set>
 #include <vector>
 
+#include "core/executor_set.hpp"
 #include "support/random.hpp"
 
 namespace proxima::test {
@@ -381,8 +382,8 @@ void run_standard_scenes(Make make) {
 
 namespace proxima::test {
 
-/// find_pairs(out, threads) gives the serial result for several thread counts, over a few
-/// frames of motion (5000 proxies: above the parallel helpers' inline threshold).
+/// find_pairs(out, executor) gives the serial result on every executor of the test set, over
+/// a few frames of motion (5000 proxies: above the parallel helpers' inline threshold).
 template <class S>
 void check_parallel_equals_serial(S& s, std::uint64_t seed) {
   Random rng(seed);
@@ -395,12 +396,13 @@ void check_parallel_equals_serial(S& s, std::uint64_t seed) {
   }
   std::vector<ProxyPair> serial;
   std::vector<ProxyPair> parallel;
+  std::vector<NamedExecutor> executors = test_executors();
   for (int frame = 0; frame < 4; ++frame) {
-    s.find_pairs(serial, 1);
+    s.find_pairs(serial);
     ASSERT_FALSE(serial.empty());
-    for (const unsigned threads : {2u, 4u, 0u}) {
-      s.find_pairs(parallel, threads);
-      ASSERT_EQ(parallel, serial) << "threads " << threads << " frame " << frame;
+    for (NamedExecutor& e : executors) {
+      s.find_pairs(parallel, *e.executor);
+      ASSERT_EQ(parallel, serial) << "executor " << e.name << " frame " << frame;
     }
     std::vector<ProxyUpdate> updates;
     for (ProxyId i = 0; i < boxes.size(); ++i) {

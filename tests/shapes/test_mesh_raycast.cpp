@@ -12,8 +12,10 @@
 #include <algorithm>
 #include <map>
 #include <optional>
+#include <string>
 #include <vector>
 
+#include "core/executor_set.hpp"
 #include "support/random.hpp"
 #include "support/solid_test_meshes.hpp"
 #include "tessellation.hpp"
@@ -413,7 +415,7 @@ TEST(TriangleMeshBounds, WorldAabbIsTheBoxOfTheTransformedVertices) {
   EXPECT_NEAR(double(local.max.z), 0.5, 1e-5);
 }
 
-TEST(RayBatch, EqualsSerialForAnyThreadCount) {
+TEST(RayBatch, EqualsSerialOnEveryExecutor) {
   test::Random rng(15);
   const TriangleMesh mesh = make(test::torus_mesh(2, Real(0.6), 48, 24));
   std::vector<BatchRay> rays(3000);
@@ -429,23 +431,29 @@ TEST(RayBatch, EqualsSerialForAnyThreadCount) {
     serial[i] = h ? *h : RayHit{};
   }
   EXPECT_GT(serial_hits, 100u);
-  for (const unsigned threads : {1u, 2u, 3u, 8u, 0u}) {
-    std::vector<RayHit> out(rays.size());
-    RayBatchOptions opt;
-    opt.threads = threads;
-    opt.min_rays_per_thread = 100;
-    opt.culling = FaceCulling::Back;
-    const Result<std::size_t> n = raycast_batch(mesh, rays, out, opt);
-    ASSERT_TRUE(n.ok());
-    EXPECT_EQ(n.value(), serial_hits);
+  RayBatchOptions opt;
+  opt.min_rays_per_task = 100;
+  opt.culling = FaceCulling::Back;
+  auto expect_serial = [&](const std::vector<RayHit>& out, const std::string& name) {
     for (std::size_t i = 0; i < rays.size(); ++i) {
-      EXPECT_EQ(out[i].sub.triangle, serial[i].sub.triangle);
-      EXPECT_EQ(out[i].t, serial[i].t);
-      EXPECT_EQ(out[i].point, serial[i].point);
+      ASSERT_EQ(out[i].sub.triangle, serial[i].sub.triangle) << name << " ray " << i;
+      ASSERT_EQ(out[i].t, serial[i].t) << name << " ray " << i;
+      ASSERT_EQ(out[i].point, serial[i].point) << name << " ray " << i;
     }
+  };
+  for (test::NamedExecutor& e : test::test_executors()) {
+    std::vector<RayHit> out(rays.size());
+    const Result<std::size_t> n = raycast_batch(mesh, rays, out, *e.executor, opt);
+    ASSERT_TRUE(n.ok());
+    EXPECT_EQ(n.value(), serial_hits) << e.name;
+    expect_serial(out, e.name);
   }
+  std::vector<RayHit> out(rays.size());
+  ASSERT_EQ(raycast_batch(mesh, rays, out, opt).value(), serial_hits);  // serial default
+  expect_serial(out, "default");
   std::vector<RayHit> small(10);
   EXPECT_FALSE(raycast_batch(mesh, rays, small).ok());
+  EXPECT_FALSE(raycast_batch(mesh, rays, small, test::shared_pool(2)).ok());
 }
 
 }  // namespace

@@ -110,9 +110,8 @@ TEST(MeshRaycastPeers, SharedRayWorkloadMatchesEmbree) {
 
   // The batch API gives the same answers.
   std::vector<RayHit> out(batch.size());
-  RayBatchOptions opt;
-  opt.threads = 4;
-  ASSERT_EQ(raycast_batch(mesh, batch, out, opt).value(), hits);
+  ThreadPool pool(4);
+  ASSERT_EQ(raycast_batch(mesh, batch, out, pool).value(), hits);
   for (std::size_t i = 0; i < batch.size(); ++i) {
     ASSERT_EQ(out[i].sub.triangle, ours[i] ? ours[i]->sub.triangle : kNoIndex);
     if (ours[i]) {

@@ -1,7 +1,9 @@
 #pragma once
 /// @file any_broadphase.hpp
 /// AnyBroadPhase: a type-erased broad phase (one virtual call per operation, never per
-/// element) for the CLI, benchmarks and applications that pick a structure at run time.
+/// element) for the CLI, benchmarks and applications that pick a structure at run time. It is
+/// the one place where query callbacks are type-erased (FunctionRef: one indirect call per
+/// reported proxy); the concrete structures call their callable directly.
 /// It wraps any BroadPhaseStructure, forwards every call, and holds a PairTracker so
 /// `update_pairs()` returns the pairs begun and ended since its previous call.
 /// `make_broadphase(name)` builds one by name from the registry (broadphase_registry.cpp);
@@ -9,6 +11,7 @@
 
 #include <proxima/broadphase/broadphase.hpp>
 #include <proxima/broadphase/pair_tracker.hpp>
+#include <proxima/core/executor.hpp>
 #include <proxima/core/result.hpp>
 
 #include <memory>
@@ -30,7 +33,7 @@ class AnyBroadPhase {
 
   /// Registry name of the wrapped structure ("sap", "tree", ...).
   virtual std::string_view name() const = 0;
-  /// True when find_pairs(out, threads) really uses several threads.
+  /// True when find_pairs(out, executor) really runs on the executor.
   virtual bool parallel() const = 0;
 
   /// As BroadPhaseStructure::insert.
@@ -43,26 +46,28 @@ class AnyBroadPhase {
   virtual BroadPhaseStatus update(std::span<const ProxyUpdate> updates) = 0;
   /// As BroadPhaseStructure::rebuild.
   virtual void rebuild() = 0;
-  /// Every pair, sorted; on `threads` threads (0 = hardware concurrency) where the structure
-  /// supports it (parallel()), else serially. Identical output either way.
-  virtual void find_pairs(std::vector<ProxyPair>& out, unsigned threads = 1) = 0;
-  /// As BroadPhaseStructure::query_aabb.
-  virtual void query_aabb(const Aabb& box, const OverlapQueryCallback& on_overlap) const = 0;
-  /// As BroadPhaseStructure::query_point.
-  virtual void query_point(const Vec3& point, const OverlapQueryCallback& on_overlap) const = 0;
-  /// As BroadPhaseStructure::query_ray.
-  virtual void query_ray(const Ray& ray, Real max_t, const RayQueryCallback& on_ray) const = 0;
+  /// Every pair, sorted; on `executor` where the structure supports it (parallel()), else
+  /// serially on the calling thread. Identical output either way.
+  virtual void find_pairs(std::vector<ProxyPair>& out, Executor& executor) = 0;
+  /// Every pair, sorted, on the calling thread.
+  void find_pairs(std::vector<ProxyPair>& out) { find_pairs(out, serial_executor()); }
+  /// As BroadPhaseStructure::query_aabb; returns the query's counters.
+  virtual BroadPhaseStats query_aabb(const Aabb& box, OverlapQueryCallback on_overlap) const = 0;
+  /// As BroadPhaseStructure::query_point; returns the query's counters.
+  virtual BroadPhaseStats query_point(const Vec3& point, OverlapQueryCallback on_overlap) const = 0;
+  /// As BroadPhaseStructure::query_ray; returns the query's counters.
+  virtual BroadPhaseStats query_ray(const Ray& ray, Real max_t, RayQueryCallback on_ray) const = 0;
   /// As BroadPhaseStructure::validate.
   virtual bool validate() const = 0;
-  /// As BroadPhaseStructure::stats.
+  /// As BroadPhaseStructure::stats (the last find_pairs' counters).
   virtual BroadPhaseStats stats() const = 0;
   /// As BroadPhaseStructure::size.
   virtual std::size_t size() const = 0;
 
   /// Finds the pairs (kept in pairs()) and returns the delta against the previous call
   /// (the first call reports every pair as begun).
-  const PairDelta& update_pairs(unsigned threads = 1) {
-    find_pairs(pairs_, threads);
+  const PairDelta& update_pairs(Executor& executor = serial_executor()) {
+    find_pairs(pairs_, executor);
     return tracker_.update(pairs_);
   }
   /// The pairs of the last update_pairs call, sorted.
@@ -75,10 +80,10 @@ class AnyBroadPhase {
   PairTracker tracker_;
 };
 
-/// True when S offers find_pairs(out, threads).
+/// True when S offers find_pairs(out, executor).
 template <class S>
-concept ParallelBroadPhase = requires(S& s, std::vector<ProxyPair>& out, unsigned threads) {
-  { s.find_pairs(out, threads) } -> std::same_as<void>;
+concept ParallelBroadPhase = requires(S& s, std::vector<ProxyPair>& out, Executor& executor) {
+  { s.find_pairs(out, executor) } -> std::same_as<void>;
 };
 
 /// AnyBroadPhase around a BroadPhaseStructure held by value.
@@ -87,6 +92,8 @@ class BroadPhaseAdapter final : public AnyBroadPhase {
  public:
   /// Wraps `structure` under registry name `name` (a string literal or other static text).
   explicit BroadPhaseAdapter(std::string_view name, S structure = S()) : name_(name), s_(std::move(structure)) {}
+
+  using AnyBroadPhase::find_pairs;
 
   std::string_view name() const override { return name_; }
   bool parallel() const override { return ParallelBroadPhase<S>; }
@@ -97,22 +104,22 @@ class BroadPhaseAdapter final : public AnyBroadPhase {
   BroadPhaseStatus update(ProxyId id, const Aabb& box) override { return s_.update(id, box); }
   BroadPhaseStatus update(std::span<const ProxyUpdate> updates) override { return s_.update(updates); }
   void rebuild() override { s_.rebuild(); }
-  void find_pairs(std::vector<ProxyPair>& out, unsigned threads = 1) override {
+  void find_pairs(std::vector<ProxyPair>& out, Executor& executor) override {
     if constexpr (ParallelBroadPhase<S>) {
-      s_.find_pairs(out, threads);
+      s_.find_pairs(out, executor);
     } else {
-      (void)threads;
+      (void)executor;
       s_.find_pairs(out);
     }
   }
-  void query_aabb(const Aabb& box, const OverlapQueryCallback& on_overlap) const override {
-    s_.query_aabb(box, on_overlap);
+  BroadPhaseStats query_aabb(const Aabb& box, OverlapQueryCallback on_overlap) const override {
+    return s_.query_aabb(box, on_overlap);
   }
-  void query_point(const Vec3& point, const OverlapQueryCallback& on_overlap) const override {
-    s_.query_point(point, on_overlap);
+  BroadPhaseStats query_point(const Vec3& point, OverlapQueryCallback on_overlap) const override {
+    return s_.query_point(point, on_overlap);
   }
-  void query_ray(const Ray& ray, Real max_t, const RayQueryCallback& on_ray) const override {
-    s_.query_ray(ray, max_t, on_ray);
+  BroadPhaseStats query_ray(const Ray& ray, Real max_t, RayQueryCallback on_ray) const override {
+    return s_.query_ray(ray, max_t, on_ray);
   }
   bool validate() const override { return s_.validate(); }
   BroadPhaseStats stats() const override { return s_.stats(); }

@@ -15,7 +15,9 @@
 
 #include <proxima/broadphase/broadphase.hpp>
 #include <proxima/broadphase/pair_tracker.hpp>
+#include <proxima/geometry/raycast.hpp>
 
+#include <algorithm>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -38,16 +40,20 @@ class BruteForceBroadPhase {
   void rebuild() {}
   /// Every pair, sorted by (lo, hi). O(n_moving * n).
   void find_pairs(std::vector<ProxyPair>& out);
-  /// Calls `on_overlap` for every proxy whose box overlaps or touches `box`.
-  void query_aabb(const Aabb& box, const OverlapQueryCallback& on_overlap) const;
+  /// Calls `on_overlap` for every proxy whose box overlaps or touches `box`; returns the
+  /// query's counters.
+  template <OverlapCallback OnOverlap>
+  BroadPhaseStats query_aabb(const Aabb& box, OnOverlap&& on_overlap) const;
   /// Calls `on_overlap` for every proxy whose box contains `point` (boundary included).
-  void query_point(const Vec3& point, const OverlapQueryCallback& on_overlap) const;
+  template <OverlapCallback OnOverlap>
+  BroadPhaseStats query_point(const Vec3& point, OnOverlap&& on_overlap) const;
   /// Calls `on_ray(id, t)` for every proxy whose box the ray hits at t <= the current max
   /// fraction (t from geometry::ray_aabb; 0 when the origin is inside), in slot order.
-  void query_ray(const Ray& ray, Real max_t, const RayQueryCallback& on_ray) const;
+  template <RayCallback OnRay>
+  BroadPhaseStats query_ray(const Ray& ray, Real max_t, OnRay&& on_ray) const;
   /// Checks the id table against the arrays and every stored box.
   bool validate() const;
-  /// Counters of the last find_pairs or query.
+  /// Counters of the last find_pairs.
   BroadPhaseStats stats() const { return stats_; }
   /// Number of proxies.
   std::size_t size() const { return moving_.size() + static_.size(); }
@@ -72,7 +78,9 @@ class BruteForceBroadPhase {
     std::size_t size() const { return id.size(); }
     void push(ProxyId pid, const Aabb& b, ProxyFilter f);
     void set_box(std::size_t slot, const Aabb& b);
-    Aabb get_box(std::size_t slot) const;
+    Aabb get_box(std::size_t slot) const {
+      return {Vec3(min_x[slot], min_y[slot], min_z[slot]), Vec3(max_x[slot], max_y[slot], max_z[slot])};
+    }
     /// Removes a slot by moving the last one into it; returns the id moved (or the removed).
     ProxyId erase(std::size_t slot);
   };
@@ -90,9 +98,61 @@ class BruteForceBroadPhase {
   std::vector<std::uint32_t> slot_of_;  // id -> slot | kStaticBit, or kNoSlot
   std::vector<std::uint8_t> hits_;      // scratch of find_pairs
   PairSortScratch sort_scratch_;
-  mutable BroadPhaseStats stats_;
+  BroadPhaseStats stats_;
 };
 
 static_assert(BroadPhaseStructure<BruteForceBroadPhase>);
+
+// ---- queries (templates on the callback) ------------------------------------------------
+
+template <class Visit>
+void BruteForceBroadPhase::for_each_box(Visit&& visit) const {
+  for (const Set* s : {&moving_, &static_}) {
+    for (std::size_t i = 0; i < s->size(); ++i) {
+      if (!visit(s->id[i], s->get_box(i))) return;
+    }
+  }
+}
+
+template <OverlapCallback OnOverlap>
+BroadPhaseStats BruteForceBroadPhase::query_aabb(const Aabb& box, OnOverlap&& on_overlap) const {
+  BroadPhaseStats st;
+  for_each_box([&](ProxyId id, const Aabb& b) {
+    ++st.pairs_tested;
+    if (!b.overlaps(box)) return true;
+    ++st.pairs_found;
+    return static_cast<bool>(on_overlap(id));
+  });
+  return st;
+}
+
+template <OverlapCallback OnOverlap>
+BroadPhaseStats BruteForceBroadPhase::query_point(const Vec3& point, OnOverlap&& on_overlap) const {
+  BroadPhaseStats st;
+  for_each_box([&](ProxyId id, const Aabb& b) {
+    ++st.pairs_tested;
+    if (!b.contains(point)) return true;
+    ++st.pairs_found;
+    return static_cast<bool>(on_overlap(id));
+  });
+  return st;
+}
+
+template <RayCallback OnRay>
+BroadPhaseStats BruteForceBroadPhase::query_ray(const Ray& ray, Real max_t, OnRay&& on_ray) const {
+  BroadPhaseStats st;
+  for_each_box([&](ProxyId id, const Aabb& b) {
+    ++st.pairs_tested;
+    const auto hit = geometry::ray_aabb(ray, max_t, b);
+    if (!hit || hit->t > max_t) return true;
+    ++st.pairs_found;
+    const Real r = on_ray(id, hit->t);
+    if (r < Real(0)) return true;
+    if (r == Real(0)) return false;
+    max_t = std::min(max_t, r);
+    return true;
+  });
+  return st;
+}
 
 }  // namespace proxima

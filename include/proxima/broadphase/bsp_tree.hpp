@@ -26,13 +26,20 @@
 /// - Pair finding: one box query per Moving proxy (moving-moving pairs kept by id order).
 ///
 /// Complexity: build O(n log n) (seven candidate planes per node); insert/update/remove
-/// O(depth + node occupancy); queries O(depth + visited occupancy + k). Not safe for
-/// concurrent calls.
+/// O(depth + node occupancy); queries O(depth + visited occupancy + k). Queries may run
+/// concurrently with each other, not with changes.
 
 #include <proxima/broadphase/broadphase.hpp>
 #include <proxima/broadphase/pair_tracker.hpp>
+#include <proxima/broadphase/query_support.hpp>
+#include <proxima/core/executor.hpp>
+#include <proxima/core/tolerance.hpp>
+#include <proxima/geometry/raycast.hpp>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
+#include <limits>
 #include <span>
 #include <vector>
 
@@ -67,22 +74,31 @@ class BspTree {
   /// Rebuilds the planes over the current boxes. O(n log n).
   void rebuild();
   /// Every pair (see broadphase.hpp), sorted. May rebuild first.
-  void find_pairs(std::vector<ProxyPair>& out) { find_pairs(out, 1); }
-  /// As above with the per-proxy searches split over `threads` std::threads (0 = hardware
-  /// concurrency); identical output.
-  void find_pairs(std::vector<ProxyPair>& out, unsigned threads);
+  void find_pairs(std::vector<ProxyPair>& out) { find_pairs(out, serial_executor()); }
+  /// As above with the tree descent split into tasks run by `executor`; identical output.
+  void find_pairs(std::vector<ProxyPair>& out, Executor& executor);
 
   /// Every proxy whose box overlaps `box` (closed); stops when the callback returns false.
-  void query_aabb(const Aabb& box, const OverlapQueryCallback& on_overlap) const;
-  /// Every proxy whose box contains `point`.
-  void query_point(const Vec3& point, const OverlapQueryCallback& on_overlap) const;
+  /// Returns the query's counters.
+  template <OverlapCallback OnOverlap>
+  BroadPhaseStats query_aabb(const Aabb& box, OnOverlap&& on_overlap) const {
+    return detail::run_box_query(box, on_overlap,
+                                 [this](const Aabb& b, BroadPhaseStats& st, auto&& visit) { visit_box(b, st, visit); });
+  }
+  /// Every proxy whose box contains `point`; returns the query's counters.
+  template <OverlapCallback OnOverlap>
+  BroadPhaseStats query_point(const Vec3& point, OnOverlap&& on_overlap) const {
+    return detail::run_point_query(point, [&](const Aabb& b) { return query_aabb(b, on_overlap); });
+  }
   /// Every proxy whose box the ray enters within [0, max_t]; the callback clips the ray.
-  void query_ray(const Ray& ray, Real max_t, const RayQueryCallback& on_ray) const;
+  /// Returns the query's counters.
+  template <RayCallback OnRay>
+  BroadPhaseStats query_ray(const Ray& ray, Real max_t, OnRay&& on_ray) const;
 
   /// Checks the invariants: each proxy at one node, each box on the proper side of every
   /// ancestor plane and within the ancestors' side bounds and subtree boxes, parent links.
   bool validate() const;
-  /// Counters of the last find_pairs or query.
+  /// Counters of the last find_pairs.
   BroadPhaseStats stats() const { return stats_; }
   /// Number of proxies.
   std::size_t size() const { return count_; }
@@ -117,6 +133,30 @@ class BspTree {
     ProxyKind kind = ProxyKind::Static;
   };
 
+  /// An interval of projections on a plane normal.
+  struct Interval {
+    Real lo;
+    Real hi;
+  };
+  /// Projection of a box on a unit normal, padded to contain the exact projection.
+  static Interval project(const Vec3& n, const Aabb& b) {
+    Real lo = Real(0);
+    Real hi = Real(0);
+    Real scale = Real(0);
+    for (int a = 0; a < 3; ++a) {
+      if (n[a] >= Real(0)) {
+        lo += n[a] * b.min[a];
+        hi += n[a] * b.max[a];
+      } else {
+        lo += n[a] * b.max[a];
+        hi += n[a] * b.min[a];
+      }
+      scale += std::abs(n[a]) * std::max(std::abs(b.min[a]), std::abs(b.max[a]));
+    }
+    const Real pad = Real(8) * kEpsilon * scale + std::numeric_limits<Real>::min();
+    return {lo - pad, hi + pad};
+  }
+
   struct DescentView;  // the tree as seen by the pair descent (bsp_tree.cpp)
   void place(ProxyId id);
   void detach(ProxyId id);
@@ -135,9 +175,62 @@ class BspTree {
   double baseline_work_ =
       0;  ///< work of the first find_pairs after the last build  ///< a leaf grew past 4 leaf_size + 16 by insertion
   PairSortScratch sort_scratch_;
-  mutable BroadPhaseStats stats_;
+  BroadPhaseStats stats_;
 };
 
 static_assert(BroadPhaseStructure<BspTree>);
+
+// ---- queries (templates on the callback) ------------------------------------------------
+
+template <class Visit>
+void BspTree::visit_box(const Aabb& box, BroadPhaseStats& st, Visit&& visit) const {
+  if (nodes_.empty()) return;
+  detail::TraversalStack<std::uint32_t, 192> stack;
+  stack.push(0);
+  while (!stack.empty()) {
+    const std::uint32_t index = stack.pop();
+    const Node& n = nodes_[index];
+    ++st.nodes_visited;
+    if (!n.bounds.overlaps(box)) continue;
+    for (const ProxyId id : n.items) {
+      ++st.pairs_tested;
+      if (proxies_[id].box.overlaps(box) && !visit(id)) return;
+    }
+    if (!n.internal()) continue;
+    const Interval iv = project(n.normal, box);
+    if (n.middle != kNull) stack.push(n.middle);
+    if (iv.hi >= n.front_min) stack.push(n.front);
+    if (iv.lo <= n.back_max) stack.push(n.back);
+  }
+}
+
+template <RayCallback OnRay>
+BroadPhaseStats BspTree::query_ray(const Ray& ray, Real max_t, OnRay&& on_ray) const {
+  BroadPhaseStats st;
+  if (!detail::ray_input_ok(ray, max_t) || nodes_.empty()) return st;
+  const detail::SlabRay slab(ray);
+  Real limit = max_t;
+  detail::TraversalStack<std::uint32_t, 192> stack;
+  stack.push(0);
+  while (!stack.empty()) {
+    const Node& n = nodes_[stack.pop()];
+    ++st.nodes_visited;
+    Real t;
+    if (!slab.enter(n.bounds, limit, t)) continue;
+    for (const ProxyId id : n.items) {
+      ++st.pairs_tested;
+      const auto hit = geometry::ray_aabb(ray, limit, proxies_[id].box);
+      if (!hit) continue;
+      ++st.pairs_found;
+      if (!detail::apply_ray_result(on_ray(id, hit->t), limit)) return st;
+    }
+    if (n.internal()) {
+      if (n.middle != kNull) stack.push(n.middle);
+      stack.push(n.front);
+      stack.push(n.back);
+    }
+  }
+  return st;
+}
 
 }  // namespace proxima

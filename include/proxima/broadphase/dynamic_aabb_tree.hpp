@@ -26,15 +26,20 @@
 /// - find_pairs descends tree against tree (a simultaneous traversal of node pairs: both
 ///   nodes split at once when both are internal; a stack sized once from the tree heights;
 ///   branch-free pushes), tests the real boxes at leaf pairs, and radix-sorts the result
-///   (sort_pairs). With threads > 1 the top node pairs are split between std::threads, each
-///   writing its own list; the sorted union is identical to the serial result.
+///   (sort_pairs). With an executor of several threads the top node pairs are split into
+///   tasks run by the executor, each chunk of tasks writing its own list; the sorted union is
+///   identical to the serial result.
 ///
 /// Complexity: insert/remove O(log n) expected; update O(1) while inside the fat box;
 /// find_pairs O(n log n + k) typical; queries O(log n + k) typical; rebuild O(n log n).
-/// Not safe for concurrent calls (const queries update the statistics).
+/// Queries may run concurrently with each other, not with changes.
 
 #include <proxima/broadphase/broadphase.hpp>
 #include <proxima/broadphase/pair_tracker.hpp>
+#include <proxima/broadphase/parallel_pairs.hpp>
+#include <proxima/broadphase/query_support.hpp>
+#include <proxima/core/executor.hpp>
+#include <proxima/geometry/raycast.hpp>
 
 #include <cstdint>
 #include <span>
@@ -48,8 +53,6 @@ struct DynamicAabbTreeConfig {
   Real margin_fraction = Real(0.1);
   /// Smallest fat-box margin of moving proxies, in length units (>= 0).
   Real margin_min = Real(0);
-  /// Threads used by find_pairs (1 = serial, 0 = std::thread::hardware_concurrency()).
-  unsigned threads = 1;
   /// Apply SAH tree rotations after each insertion.
   bool rotations = true;
   /// A batch update that would reinsert more than this fraction of the moving leaves refits
@@ -79,24 +82,29 @@ class DynamicAabbTree {
   BroadPhaseStatus update(std::span<const ProxyUpdate> updates);
   /// Rebuilds both trees with binned SAH (fat boxes kept). O(n log n).
   void rebuild();
-  /// Every pair (see broadphase.hpp), sorted; `out` is cleared first. Uses config threads.
-  void find_pairs(std::vector<ProxyPair>& out) { find_pairs(out, config_.threads); }
-  /// As above on `threads` threads (1 = serial, 0 = hardware concurrency); identical output.
-  void find_pairs(std::vector<ProxyPair>& out, unsigned threads);
+  /// Every pair (see broadphase.hpp), sorted; `out` is cleared first. On the calling thread.
+  void find_pairs(std::vector<ProxyPair>& out) { find_pairs(out, serial_executor()); }
+  /// As above with the descent split into tasks run by `executor`; identical output.
+  void find_pairs(std::vector<ProxyPair>& out, Executor& executor);
 
   /// Calls `on_overlap` for every proxy whose box overlaps `box` (closed); stops when it
-  /// returns false. A non-finite or inverted box reports nothing.
-  void query_aabb(const Aabb& box, const OverlapQueryCallback& on_overlap) const;
+  /// returns false. A non-finite or inverted box reports nothing. Returns the counters.
+  template <OverlapCallback OnOverlap>
+  BroadPhaseStats query_aabb(const Aabb& box, OnOverlap&& on_overlap) const;
   /// Calls `on_overlap` for every proxy whose box contains `point` (boundary included).
-  void query_point(const Vec3& point, const OverlapQueryCallback& on_overlap) const;
+  template <OverlapCallback OnOverlap>
+  BroadPhaseStats query_point(const Vec3& point, OnOverlap&& on_overlap) const {
+    return detail::run_point_query(point, [&](const Aabb& b) { return query_aabb(b, on_overlap); });
+  }
   /// Calls `on_ray` for every proxy whose box the ray enters within [0, max_t] (see
-  /// RayQueryCallback); the callback's answer clips the ray for the rest of the search.
-  void query_ray(const Ray& ray, Real max_t, const RayQueryCallback& on_ray) const;
+  /// RayCallback); the callback's answer clips the ray for the rest of the search.
+  template <RayCallback OnRay>
+  BroadPhaseStats query_ray(const Ray& ray, Real max_t, OnRay&& on_ray) const;
 
   /// Checks every invariant: parent links, children inside parents, fat boxes containing the
   /// real boxes, heights, leaf counts, free list, proxy table. O(n).
   bool validate() const;
-  /// Counters of the last find_pairs or query.
+  /// Counters of the last find_pairs.
   BroadPhaseStats stats() const { return stats_; }
   /// Number of proxies.
   std::size_t size() const { return count_; }
@@ -108,8 +116,6 @@ class DynamicAabbTree {
   int height() const;
   /// Number of nodes in use in both trees.
   std::size_t node_count() const;
-  /// Sets the thread count of find_pairs (1 = serial, 0 = hardware concurrency).
-  void set_threads(unsigned threads) { config_.threads = threads; }
   /// The fat box of a proxy (its leaf's box); the empty box for an unknown id.
   Aabb fat_box(ProxyId id) const;
 
@@ -169,6 +175,7 @@ class DynamicAabbTree {
     bool cross;  ///< a in moving tree, b in static tree
   };
   void collide_task(const PairTask& task, std::vector<ProxyPair>& out, BroadPhaseStats& st) const;
+  void split_tasks(std::vector<PairTask>& tasks, std::size_t wanted) const;
 
   DynamicAabbTreeConfig config_;
   Tree static_;
@@ -176,9 +183,70 @@ class DynamicAabbTree {
   std::vector<Proxy> proxies_;
   std::size_t count_ = 0;
   PairSortScratch sort_scratch_;
-  mutable BroadPhaseStats stats_;
+  PairChunkLists chunk_lists_;  ///< per-chunk pair lists of the parallel find_pairs
+  BroadPhaseStats stats_;
 };
 
 static_assert(BroadPhaseStructure<DynamicAabbTree>);
+
+// ---- queries (templates on the callback) ------------------------------------------------
+
+template <OverlapCallback OnOverlap>
+BroadPhaseStats DynamicAabbTree::query_aabb(const Aabb& box, OnOverlap&& on_overlap) const {
+  BroadPhaseStats st;
+  if (!detail::query_box_ok(box)) return st;
+  for (const Tree* tree : {&moving_, &static_}) {
+    if (tree->root == kNull) continue;
+    detail::TraversalStack<std::uint32_t, 256> stack;
+    stack.push(tree->root);
+    while (!stack.empty()) {
+      const std::uint32_t index = stack.pop();
+      const Node& n = tree->nodes[index];
+      ++st.nodes_visited;
+      if (!n.box.overlaps(box)) continue;
+      if (!n.is_leaf()) {
+        stack.push(n.child1);
+        stack.push(n.child2);
+        continue;
+      }
+      ++st.pairs_tested;
+      if (!tree->real[index].overlaps(box)) continue;
+      ++st.pairs_found;
+      if (!on_overlap(n.child2)) return st;
+    }
+  }
+  return st;
+}
+
+template <RayCallback OnRay>
+BroadPhaseStats DynamicAabbTree::query_ray(const Ray& ray, Real max_t, OnRay&& on_ray) const {
+  BroadPhaseStats st;
+  if (!detail::ray_input_ok(ray, max_t)) return st;
+  const detail::SlabRay slab(ray);
+  Real limit = max_t;
+  for (const Tree* tree : {&moving_, &static_}) {
+    if (tree->root == kNull) continue;
+    detail::TraversalStack<std::uint32_t, 256> stack;
+    stack.push(tree->root);
+    while (!stack.empty()) {
+      const std::uint32_t index = stack.pop();
+      const Node& n = tree->nodes[index];
+      ++st.nodes_visited;
+      Real t;
+      if (!slab.enter(n.box, limit, t)) continue;
+      if (!n.is_leaf()) {
+        stack.push(n.child1);
+        stack.push(n.child2);
+        continue;
+      }
+      ++st.pairs_tested;
+      const auto hit = geometry::ray_aabb(ray, limit, tree->real[index]);
+      if (!hit) continue;
+      ++st.pairs_found;
+      if (!detail::apply_ray_result(on_ray(n.child2, hit->t), limit)) return st;
+    }
+  }
+  return st;
+}
 
 }  // namespace proxima

@@ -19,13 +19,17 @@
 /// - Pair finding: a simultaneous descent of the tree against itself on the subtree boxes
 ///   kept by the refit (self of a node = self of each child + cross of the children; cross
 ///   of two nodes with overlapping boxes descends into the children; two leaves test their
-///   records), each pair met once; top tasks split among threads; results sorted.
+///   records), each pair met once; top tasks run by the executor; results sorted.
 ///
 /// Complexity: build O(n log n); update O(log n); queries O(log n + k) for well-spread data;
-/// find_pairs O(n log n + k) plus any refit/rebuild. Not safe for concurrent calls.
+/// find_pairs O(n log n + k) plus any refit/rebuild. Queries may run concurrently with each
+/// other, not with changes.
 
 #include <proxima/broadphase/broadphase.hpp>
 #include <proxima/broadphase/pair_tracker.hpp>
+#include <proxima/broadphase/query_support.hpp>
+#include <proxima/core/executor.hpp>
+#include <proxima/geometry/raycast.hpp>
 
 #include <cstdint>
 #include <span>
@@ -59,22 +63,31 @@ class KdTree {
   /// Rebuilds the tree from scratch over every proxy (median splits). O(n log n).
   void rebuild();
   /// Every pair (see broadphase.hpp), sorted. May refit or rebuild first.
-  void find_pairs(std::vector<ProxyPair>& out) { find_pairs(out, 1); }
-  /// As above with the per-proxy searches split over `threads` std::threads (0 = hardware
-  /// concurrency); identical output.
-  void find_pairs(std::vector<ProxyPair>& out, unsigned threads);
+  void find_pairs(std::vector<ProxyPair>& out) { find_pairs(out, serial_executor()); }
+  /// As above with the tree descent split into tasks run by `executor`; identical output.
+  void find_pairs(std::vector<ProxyPair>& out, Executor& executor);
 
   /// Every proxy whose box overlaps `box` (closed); stops when the callback returns false.
-  void query_aabb(const Aabb& box, const OverlapQueryCallback& on_overlap) const;
-  /// Every proxy whose box contains `point`.
-  void query_point(const Vec3& point, const OverlapQueryCallback& on_overlap) const;
+  /// Returns the query's counters.
+  template <OverlapCallback OnOverlap>
+  BroadPhaseStats query_aabb(const Aabb& box, OnOverlap&& on_overlap) const {
+    return detail::run_box_query(box, on_overlap,
+                                 [this](const Aabb& b, BroadPhaseStats& st, auto&& visit) { visit_box(b, st, visit); });
+  }
+  /// Every proxy whose box contains `point`; returns the query's counters.
+  template <OverlapCallback OnOverlap>
+  BroadPhaseStats query_point(const Vec3& point, OnOverlap&& on_overlap) const {
+    return detail::run_point_query(point, [&](const Aabb& b) { return query_aabb(b, on_overlap); });
+  }
   /// Every proxy whose box the ray enters within [0, max_t]; the callback clips the ray.
-  void query_ray(const Ray& ray, Real max_t, const RayQueryCallback& on_ray) const;
+  /// Returns the query's counters.
+  template <RayCallback OnRay>
+  BroadPhaseStats query_ray(const Ray& ray, Real max_t, OnRay&& on_ray) const;
 
   /// Checks the invariants: each proxy in exactly one place, leaf records equal to the proxy
   /// table, every box within the clip planes of all its ancestors, parent links. O(n log n).
   bool validate() const;
-  /// Counters of the last find_pairs or query.
+  /// Counters of the last find_pairs.
   BroadPhaseStats stats() const { return stats_; }
   /// Number of proxies.
   std::size_t size() const { return count_; }
@@ -116,6 +129,15 @@ class KdTree {
   void widen(std::uint32_t leaf, const Aabb& box);
   template <class Visit>
   void visit_box(const Aabb& box, BroadPhaseStats& st, Visit&& visit) const;
+  /// One entry of the ray query's stack: a node and the parameter interval the ray spends
+  /// within its clip planes.
+  struct RayEntry {
+    std::uint32_t node;
+    Real t0;
+    Real t1;
+  };
+  static void push_children(const Node& n, std::uint32_t index, const Ray& ray, const RayEntry& e, Real limit,
+                            detail::TraversalStack<RayEntry, 192>& stack);
   struct DescentView;  // the tree as seen by the pair descent (kd_tree.cpp)
 
   KdTreeConfig config_;
@@ -131,9 +153,75 @@ class KdTree {
   double build_overlap_ = 0;
   std::size_t rebuilds_ = 0;
   PairSortScratch sort_scratch_;
-  mutable BroadPhaseStats stats_;
+  BroadPhaseStats stats_;
 };
 
 static_assert(BroadPhaseStructure<KdTree>);
+
+// ---- queries (templates on the callback) ------------------------------------------------
+
+template <class Visit>
+void KdTree::visit_box(const Aabb& box, BroadPhaseStats& st, Visit&& visit) const {
+  if (!nodes_.empty()) {
+    detail::TraversalStack<std::uint32_t, 192> stack;
+    stack.push(0);
+    while (!stack.empty()) {
+      const Node& n = nodes_[stack.pop()];
+      ++st.nodes_visited;
+      if (n.leaf) {
+        for (std::uint32_t i = n.begin; i < n.begin + n.count; ++i) {
+          const Record& r = records_[i];
+          if (r.id == kDead) continue;
+          ++st.pairs_tested;
+          if (r.box.overlaps(box) && !visit(r.id)) return;
+        }
+        continue;
+      }
+      const auto index = static_cast<std::uint32_t>(&n - nodes_.data());
+      if (box.max[n.axis] >= n.clip_right) stack.push(n.right);
+      if (box.min[n.axis] <= n.clip_left) stack.push(index + 1);
+    }
+  }
+  for (const ProxyId id : pending_) {
+    ++st.pairs_tested;
+    if (proxies_[id].box.overlaps(box) && !visit(id)) return;
+  }
+}
+
+template <RayCallback OnRay>
+BroadPhaseStats KdTree::query_ray(const Ray& ray, Real max_t, OnRay&& on_ray) const {
+  BroadPhaseStats st;
+  if (!detail::ray_input_ok(ray, max_t)) return st;
+  Real limit = max_t;
+  auto test = [&](ProxyId id, const Aabb& box) {
+    ++st.pairs_tested;
+    const auto hit = geometry::ray_aabb(ray, limit, box);
+    if (!hit) return true;
+    ++st.pairs_found;
+    return detail::apply_ray_result(on_ray(id, hit->t), limit);
+  };
+  // Pending proxies first (usually none), then the tree with per-node parameter intervals.
+  for (const ProxyId id : pending_) {
+    if (!test(id, proxies_[id].box)) return st;
+  }
+  if (nodes_.empty()) return st;
+  detail::TraversalStack<RayEntry, 192> stack;
+  stack.push({0, Real(0), max_t});
+  while (!stack.empty()) {
+    const RayEntry e = stack.pop();
+    if (e.t0 > limit) continue;
+    const Node& n = nodes_[e.node];
+    ++st.nodes_visited;
+    if (!n.leaf) {
+      push_children(n, e.node, ray, e, limit, stack);
+      continue;
+    }
+    for (std::uint32_t i = n.begin; i < n.begin + n.count; ++i) {
+      const Record& r = records_[i];
+      if (r.id != kDead && !test(r.id, r.box)) return st;
+    }
+  }
+  return st;
+}
 
 }  // namespace proxima

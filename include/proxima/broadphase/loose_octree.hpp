@@ -18,15 +18,17 @@
 /// child subtree, self of each child, cross of each child pair; cross(A, B) = own boxes of
 /// each against the other subtree, then the child pairs whose tight boxes overlap (the
 /// Ericson 6.5.3 BVH-BVH descent with the octree nodes as volumes); no per-box walk from the
-/// root. The top tasks (self and cross of the first levels) are split among threads
-/// (set_thread_count); pairs are radix-sorted. O(n + nodes + node pairs met + k') with k' the
+/// root. The top tasks (self and cross of the first levels) are run by the executor of
+/// find_pairs(out, executor); pairs are radix-sorted. O(n + nodes + node pairs met + k') with k' the
 /// candidate pairs of overlapping tight boxes.
 /// Queries walk the nodes whose loose bounds the box, point or ray meets.
 
 #include <proxima/broadphase/broadphase.hpp>
 #include <proxima/broadphase/pair_tracker.hpp>
 #include <proxima/broadphase/proxy_table.hpp>
+#include <proxima/core/executor.hpp>
 
+#include <algorithm>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -52,28 +54,28 @@ class LooseTree {
   BroadPhaseStatus update(std::span<const ProxyUpdate> updates);
   /// Rebuilds the tree around the current boxes (fits the root, resets the depth limit).
   void rebuild();
-  /// Every pair, sorted (broadphase.hpp).
-  void find_pairs(std::vector<ProxyPair>& out);
-  /// Every pair, sorted, found by `threads` threads (same output as serial).
-  void find_pairs(std::vector<ProxyPair>& out, unsigned threads) {
-    set_thread_count(int(threads));
-    find_pairs(out);
+  /// Every pair, sorted (broadphase.hpp), on the calling thread.
+  void find_pairs(std::vector<ProxyPair>& out) { find_pairs(out, serial_executor()); }
+  /// Every pair, sorted, with the top tasks run by `executor` (same output as serial).
+  void find_pairs(std::vector<ProxyPair>& out, Executor& executor);
+  /// Proxies whose box overlaps `box` (closed), each once; returns the query's counters.
+  template <OverlapCallback OnOverlap>
+  BroadPhaseStats query_aabb(const Aabb& box, OnOverlap&& on_overlap) const;
+  /// Proxies whose box contains `point`, each once; returns the query's counters.
+  template <OverlapCallback OnOverlap>
+  BroadPhaseStats query_point(const Vec3& point, OnOverlap&& on_overlap) const {
+    return query_aabb(Aabb::from_point(point), on_overlap);
   }
-  /// Proxies whose box overlaps `box` (closed), each once.
-  void query_aabb(const Aabb& box, const OverlapQueryCallback& on_overlap) const;
-  /// Proxies whose box contains `point`, each once.
-  void query_point(const Vec3& point, const OverlapQueryCallback& on_overlap) const;
   /// Proxies whose box the ray enters at t <= the current max fraction (t of
   /// geometry::ray_aabb), nodes pruned by their loose bounds against the clipped ray.
-  void query_ray(const Ray& ray, Real max_t, const RayQueryCallback& on_ray) const;
+  template <RayCallback OnRay>
+  BroadPhaseStats query_ray(const Ray& ray, Real max_t, OnRay&& on_ray) const;
   /// Checks the links, counts and that every box lies in its node's loose bounds. O(n + nodes).
   bool validate() const;
-  /// Counters of the last find_pairs / query.
+  /// Counters of the last find_pairs.
   BroadPhaseStats stats() const { return stats_; }
   /// Number of proxies.
   std::size_t size() const { return proxies_.size(); }
-  /// Worker threads used by find_pairs (1 = the calling thread only).
-  void set_thread_count(int threads) { threads_ = threads < 1 ? 1 : threads; }
   /// Number of live nodes.
   std::size_t node_count() const { return nodes_.size() - free_.size(); }
   /// Depth of the deepest live node (root = 0). O(nodes).
@@ -114,6 +116,7 @@ class LooseTree {
     std::int32_t b;
   };
   void gather();
+  void split_tasks(std::size_t wanted);
   void run_task(const Task& task, std::vector<ProxyPair>& out, BroadPhaseStats& st) const;
   void own_pairs(std::int32_t node, std::vector<ProxyPair>& out, BroadPhaseStats& st) const;
   void self_pairs(std::int32_t node, std::vector<ProxyPair>& out, BroadPhaseStats& st) const;
@@ -122,7 +125,9 @@ class LooseTree {
                         std::vector<ProxyPair>& out, BroadPhaseStats& st) const;
   void test_items(std::uint32_t begin, std::uint32_t end, std::uint32_t begin2, std::uint32_t end2,
                   std::vector<ProxyPair>& out, BroadPhaseStats& st) const;
-  bool query_node(std::int32_t node, const Aabb& box, const OverlapQueryCallback& on_overlap) const;
+  template <class OnOverlap>
+  bool query_node(std::int32_t node, const Aabb& box, OnOverlap& on_overlap, BroadPhaseStats& st) const;
+  static bool ray_meets(const Ray& ray, Real max_t, const Aabb& loose);
 
   detail::ProxyTable proxies_;
   std::vector<std::int32_t> node_of_;  // by id
@@ -132,7 +137,6 @@ class LooseTree {
   std::vector<std::int32_t> free_;
   std::int32_t root_ = kNil;
   Real min_half_ = 0;  // nodes are not split below this half size
-  int threads_ = 1;
   // find_pairs scratch (step 1 of find_pairs), by node unless said otherwise.
   std::vector<Item> items_;               // by gathered position
   std::vector<std::uint32_t> own_begin_;  // first gathered position of the node's own boxes
@@ -141,13 +145,69 @@ class LooseTree {
   std::vector<std::int32_t> order_;       // nodes in depth-first order
   std::vector<Task> tasks_;
   PairSortScratch sort_scratch_;
-  mutable BroadPhaseStats stats_;
+  BroadPhaseStats stats_;
 };
 
 /// Loose octree ("octree").
 using LooseOctree = LooseTree<3>;
 /// Loose quadtree on x, y ("quadtree").
 using LooseQuadtree = LooseTree<2>;
+
+// ---- queries (templates on the callback) ------------------------------------------------
+
+template <int Dim>
+template <class OnOverlap>
+bool LooseTree<Dim>::query_node(std::int32_t node, const Aabb& box, OnOverlap& on_overlap, BroadPhaseStats& st) const {
+  const Node& n = nodes_[std::size_t(node)];
+  ++st.nodes_visited;
+  for (std::uint32_t id = n.first; id != kNone; id = next_[id]) {
+    ++st.pairs_tested;
+    if (proxies_[id].box.overlaps(box) && !on_overlap(id)) return false;
+  }
+  for (const std::int32_t child : n.child) {
+    if (child == kNil || !nodes_[std::size_t(child)].loose.overlaps(box)) continue;
+    if (!query_node(child, box, on_overlap, st)) return false;
+  }
+  return true;
+}
+
+template <int Dim>
+template <OverlapCallback OnOverlap>
+BroadPhaseStats LooseTree<Dim>::query_aabb(const Aabb& box, OnOverlap&& on_overlap) const {
+  BroadPhaseStats st;
+  if (root_ == kNil || !box.is_valid() || !nodes_[std::size_t(root_)].loose.overlaps(box)) return st;
+  query_node(root_, box, on_overlap, st);
+  return st;
+}
+
+template <int Dim>
+template <RayCallback OnRay>
+BroadPhaseStats LooseTree<Dim>::query_ray(const Ray& ray, Real max_t, OnRay&& on_ray) const {
+  BroadPhaseStats st;
+  if (root_ == kNil) return st;
+  Real limit = max_t;
+  std::vector<std::int32_t> stack{root_};
+  while (!stack.empty()) {
+    const std::int32_t node = stack.back();
+    stack.pop_back();
+    const Node& n = nodes_[std::size_t(node)];
+    if (!ray_meets(ray, limit, n.loose)) continue;
+    ++st.nodes_visited;
+    for (std::uint32_t id = n.first; id != kNone; id = next_[id]) {
+      ++st.pairs_tested;
+      Real t = 0;
+      if (!detail::ray_enters_box(ray, limit, proxies_[id].box, t)) continue;
+      const Real next = on_ray(id, t);
+      if (next < 0) continue;
+      if (next == 0) return st;
+      limit = std::min(limit, next);
+    }
+    for (const std::int32_t child : n.child) {
+      if (child != kNil) stack.push_back(child);
+    }
+  }
+  return st;
+}
 
 extern template class LooseTree<2>;
 extern template class LooseTree<3>;

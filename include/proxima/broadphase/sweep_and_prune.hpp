@@ -20,14 +20,17 @@
 /// two axes other than the sweep axis, one sorted sweep per cell; a pair found in several
 /// cells is reported only by the cell holding the min corner of the two boxes' intersection.
 ///
-/// Parallel pair finding: `find_pairs(out, threads)` splits the sweep over `threads`
-/// std::threads (0 = hardware concurrency); each thread fills its own list; the lists are
-/// concatenated and sorted, so the output is identical to the serial one.
+/// Parallel pair finding: `find_pairs(out, executor)` splits the sweep into chunks of boxes
+/// (mbp: of cells) run by the executor; each chunk fills its own list; the lists are
+/// concatenated in chunk order and sorted, so the output is identical to the serial one.
 /// Queries (aabb, point, ray) scan the stored boxes linearly (O(n)).
 
 #include <proxima/broadphase/broadphase.hpp>
 #include <proxima/broadphase/pair_tracker.hpp>
+#include <proxima/core/executor.hpp>
+#include <proxima/geometry/raycast.hpp>
 
+#include <algorithm>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -66,15 +69,23 @@ class SweepStorage {
   BroadPhaseStatus update(ProxyId id, const Aabb& box);
   /// Replaces several boxes; all or nothing; a repeated id ends with its last box.
   BroadPhaseStatus update(std::span<const ProxyUpdate> updates);
-  /// Proxies whose box overlaps or touches `box` (linear scan).
-  void query_aabb(const Aabb& box, const OverlapQueryCallback& on_overlap) const;
-  /// Proxies whose box contains `point` (linear scan).
-  void query_point(const Vec3& point, const OverlapQueryCallback& on_overlap) const;
-  /// Proxies hit by the ray at t <= the current max fraction (linear scan, ray_aabb's t).
-  void query_ray(const Ray& ray, Real max_t, const RayQueryCallback& on_ray) const;
+  /// Proxies whose box overlaps or touches `box` (linear scan); returns the counters.
+  template <OverlapCallback OnOverlap>
+  BroadPhaseStats query_aabb(const Aabb& box, OnOverlap&& on_overlap) const {
+    return scan([&](const Aabb& b) { return b.overlaps(box); }, on_overlap);
+  }
+  /// Proxies whose box contains `point` (linear scan); returns the counters.
+  template <OverlapCallback OnOverlap>
+  BroadPhaseStats query_point(const Vec3& point, OnOverlap&& on_overlap) const {
+    return scan([&](const Aabb& b) { return b.contains(point); }, on_overlap);
+  }
+  /// Proxies hit by the ray at t <= the current max fraction (linear scan, ray_aabb's t);
+  /// returns the counters.
+  template <RayCallback OnRay>
+  BroadPhaseStats query_ray(const Ray& ray, Real max_t, OnRay&& on_ray) const;
   /// Checks the lists against the id table and every stored box.
   bool validate() const;
-  /// Counters of the last find_pairs or query.
+  /// Counters of the last find_pairs.
   BroadPhaseStats stats() const { return stats_; }
   /// Number of proxies.
   std::size_t size() const { return count_; }
@@ -89,6 +100,9 @@ class SweepStorage {
   void gather(const std::vector<ProxyId>& order, int axis, SweepList& list) const;
   /// Sorts `ids` by box min on `axis` (radix sort).
   void radix_sort_ids(std::vector<ProxyId>& ids, int axis);
+  /// Reports every present proxy whose box passes `hit` until `on_overlap` returns false.
+  template <class Hit, class OnOverlap>
+  BroadPhaseStats scan(const Hit& hit, OnOverlap& on_overlap) const;
 
   std::vector<Aabb> box_;
   std::vector<ProxyFilter> filter_;
@@ -99,7 +113,7 @@ class SweepStorage {
   std::size_t count_ = 0;
   bool static_dirty_ = true;      // static list changed since static_list_ was built
   std::size_t moving_added_ = 0;  // moving ids appended since the last sort
-  mutable BroadPhaseStats stats_;
+  BroadPhaseStats stats_;
   // Scratch of the sorts.
   std::vector<std::uint64_t> keys_;
   std::vector<std::uint64_t> keys_tmp_;
@@ -114,9 +128,9 @@ class SweepAndPrune : public SweepStorage {
   /// Re-chooses the sweep axis and re-sorts both lists from scratch.
   void rebuild();
   /// Every pair, sorted. O(n + swaps + overlaps on the sweep axis).
-  void find_pairs(std::vector<ProxyPair>& out) { find_pairs(out, 1); }
-  /// As above on `threads` threads (0 = hardware concurrency); identical output.
-  void find_pairs(std::vector<ProxyPair>& out, unsigned threads);
+  void find_pairs(std::vector<ProxyPair>& out) { find_pairs(out, serial_executor()); }
+  /// As above with the sweep run by `executor`; identical output.
+  void find_pairs(std::vector<ProxyPair>& out, Executor& executor);
   /// Current sweep axis (0, 1, 2).
   int axis() const { return axis_; }
 
@@ -134,9 +148,9 @@ class SortedSweep : public SweepStorage {
   /// Nothing to rebuild (every find_pairs sorts from scratch).
   void rebuild() {}
   /// Every pair, sorted. O(n + overlaps on the sweep axis).
-  void find_pairs(std::vector<ProxyPair>& out) { find_pairs(out, 1); }
-  /// As above on `threads` threads (0 = hardware concurrency); identical output.
-  void find_pairs(std::vector<ProxyPair>& out, unsigned threads);
+  void find_pairs(std::vector<ProxyPair>& out) { find_pairs(out, serial_executor()); }
+  /// As above with the sweep run by `executor`; identical output.
+  void find_pairs(std::vector<ProxyPair>& out, Executor& executor);
 
  private:
   int static_axis_ = -1;
@@ -150,15 +164,47 @@ class MultiBoxPruning : public SweepStorage {
   /// Nothing to rebuild (the grid is laid over the current bounds every call).
   void rebuild() {}
   /// Every pair, sorted.
-  void find_pairs(std::vector<ProxyPair>& out) { find_pairs(out, 1); }
-  /// As above on `threads` threads (0 = hardware concurrency); identical output.
-  void find_pairs(std::vector<ProxyPair>& out, unsigned threads);
+  void find_pairs(std::vector<ProxyPair>& out) { find_pairs(out, serial_executor()); }
+  /// As above with the sweep run by `executor`; identical output.
+  void find_pairs(std::vector<ProxyPair>& out, Executor& executor);
 
  private:
   std::vector<std::vector<ProxyId>> cell_moving_;
   std::vector<std::vector<ProxyId>> cell_static_;
   std::vector<SweepList> cell_lists_;  // 2 per cell: moving, static
 };
+
+// ---- queries (templates on the callback) ------------------------------------------------
+
+template <class Hit, class OnOverlap>
+BroadPhaseStats SweepStorage::scan(const Hit& hit, OnOverlap& on_overlap) const {
+  BroadPhaseStats st;
+  for (std::size_t id = 0; id < state_.size(); ++id) {
+    if (state_[id] == kAbsent) continue;
+    ++st.pairs_tested;
+    if (!hit(box_[id])) continue;
+    ++st.pairs_found;
+    if (!on_overlap(static_cast<ProxyId>(id))) break;
+  }
+  return st;
+}
+
+template <RayCallback OnRay>
+BroadPhaseStats SweepStorage::query_ray(const Ray& ray, Real max_t, OnRay&& on_ray) const {
+  BroadPhaseStats st;
+  for (std::size_t id = 0; id < state_.size(); ++id) {
+    if (state_[id] == kAbsent) continue;
+    ++st.pairs_tested;
+    const auto hit = geometry::ray_aabb(ray, max_t, box_[id]);
+    if (!hit || hit->t > max_t) continue;
+    ++st.pairs_found;
+    const Real r = on_ray(static_cast<ProxyId>(id), hit->t);
+    if (r < Real(0)) continue;
+    if (r == Real(0)) break;
+    max_t = std::min(max_t, r);
+  }
+  return st;
+}
 
 static_assert(BroadPhaseStructure<SweepAndPrune>);
 static_assert(BroadPhaseStructure<SortedSweep>);

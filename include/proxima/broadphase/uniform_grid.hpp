@@ -26,8 +26,13 @@
 /// steady state (buffers keep their capacity).
 
 #include <proxima/broadphase/broadphase.hpp>
+#include <proxima/broadphase/parallel_pairs.hpp>
 #include <proxima/broadphase/proxy_table.hpp>
+#include <proxima/core/executor.hpp>
 
+#include <algorithm>
+#include <bit>
+#include <cmath>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -54,14 +59,18 @@ class CellEngine {
   BroadPhaseStatus update(ProxyId id, const Aabb& box);
   BroadPhaseStatus update(std::span<const ProxyUpdate> updates);
   void rebuild();
-  void find_pairs(std::vector<ProxyPair>& out);
-  void query_aabb(const Aabb& box, const OverlapQueryCallback& on_overlap) const;
-  void query_point(const Vec3& point, const OverlapQueryCallback& on_overlap) const;
-  void query_ray(const Ray& ray, Real max_t, const RayQueryCallback& on_ray) const;
+  void find_pairs(std::vector<ProxyPair>& out, Executor& executor);
+  template <OverlapCallback OnOverlap>
+  BroadPhaseStats query_aabb(const Aabb& box, OnOverlap&& on_overlap) const;
+  template <OverlapCallback OnOverlap>
+  BroadPhaseStats query_point(const Vec3& point, OnOverlap&& on_overlap) const {
+    return query_aabb(Aabb::from_point(point), on_overlap);
+  }
+  template <RayCallback OnRay>
+  BroadPhaseStats query_ray(const Ray& ray, Real max_t, OnRay&& on_ray) const;
   bool validate() const;
   BroadPhaseStats stats() const { return stats_; }
   std::size_t size() const { return proxies_.size(); }
-  void set_thread_count(int threads) { threads_ = threads < 1 ? 1 : threads; }
   Real cell_size() const { return cell_; }
   std::size_t cell_count() const { return cell_start_.empty() ? 0 : cell_start_.size() - 1; }
   std::size_t entry_count() const { return entries_.size(); }
@@ -86,20 +95,61 @@ class CellEngine {
     std::uint64_t key = kEmptyKey;
     std::uint32_t cell = 0;
   };
+  /// A ray marched through the built dense grid (march_ray): the segment (double precision)
+  /// clipped to the grid widened by `eps`, the slab axis `a` (largest direction component)
+  /// and the other two, the first and last slab and the step between them.
+  struct RayMarch {
+    double o[3];
+    double d[3];
+    int a;
+    int b;
+    int c;
+    double eps;
+    double t_in;
+    double t_out;
+    std::int32_t first;
+    std::int32_t last;
+    std::int32_t step;
+  };
+  /// Cell rectangle (axes b, c) of one slab of a march, and where the segment enters it.
+  struct SlabRect {
+    std::int32_t lo[2];
+    std::int32_t hi[2];
+    double t0;
+  };
   static constexpr std::uint64_t kEmptyKey = ~std::uint64_t(0);
+  static constexpr std::uint32_t kNoCell = 0xffffffffu;
 
   void build();
   void choose_cell_size();
   Range range_of(const Aabb& box, int level) const;
-  std::uint32_t find_cell(std::int32_t level, std::int32_t x, std::int32_t y, std::int32_t z) const;
+  std::uint32_t find_cell(std::int32_t level, std::int32_t x, std::int32_t y, std::int32_t z) const {
+    if (mode_ == CellMode::Dense) return std::uint32_t((z * dims_[1] + y) * dims_[0] + x);
+    return find_hashed_cell(level, x, y, z);
+  }
+  std::uint32_t find_hashed_cell(std::int32_t level, std::int32_t x, std::int32_t y, std::int32_t z) const;
   std::uint32_t find_or_add_cell(std::int32_t level, std::int32_t x, std::int32_t y, std::int32_t z);
   int level_of(const Aabb& box) const;
   void pairs_in_cells(std::uint32_t cell_begin, std::uint32_t cell_end, std::vector<ProxyPair>& out,
                       BroadPhaseStats& st) const;
   void pairs_across_levels(std::size_t begin, std::size_t end, std::vector<ProxyPair>& out, BroadPhaseStats& st) const;
   void pairs_oversized(std::size_t begin, std::size_t end, std::vector<ProxyPair>& out, BroadPhaseStats& st) const;
-  bool scan_query(const Aabb& box, const OverlapQueryCallback& on_overlap) const;
-  bool march_ray(const Ray& ray, Real max_t, const RayQueryCallback& on_ray) const;
+  bool cells_within_budget(const Aabb& box) const;
+  template <class OnOverlap>
+  bool scan_query(const Aabb& box, OnOverlap& on_overlap, BroadPhaseStats& st) const;
+  template <class OnOverlap>
+  bool query_cells(const Aabb& box, OnOverlap& on_overlap, BroadPhaseStats& st) const;
+  template <class OnRay>
+  static bool offer_ray(const Ray& ray, Real& limit, const Aabb& box, ProxyId id, OnRay& on_ray, BroadPhaseStats& st);
+  bool start_march(const Ray& ray, Real max_t, RayMarch& m) const;
+  bool slab_rect(const RayMarch& m, std::int32_t s, SlabRect& r) const;
+  bool first_visit(const RayMarch& m, const Entry& e, std::int32_t s, std::int32_t u, std::int32_t v,
+                   const SlabRect& r) const;
+  template <class OnRay>
+  bool march_slab(const RayMarch& m, std::int32_t s, const SlabRect& r, const Ray& ray, Real& limit, OnRay& on_ray,
+                  BroadPhaseStats& st) const;
+  template <class OnRay>
+  bool march_ray(const Ray& ray, Real max_t, OnRay& on_ray, BroadPhaseStats& st) const;
 
   CellMode mode_;
   Real fixed_cell_;    // user cell size, <= 0 for automatic
@@ -109,7 +159,6 @@ class CellEngine {
   Aabb bounds_;        // dense grid world bounds (grow only, reset by rebuild())
   std::int32_t dims_[3] = {1, 1, 1};
   std::uint32_t level_mask_ = 0;  // hgrid: occupied levels
-  int threads_ = 1;
   bool dirty_ = true;
 
   detail::ProxyTable proxies_;
@@ -122,9 +171,9 @@ class CellEngine {
   std::vector<Entry> entries_;              // entries sorted by cell
   std::vector<std::uint32_t> oversized_;    // dense slots of oversized proxies
   std::vector<std::uint8_t> is_oversized_;  // per dense slot
-  std::vector<std::vector<ProxyPair>> thread_pairs_;
+  PairChunkLists part_pairs_;               // per-part pair lists of the parallel find_pairs
   std::vector<ProxyPair> sort_scratch_;
-  mutable BroadPhaseStats stats_;
+  BroadPhaseStats stats_;
 };
 
 }  // namespace detail
@@ -149,34 +198,33 @@ class CellBroadPhase {
   BroadPhaseStatus update(std::span<const ProxyUpdate> updates) { return engine_.update(updates); }
   /// Re-chooses the cell size (and the dense grid's world bounds) and bins every proxy.
   void rebuild() { engine_.rebuild(); }
-  /// Every pair, sorted (broadphase.hpp).
-  void find_pairs(std::vector<ProxyPair>& out) { engine_.find_pairs(out); }
-  /// Every pair, sorted, found by `threads` threads (same output as serial).
-  void find_pairs(std::vector<ProxyPair>& out, unsigned threads) {
-    engine_.set_thread_count(int(threads));
-    engine_.find_pairs(out);
+  /// Every pair, sorted (broadphase.hpp), on the calling thread.
+  void find_pairs(std::vector<ProxyPair>& out) { engine_.find_pairs(out, serial_executor()); }
+  /// Every pair, sorted, with the cells split into parts run by `executor` (same output as
+  /// serial).
+  void find_pairs(std::vector<ProxyPair>& out, Executor& executor) { engine_.find_pairs(out, executor); }
+  /// Proxies whose box overlaps `box` (closed), each once; returns the query's counters.
+  template <OverlapCallback OnOverlap>
+  BroadPhaseStats query_aabb(const Aabb& box, OnOverlap&& on_overlap) const {
+    return engine_.query_aabb(box, on_overlap);
   }
-  /// Proxies whose box overlaps `box` (closed), each once.
-  void query_aabb(const Aabb& box, const OverlapQueryCallback& on_overlap) const {
-    engine_.query_aabb(box, on_overlap);
-  }
-  /// Proxies whose box contains `point`, each once.
-  void query_point(const Vec3& point, const OverlapQueryCallback& on_overlap) const {
-    engine_.query_point(point, on_overlap);
+  /// Proxies whose box contains `point`, each once; returns the query's counters.
+  template <OverlapCallback OnOverlap>
+  BroadPhaseStats query_point(const Vec3& point, OnOverlap&& on_overlap) const {
+    return engine_.query_point(point, on_overlap);
   }
   /// Proxies whose box the ray enters at t <= the current max fraction, each once. Built
-  /// dense grid: O(cells crossed + their boxes); otherwise O(n).
-  void query_ray(const Ray& ray, Real max_t, const RayQueryCallback& on_ray) const {
-    engine_.query_ray(ray, max_t, on_ray);
+  /// dense grid: O(cells crossed + their boxes); otherwise O(n). Returns the counters.
+  template <RayCallback OnRay>
+  BroadPhaseStats query_ray(const Ray& ray, Real max_t, OnRay&& on_ray) const {
+    return engine_.query_ray(ray, max_t, on_ray);
   }
   /// Checks the proxy table and, when built, that every proxy sits in exactly its cells.
   bool validate() const { return engine_.validate(); }
-  /// Counters of the last find_pairs / query.
+  /// Counters of the last find_pairs.
   BroadPhaseStats stats() const { return engine_.stats(); }
   /// Number of proxies.
   std::size_t size() const { return engine_.size(); }
-  /// Worker threads used by find_pairs (1 = the calling thread only).
-  void set_thread_count(int threads) { engine_.set_thread_count(threads); }
   /// Cell size of the last build (level 0 for the hierarchical grid).
   Real cell_size() const { return engine_.cell_size(); }
   /// Bytes held by the structure's buffers (capacity).
@@ -216,6 +264,132 @@ class HierarchicalGrid : public CellBroadPhase<detail::CellMode::Hierarchical> {
  public:
   using CellBroadPhase::CellBroadPhase;
 };
+
+namespace detail {
+
+// ---- CellEngine queries (templates on the callback) --------------------------------------
+
+template <class OnOverlap>
+bool CellEngine::scan_query(const Aabb& box, OnOverlap& on_overlap, BroadPhaseStats& st) const {
+  for (const ProxyId id : proxies_.ids()) {
+    ++st.pairs_tested;
+    if (proxies_[id].box.overlaps(box) && !on_overlap(id)) return false;
+  }
+  return true;
+}
+
+template <class OnOverlap>
+bool CellEngine::query_cells(const Aabb& box, OnOverlap& on_overlap, BroadPhaseStats& st) const {
+  const std::uint32_t levels = mode_ == CellMode::Hierarchical ? level_mask_ : 1u;
+  for (std::uint32_t m = levels; m != 0; m &= m - 1) {
+    const Range r = range_of(box, std::countr_zero(m));
+    for (std::int32_t z = r.lo[2]; z <= r.hi[2]; ++z) {
+      for (std::int32_t y = r.lo[1]; y <= r.hi[1]; ++y) {
+        for (std::int32_t x = r.lo[0]; x <= r.hi[0]; ++x) {
+          const std::uint32_t c = find_cell(r.level, x, y, z);
+          if (c == kNoCell) continue;
+          ++st.nodes_visited;
+          // Report an entry only in the lowest cell of the intersection of the two ranges.
+          const std::uint32_t bits = (x == r.lo[0] ? 1u : 0u) | (y == r.lo[1] ? 2u : 0u) | (z == r.lo[2] ? 4u : 0u);
+          for (std::uint32_t i = cell_start_[c]; i < cell_start_[c + 1]; ++i) {
+            const Entry& o = entries_[i];
+            ++st.pairs_tested;
+            if ((bits | o.bits) != 7u || !Aabb{o.min, o.max}.overlaps(box)) continue;
+            if (!on_overlap(o.id)) return false;
+          }
+        }
+      }
+    }
+  }
+  return true;
+}
+
+template <OverlapCallback OnOverlap>
+BroadPhaseStats CellEngine::query_aabb(const Aabb& box, OnOverlap&& on_overlap) const {
+  BroadPhaseStats st;
+  if (!box.is_valid()) return st;
+  // Unbuilt, or cell ranges covering too many cells: scan every proxy.
+  if (dirty_ || proxies_.size() == 0 || !cells_within_budget(box)) {
+    scan_query(box, on_overlap, st);
+    return st;
+  }
+  if (!query_cells(box, on_overlap, st)) return st;
+  const auto ids = proxies_.ids();
+  for (const std::uint32_t s : oversized_) {
+    ++st.pairs_tested;
+    if (proxies_[ids[s]].box.overlaps(box) && !on_overlap(ids[s])) break;
+  }
+  return st;
+}
+
+template <class OnRay>
+bool CellEngine::offer_ray(const Ray& ray, Real& limit, const Aabb& box, ProxyId id, OnRay& on_ray,
+                           BroadPhaseStats& st) {
+  ++st.pairs_tested;
+  Real t = 0;
+  if (!ray_enters_box(ray, limit, box, t)) return true;
+  const Real next = on_ray(id, t);
+  if (next < 0) return true;
+  if (next == 0) return false;
+  limit = std::min(limit, next);
+  return true;
+}
+
+template <class OnRay>
+bool CellEngine::march_slab(const RayMarch& m, std::int32_t s, const SlabRect& r, const Ray& ray, Real& limit,
+                            OnRay& on_ray, BroadPhaseStats& st) const {
+  std::int32_t xyz[3];
+  xyz[m.a] = s;
+  for (std::int32_t u = r.lo[0]; u <= r.hi[0]; ++u) {
+    for (std::int32_t v = r.lo[1]; v <= r.hi[1]; ++v) {
+      xyz[m.b] = u;
+      xyz[m.c] = v;
+      const std::uint32_t cell = find_cell(0, xyz[0], xyz[1], xyz[2]);
+      ++st.nodes_visited;
+      for (std::uint32_t i = cell_start_[cell]; i < cell_start_[cell + 1]; ++i) {
+        const Entry& e = entries_[i];
+        if (!first_visit(m, e, s, u, v, r)) continue;
+        if (!offer_ray(ray, limit, Aabb{e.min, e.max}, e.id, on_ray, st)) return false;
+      }
+    }
+  }
+  return true;
+}
+
+template <class OnRay>
+bool CellEngine::march_ray(const Ray& ray, Real max_t, OnRay& on_ray, BroadPhaseStats& st) const {
+  RayMarch m{};
+  if (!start_march(ray, max_t, m)) return false;
+  Real limit = max_t;
+  if (m.t_in <= m.t_out) {
+    for (std::int32_t s = m.first;; s += m.step) {
+      SlabRect r{};
+      if (slab_rect(m, s, r)) {
+        if (r.t0 > double(limit) + m.eps / std::abs(m.d[m.a])) break;  // later slabs start later still
+        if (!march_slab(m, s, r, ray, limit, on_ray, st)) return true;
+      }
+      if (s == m.last) break;
+    }
+  }
+  const auto ids = proxies_.ids();
+  for (const std::uint32_t slot : oversized_) {
+    if (!offer_ray(ray, limit, proxies_[ids[slot]].box, ids[slot], on_ray, st)) return true;
+  }
+  return true;
+}
+
+template <RayCallback OnRay>
+BroadPhaseStats CellEngine::query_ray(const Ray& ray, Real max_t, OnRay&& on_ray) const {
+  BroadPhaseStats st;
+  if (mode_ == CellMode::Dense && !dirty_ && proxies_.size() != 0 && march_ray(ray, max_t, on_ray, st)) return st;
+  Real limit = max_t;
+  for (const ProxyId id : proxies_.ids()) {
+    if (!offer_ray(ray, limit, proxies_[id].box, id, on_ray, st)) break;
+  }
+  return st;
+}
+
+}  // namespace detail
 
 static_assert(BroadPhaseStructure<UniformGrid>);
 static_assert(BroadPhaseStructure<SpatialHash>);

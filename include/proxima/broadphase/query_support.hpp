@@ -1,9 +1,10 @@
 #pragma once
-/// @file tree_support.hpp
-/// Internal helpers shared by the tree structures of the broad phase (dynamic AABB tree,
-/// kd-tree, BSP tree): a traversal stack with fixed inline storage, the ray-box slab test
-/// with the conventions of broadphase.hpp, the ray-input check and the box and point query
-/// wrappers over a tree's box walk. Not installed.
+/// @file query_support.hpp
+/// Helpers (namespace detail) of the structures' templated queries, which live in their
+/// headers because they are templates on the callback: a traversal stack with fixed inline
+/// storage, the ray-box slab test with the conventions of broadphase.hpp, the input checks,
+/// the box and point query wrappers over a structure's box walk, and the ray-callback
+/// protocol. Not meant for use outside the broad phase.
 
 #include <proxima/broadphase/broadphase.hpp>
 
@@ -101,8 +102,8 @@ inline bool query_box_ok(const Aabb& box) { return check_box(box) == BroadPhaseS
 
 /// Box query of a tree over its `visit_box(box, stats, visit)` walk: counts the reports,
 /// reports nothing for an invalid box, and returns the counters.
-template <class VisitBox>
-BroadPhaseStats run_box_query(const Aabb& box, const OverlapQueryCallback& on_overlap, VisitBox&& visit_box) {
+template <class OnOverlap, class VisitBox>
+BroadPhaseStats run_box_query(const Aabb& box, OnOverlap& on_overlap, VisitBox&& visit_box) {
   BroadPhaseStats st;
   if (query_box_ok(box)) {
     visit_box(box, st, [&](ProxyId id) {
@@ -113,15 +114,12 @@ BroadPhaseStats run_box_query(const Aabb& box, const OverlapQueryCallback& on_ov
   return st;
 }
 
-/// Point query as the box query of the point: `query_aabb(point_box)`; a non-finite point
-/// reports nothing and clears `stats`.
+/// Point query as the box query of the point: returns `query_aabb(point_box)`'s counters; a
+/// non-finite point reports nothing and returns zero counters.
 template <class QueryAabb>
-void run_point_query(const Vec3& point, BroadPhaseStats& stats, QueryAabb&& query_aabb) {
-  if (!point_ok(point)) {
-    stats = {};
-    return;
-  }
-  query_aabb(Aabb::from_point(point));
+BroadPhaseStats run_point_query(const Vec3& point, QueryAabb&& query_aabb) {
+  if (!point_ok(point)) return {};
+  return query_aabb(Aabb::from_point(point));
 }
 
 /// Applies the ray-callback protocol: returns false when the query must stop; updates max_t.
