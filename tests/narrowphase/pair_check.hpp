@@ -11,6 +11,9 @@
 #include <string>
 
 #include "narrowphase/pair_reference.hpp"
+// The closed-form pair routines the checks call by qualified name (narrow::pair_distance):
+// declared before the templates below so that qualified lookup finds them.
+#include "narrowphase/pairs_rounded.hpp"
 
 namespace proxima::test {
 

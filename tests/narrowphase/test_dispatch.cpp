@@ -66,7 +66,9 @@ TEST(Dispatch, EveryCellFilledAndMirroredFlagged) {
       EXPECT_NE(f.collide_all, nullptr);
       EXPECT_EQ(f.mirrored, expect_mirrored(i, j)) << i << " " << j;
       EXPECT_EQ(f.analytic, narrow::pair_functions(static_cast<ShapeType>(j), static_cast<ShapeType>(i)).analytic);
-      if (is_composite(i) || is_composite(j)) EXPECT_FALSE(f.analytic);
+      if (is_composite(i) || is_composite(j)) {
+        EXPECT_FALSE(f.analytic);
+      }
     }
   }
 }
@@ -107,10 +109,11 @@ TEST(Dispatch, MirroringHoldsForEveryPair) {
         const ContactManifold mba = collide(b, pb, a, pa);
         // A composite pair's manifold is reduced from A's witness points, so the mirrored
         // reduction may keep a different number of points; both find contact or neither.
-        if (is_composite(i) || is_composite(j))
+        if (is_composite(i) || is_composite(j)) {
           EXPECT_EQ(mab.count > 0, mba.count > 0) << i << " " << j;
-        else
+        } else {
           EXPECT_EQ(mab.count, mba.count);
+        }
         if (i != j && !is_composite(i) && !is_composite(j)) {
           EXPECT_EQ(mab.normal, -mba.normal);
           for (int k = 0; k < mab.count && k < mba.count; ++k) {
@@ -187,17 +190,29 @@ TEST(Dispatch, EveryCellAnswersEveryQuery) {
         const bool hit = intersect(a, pa, b, pb, request);
         // Meshes are surfaces: a shape inside a closed mesh touches nothing, while the
         // distance of two crossing surfaces is 0; so only a clear gap must agree.
-        if (d.signed_distance > Real(0.05)) EXPECT_FALSE(hit) << i << " " << j << " x=" << x;
-        if (d.signed_distance < Real(0) && !is_composite(i) && !is_composite(j)) EXPECT_TRUE(hit);
+        if (d.signed_distance > Real(0.05)) {
+          EXPECT_FALSE(hit) << i << " " << j << " x=" << x;
+        }
+        if (d.signed_distance < Real(0) && !is_composite(i) && !is_composite(j)) {
+          EXPECT_TRUE(hit);
+        }
         ContactVector all;
         collide_all(a, pa, b, pb, request, all);
         for (const ContactPoint& c : all.contacts) {
           EXPECT_TRUE(std::isfinite(c.depth)) << i << " " << j;
           EXPECT_GE(c.depth, -request.contact_distance - Real(1e-3)) << i << " " << j;
-          if (shape_type(shapes[std::size_t(i)]) == ShapeType::TriangleMesh) EXPECT_NE(c.sub_a.triangle, kNoIndex);
-          if (shape_type(shapes[std::size_t(j)]) == ShapeType::TriangleMesh) EXPECT_NE(c.sub_b.triangle, kNoIndex);
-          if (shape_type(shapes[std::size_t(i)]) == ShapeType::Compound) EXPECT_LT(c.sub_a.child, 3u);
-          if (shape_type(shapes[std::size_t(j)]) == ShapeType::Compound) EXPECT_LT(c.sub_b.child, 3u);
+          if (shape_type(shapes[std::size_t(i)]) == ShapeType::TriangleMesh) {
+            EXPECT_NE(c.sub_a.triangle, kNoIndex);
+          }
+          if (shape_type(shapes[std::size_t(j)]) == ShapeType::TriangleMesh) {
+            EXPECT_NE(c.sub_b.triangle, kNoIndex);
+          }
+          if (shape_type(shapes[std::size_t(i)]) == ShapeType::Compound) {
+            EXPECT_LT(c.sub_a.child, 3u);
+          }
+          if (shape_type(shapes[std::size_t(j)]) == ShapeType::Compound) {
+            EXPECT_LT(c.sub_b.child, 3u);
+          }
         }
         EXPECT_EQ(hit, !all.contacts.empty()) << i << " " << j << " x=" << x;
         const ContactManifold m = collide(a, pa, b, pb, request);
@@ -205,7 +220,9 @@ TEST(Dispatch, EveryCellAnswersEveryQuery) {
         FirstContact first;
         collide_all(a, pa, b, pb, request, first);
         EXPECT_EQ(first.first.has_value(), !all.contacts.empty());
-        if (first.first) EXPECT_EQ(first.first->point_a, all.contacts.front().point_a) << i << " " << j << " x=" << x;
+        if (first.first) {
+          EXPECT_EQ(first.first->point_a, all.contacts.front().point_a) << i << " " << j << " x=" << x;
+        }
       }
     }
   }
