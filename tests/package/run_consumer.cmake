@@ -1,6 +1,7 @@
 # cmake -P script: configures, builds and runs tests/package/consumer in one of its modes.
 # Inputs (-D): MODE, SOURCE (proxima source dir), WORK (scratch dir), BUILD (proxima build
-# dir, for MODE=installed), GENERATOR.
+# dir, for MODE=installed), GENERATOR, LAUNCHER (the compiler launcher of the outer build,
+# e.g. ccache; may be empty).
 file(REMOVE_RECURSE "${WORK}")
 file(MAKE_DIRECTORY "${WORK}")
 
@@ -12,6 +13,9 @@ function(run)
 endfunction()
 
 set(extra)
+if(LAUNCHER)
+  list(APPEND extra "-DCMAKE_CXX_COMPILER_LAUNCHER=${LAUNCHER}")
+endif()
 if(MODE STREQUAL "installed")
   run(${CMAKE_COMMAND} --install "${BUILD}" --prefix "${WORK}/prefix")
   list(APPEND extra "-DCMAKE_PREFIX_PATH=${WORK}/prefix")
