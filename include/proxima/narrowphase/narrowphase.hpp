@@ -27,6 +27,8 @@
 ///   - a compound against anything: its BVH walked (two compounds: both together), each
 ///     child answered at its pose, nested compounds included.
 /// The PairCache warm-starts convex pairs; mesh and compound pairs do not use it yet.
+/// The four entry points are not noexcept: mesh and compound pairs keep per-thread scratch
+/// lists that may allocate (and the collector is the caller's code).
 ///
 /// Cost: one table lookup to reach the pair's routine; see bench/RESULTS.md for timings.
 #include <proxima/core/transform.hpp>
@@ -60,7 +62,7 @@ ContactManifold collide(ShapeRef a, const Transform& pose_a, ShapeRef b, const T
 /// Every contact between the parts of A and B within request.contact_distance, given to
 /// `collector` as found; returns as soon as the collector is done. For two convex shapes,
 /// the points of their manifold.
-void collide_all(ShapeRef a, const Transform& pose_a, ShapeRef b, const Transform& pose_b,
-                 const PairRequest& request, ContactCollector& collector);
+void collide_all(ShapeRef a, const Transform& pose_a, ShapeRef b, const Transform& pose_b, const PairRequest& request,
+                 ContactCollector& collector);
 
 }  // namespace proxima
