@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Installs the dependencies, then builds and runs every test in three configurations:
 # AddressSanitizer + UBSan (float), double precision, and release (float, with the package
-# consumers: find_package, add_subdirectory, FetchContent). Warnings are errors. The last
-# lines printed are ctest's summary of the release run.
+# consumers: find_package, FetchContent, and add_subdirectory with PROXIMA_EXCEPTIONS=OFF).
+# Warnings are errors. The last lines printed are ctest's summary of the release run.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
