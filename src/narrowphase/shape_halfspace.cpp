@@ -60,6 +60,30 @@ struct Candidates {
   }
 };
 
+/// The 4 smallest gaps offered, in increasing order (equal gaps in the order offered), with
+/// the index of their candidate.
+struct DeepestFour {
+  std::array<Real, kMaxContactPoints> gap{};
+  std::array<std::size_t, kMaxContactPoints> index{};
+  std::size_t count = 0;
+
+  /// Inserts gap g of candidate i when it is among the 4 smallest so far.
+  void offer(Real g, std::size_t i) {
+    std::size_t j = count;
+    for (; j > 0 && gap[j - 1] > g; --j) {
+      if (j < gap.size()) {
+        gap[j] = gap[j - 1];
+        index[j] = index[j - 1];
+      }
+    }
+    if (j < gap.size()) {
+      gap[j] = g;
+      index[j] = i;
+    }
+    count = std::min(count + 1, gap.size());
+  }
+};
+
 /// The deepest rim point (r ux, r uy) of a circle of radius r at height z, for the direction u
 /// (A's frame), and the rim points turned by 90, 180 and 270 degrees about the axis.
 std::array<Vec3, 4> rim_points(const Vec3& u, Real r, Real z) {
@@ -73,46 +97,32 @@ std::array<Vec3, 4> rim_points(const Vec3& u, Real r, Real z) {
 
 ContactManifold candidate_manifold(const PlaneQuery& q, std::span<const Vec3> points,
                                    std::span<const std::uint32_t> ids, Real r, const PairRequest& request) {
-  // The 4 deepest candidates within the limit, deepest first (ties in candidate order).
-  std::array<Real, kMaxContactPoints> gap{};
-  std::array<std::size_t, kMaxContactPoints> order{};
-  int kept = 0;
+  DeepestFour deepest;
   const Real limit = request.contact_distance + q.tolerance;
   for (std::size_t i = 0; i < points.size(); ++i) {
     const Real g = q.plane.gap(points[i]) - r;
-    if (!(g <= limit)) continue;
-    int j = kept;
-    for (; j > 0 && gap[static_cast<std::size_t>(j - 1)] > g; --j) {
-      if (j < kMaxContactPoints) {
-        gap[static_cast<std::size_t>(j)] = gap[static_cast<std::size_t>(j - 1)];
-        order[static_cast<std::size_t>(j)] = order[static_cast<std::size_t>(j - 1)];
-      }
-    }
-    if (j < kMaxContactPoints) {
-      gap[static_cast<std::size_t>(j)] = g;
-      order[static_cast<std::size_t>(j)] = i;
-    }
-    kept = std::min(kept + 1, kMaxContactPoints);
+    if (g <= limit) deepest.offer(g, i);
   }
-  if (kept == 0) return manifold_from_distance(q.distance, request);  // rounding: the support point only
+  if (deepest.count == 0) return manifold_from_distance(q.distance, request);  // rounding: the support point only
   const DistanceResult& d = q.distance;
   std::array<ContactPoint, kMaxContactPoints> all{};
-  for (std::size_t k = 0; k < static_cast<std::size_t>(kept); ++k) {
+  for (std::size_t k = 0; k < deepest.count; ++k) {
     ContactPoint& p = all[k];
-    p.point_a = points[order[k]] - r * q.plane.n;
-    p.point_b = p.point_a - gap[k] * q.plane.n;
+    p.point_a = points[deepest.index[k]] - r * q.plane.n;
+    p.point_b = p.point_a - deepest.gap[k] * q.plane.n;
     p.normal = d.normal;
-    p.depth = -gap[k];
-    p.feature_id = make_feature_id(FeatureKind::Vertex, ids[order[k]], FeatureKind::Face, 0);
+    p.depth = -deepest.gap[k];
+    p.feature_id = make_feature_id(FeatureKind::Vertex, ids[deepest.index[k]], FeatureKind::Face, 0);
   }
   ContactManifold m = empty_manifold(d);
+  const int kept = static_cast<int>(deepest.count);
   if (kept <= request.max_contacts) {
     std::copy(all.begin(), all.begin() + kept, m.points.begin());
     m.count = kept;
     return m;
   }
-  m.count = reduce_contacts(std::span<const ContactPoint>(all.data(), static_cast<std::size_t>(kept)), d.normal,
-                            request.max_contacts, m.points);
+  m.count = reduce_contacts(std::span<const ContactPoint>(all.data(), deepest.count), d.normal, request.max_contacts,
+                            m.points);
   return m;
 }
 
