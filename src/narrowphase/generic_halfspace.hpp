@@ -143,9 +143,12 @@ ContactManifold plane_contacts(const Cylinder& a, const Transform& pose_a, const
 ContactManifold plane_contacts(const Cone& a, const Transform& pose_a, const PlaneQuery& q, const PairRequest& r);
 ContactManifold plane_contacts(const ConvexHull& a, const Transform& pose_a, const PlaneQuery& q, const PairRequest& r);
 
-/// Step 2: the signed distance of A's core support point in the direction -n, with radius r.
+/// Step 2: the signed distance of A's core support point in the direction -n, with radius r
+/// (poses finite).
 template <class S>
-DistanceResult support_distance(const S& a, const Transform& pose_a, const WorldPlane& plane, Real tolerance) {
+DistanceResult support_distance(const S& a, const Transform& pose_a, const HalfSpace& b, const Transform& pose_b,
+                                Real tolerance) {
+  const WorldPlane plane = world_plane(b, pose_b);
   const Real r = a.core_radius();
   const Vec3 x = pose_a.apply(a.core_support(pose_a.inverse_apply_vector(-plane.n)));
   DistanceResult d;
@@ -162,9 +165,8 @@ DistanceResult support_distance(const S& a, const Transform& pose_a, const World
 template <class S>
 PlaneQuery plane_query(const S& a, const Transform& pose_a, const HalfSpace& b, const Transform& pose_b,
                        const PairRequest& request) {
-  const WorldPlane plane = world_plane(b, pose_b);
   const Real tolerance = halfspace_tolerance(request, pose_a, pose_b, b, halfspace_size(a));
-  return {plane, tolerance, support_distance(a, pose_a, plane, tolerance)};
+  return {world_plane(b, pose_b), tolerance, support_distance(a, pose_a, b, pose_b, tolerance)};
 }
 
 /// Signed distance of A to the half-space (steps 1, 2); InvalidInput for non-finite poses.
@@ -172,8 +174,7 @@ template <class S>
 DistanceResult halfspace_distance(const S& a, const Transform& pose_a, const HalfSpace& b, const Transform& pose_b,
                                   const PairRequest& request) {
   if (!finite_poses(pose_a, pose_b)) return invalid_distance();
-  const Real tolerance = halfspace_tolerance(request, pose_a, pose_b, b, halfspace_size(a));
-  return support_distance(a, pose_a, world_plane(b, pose_b), tolerance);
+  return support_distance(a, pose_a, b, pose_b, halfspace_tolerance(request, pose_a, pose_b, b, halfspace_size(a)));
 }
 
 /// True when A reaches within the contact distance of the half-space (step 2 without the

@@ -36,8 +36,8 @@ namespace {
 
 /// Up to 8 candidate points with their feature indices.
 struct Candidates {
-  std::array<Vec3, 8> points{};
-  std::array<std::uint32_t, 8> index{};
+  std::array<Vec3, 8> points;  // left uninitialised beyond count
+  std::array<std::uint32_t, 8> index;
   std::size_t count = 0;
 
   /// Appends a point with its feature index on A.
@@ -84,13 +84,14 @@ struct DeepestFour {
   }
 };
 
-/// The deepest rim point (r ux, r uy) of a circle of radius r at height z, for the direction u
-/// (A's frame), and the rim points turned by 90, 180 and 270 degrees about the axis.
-std::array<Vec3, 4> rim_points(const Vec3& u, Real r, Real z) {
+/// r times the unit radial direction of u about the z axis (A's frame; (r, 0) on the axis):
+/// the deepest rim point of a circle of radius r is (w.x, w.y, z), the points turned from it
+/// by 90, 180 and 270 degrees (-w.y, w.x, z), (-w.x, -w.y, z) and (w.y, -w.x, z).
+Vec2 rim_offset(const Vec3& u, Real r) {
   Real ux = Real(1);
   Real uy = Real(0);
   static_cast<void>(::proxima::detail::radial_direction(u.x, u.y, ux, uy));
-  return {Vec3(r * ux, r * uy, z), Vec3(-r * uy, r * ux, z), Vec3(-r * ux, -r * uy, z), Vec3(r * uy, -r * ux, z)};
+  return {r * ux, r * uy};
 }
 
 }  // namespace
@@ -149,24 +150,29 @@ ContactManifold plane_contacts(const Box& a, const Transform& pose_a, const Plan
 }
 
 ContactManifold plane_contacts(const Cylinder& a, const Transform& pose_a, const PlaneQuery& q, const PairRequest& r) {
-  const Real hl = a.half_length();
   const Vec3 u = pose_a.inverse_apply_vector(-q.plane.n);
+  const Vec2 w = rim_offset(u, a.radius());
+  const Real hl = a.half_length();
   const std::uint32_t deep = u.z >= Real(0) ? 1u : 0u;  // the cap facing the plane
-  const std::array<Vec3, 4> rim = rim_points(u, a.radius(), deep == 1u ? hl : -hl);
-  const Vec3& p = rim[0];
+  const Real z = deep == 1u ? hl : -hl;
   Candidates c;
-  c.add(pose_a.apply(Vec3(p.x, p.y, -hl)), 0);
-  c.add(pose_a.apply(Vec3(p.x, p.y, hl)), 4);
-  for (std::uint32_t k = 1; k < 4; ++k) c.add(pose_a.apply(rim[k]), 4 * deep + k);
+  c.add(pose_a.apply(Vec3(w.x, w.y, -hl)), 0);
+  c.add(pose_a.apply(Vec3(w.x, w.y, hl)), 4);
+  c.add(pose_a.apply(Vec3(-w.y, w.x, z)), 4 * deep + 1);
+  c.add(pose_a.apply(Vec3(-w.x, -w.y, z)), 4 * deep + 2);
+  c.add(pose_a.apply(Vec3(w.y, -w.x, z)), 4 * deep + 3);
   return c.manifold(q, Real(0), r);
 }
 
 ContactManifold plane_contacts(const Cone& a, const Transform& pose_a, const PlaneQuery& q, const PairRequest& r) {
+  const Vec2 w = rim_offset(pose_a.inverse_apply_vector(-q.plane.n), a.radius());
   const Real hl = a.half_length();
-  const std::array<Vec3, 4> rim = rim_points(pose_a.inverse_apply_vector(-q.plane.n), a.radius(), -hl);
   Candidates c;
   c.add(pose_a.apply(Vec3(Real(0), Real(0), hl)), 0);
-  for (std::uint32_t k = 0; k < 4; ++k) c.add(pose_a.apply(rim[k]), k + 1);
+  c.add(pose_a.apply(Vec3(w.x, w.y, -hl)), 1);
+  c.add(pose_a.apply(Vec3(-w.y, w.x, -hl)), 2);
+  c.add(pose_a.apply(Vec3(-w.x, -w.y, -hl)), 3);
+  c.add(pose_a.apply(Vec3(w.y, -w.x, -hl)), 4);
   return c.manifold(q, Real(0), r);
 }
 
