@@ -76,7 +76,7 @@ struct PairSetup {
     gjk::Settings s;
     s.max_iterations = std::max(request.max_iterations, 1);
     s.abs_tolerance = Real(0.01) * tolerance;
-    s.variant = request.gjk == GjkVariant::Nesterov ? gjk::Variant::Nesterov : gjk::Variant::Plain;
+    s.variant = request.gjk;
     return s;
   }
 
@@ -113,7 +113,7 @@ inline Vec3 unit_or(const Vec3& v, const Vec3& fallback) {
 template <class A, class B>
 LocalAnswer solve(const A& a, const B& b, PairSetup<A, B>& setup, const PairRequest& request) {
   LocalAnswer ans;
-  const gjk::Result g = gjk::distance(setup.support_a, setup.support_b, setup.axis, setup.gjk_settings(request));
+  const gjk::Outcome g = gjk::distance(setup.support_a, setup.support_b, setup.axis, setup.gjk_settings(request));
   ans.iterations = g.iterations;
   const Real radii = setup.radius_a + setup.radius_b;
   const Real core_contact = Real(16) * kEpsilon * setup.scale;
@@ -161,7 +161,7 @@ LocalAnswer solve(const A& a, const B& b, PairSetup<A, B>& setup, const PairRequ
   // rounding, Newton steps on the support function of D take its normal to the minimum.
   // The refined support distance is an upper bound of the depth; the witnesses are support
   // points (combined across an edge or face of D) with point_a - point_b = depth * normal.
-  const auto polish = [&](epa::Result& ep, auto& sa, auto& sb, bool curved) {
+  const auto polish = [&](epa::Outcome& ep, auto& sa, auto& sb, bool curved) {
     if (!curved || ep.status == epa::Status::Degenerate) return;
     const Real target = Real(64) * kEpsilon * setup.scale;
     if (ep.status == epa::Status::Converged && ep.gap <= target) return;
@@ -185,9 +185,9 @@ LocalAnswer solve(const A& a, const B& b, PairSetup<A, B>& setup, const PairRequ
     const Real delta = std::max(Real(1024) * kEpsilon * setup.scale, setup.tolerance);
     InflatedSupport<decltype(setup.support_a)> ia{setup.support_a, delta};
     InflatedSupport<decltype(setup.support_b)> ib{setup.support_b, delta};
-    const gjk::Result gi = gjk::distance(ia, ib, setup.axis, setup.gjk_settings(request));
+    const gjk::Outcome gi = gjk::distance(ia, ib, setup.axis, setup.gjk_settings(request));
     ans.iterations += gi.iterations;
-    epa::Result ei = epa::penetration(ia, ib, gi.simplex, setup.scale, es);
+    epa::Outcome ei = epa::penetration(ia, ib, gi.simplex, setup.scale, es);
     // Inflated cores are curved; for polytopes only when the cores merely touch (deeper
     // polytope pairs have the exact SAT fall-back, while a refinement stops at a local
     // minimum of a starved EPA's normal).
@@ -199,7 +199,7 @@ LocalAnswer solve(const A& a, const B& b, PairSetup<A, B>& setup, const PairRequ
     }
     return ei;
   };
-  epa::Result e;
+  epa::Outcome e;
   if (touching) {
     e = inflated_epa();
   } else {
@@ -209,7 +209,7 @@ LocalAnswer solve(const A& a, const B& b, PairSetup<A, B>& setup, const PairRequ
       // Rounding stopped the expansion early: a second polytope, grown on the slightly
       // inflated cores, meets other slivers; keep the answer with the smaller error bound.
       ans.iterations += e.iterations;
-      const epa::Result e2 = inflated_epa();
+      const epa::Outcome e2 = inflated_epa();
       if (e2.status != epa::Status::Degenerate && e2.gap < e.gap) e = e2;
     }
   }
@@ -315,7 +315,7 @@ bool generic_intersect(const A& a, const Transform& pose_a, const B& b, const Tr
   gjk::Settings s = setup.gjk_settings(request);
   const Real margin = setup.radius_a + setup.radius_b + std::max(request.contact_distance, Real(0)) + setup.tolerance;
   s.margin = margin;
-  const gjk::Result g = gjk::distance(setup.support_a, setup.support_b, setup.axis, s);
+  const gjk::Outcome g = gjk::distance(setup.support_a, setup.support_b, setup.axis, s);
   if (cache) {
     // A proven separating axis is the best start for the next, coherent query.
     const Vec3 n = g.status == gjk::Status::EarlyExit ? generic_detail::unit_or(g.separating_axis, -g.v)

@@ -52,16 +52,16 @@ inline constexpr int kMaxFaces = 512;
 /// See kMaxFaces.
 inline constexpr int kMaxVertices = 192;
 
-/// Outcome of epa::penetration.
-struct Result {
-  Status status = Status::Degenerate;
-  Real depth = Real(0);                    ///< penetration depth of the sets (>= 0)
+/// What epa::penetration found: how it stopped, depth, normal and witnesses.
+struct Outcome {
+  Status status = Status::Degenerate;  ///< how the expansion stopped (Degenerate: the fields below keep their defaults)
+  Real depth = Real(0);                ///< penetration depth of the sets (>= 0)
   Vec3 normal{Real(0), Real(0), Real(1)};  ///< unit, from A to B: moving B by depth*normal separates
   Vec3 point_a{Real(0)};                   ///< deepest point of A (common frame)
   Vec3 point_b{Real(0)};                   ///< deepest point of B: point_a - depth * normal
   Real gap = Real(0);                      ///< least support distance seen minus depth: a bound on the depth error
   Vec3 upper_normal{Real(0), Real(0), Real(1)};  ///< unit normal along which that least support distance was seen
-  int iterations = 0;
+  int iterations = 0;  ///< expansion steps, each one support query (at most Settings::max_iterations)
 };
 
 namespace detail {
@@ -170,9 +170,9 @@ struct Polytope {
 /// functors in a common frame as for gjk::distance. `length_scale` (> 0) is the size of
 /// the problem, for the degeneracy thresholds. O(iterations x (faces + support cost)).
 template <class SupportA, class SupportB>
-Result penetration(SupportA& support_a, SupportB& support_b, const gjk::Simplex& start, Real length_scale,
-                   const Settings& settings) {
-  Result r;
+Outcome penetration(SupportA& support_a, SupportB& support_b, const gjk::Simplex& start, Real length_scale,
+                    const Settings& settings) {
+  Outcome r;
   const auto make_vertex = [&](const Vec3& d) {
     gjk::Vertex x;
     x.a = support_a(d);
