@@ -14,6 +14,7 @@
 
 #include <proxima/core/tolerance.hpp>
 #include <proxima/geometry/epa.hpp>
+#include <proxima/geometry/epa_refine.hpp>
 #include <proxima/geometry/gjk.hpp>
 #include <proxima/shapes/halfspace.hpp>
 
