@@ -72,8 +72,9 @@ namespace detail {
 
 // The storage below is left uninitialised on purpose (no default member initialisers): a
 // face slot is written whole by add_face before any read (slots < nf), its links by link()
-// or the fan step, a vertex before nv counts it, a free slot before nfree counts it. Zeroing
+// or link_fan, a vertex before nv counts it, a free slot before nfree counts it. Zeroing
 // these arrays (about 40 KB) used to cost as much as the expansion itself.
+/// A triangle of the polytope: vertices (outward order), neighbours, outward plane.
 struct Face {
   std::array<std::uint16_t, 3> v;
   std::array<std::uint16_t, 3> adj;      // face across edge e (v[e] -> v[e+1])
@@ -83,7 +84,7 @@ struct Face {
   bool alive;
 };
 
-// A vertex of D with its support points, like gjk::Vertex but trivially constructible.
+/// A vertex of D with its support points, like gjk::Vertex but trivially constructible.
 struct PolyVertex {
   Vec3 w;
   Vec3 a;
@@ -96,6 +97,7 @@ struct PolyVertex {
   }
 };
 
+/// The expanding polytope: vertices, face slots (dead ones recycled) and the face budget.
 struct Polytope {
   std::array<PolyVertex, kMaxVertices> verts;
   std::array<Face, kMaxFaces> faces;
@@ -161,6 +163,7 @@ struct Polytope {
     return true;
   }
 
+  // Marks the face in `slot` dead and its slot free.
   void kill(int slot) {
     faces[static_cast<std::size_t>(slot)].alive = false;
     free_slots[static_cast<std::size_t>(nfree++)] = static_cast<std::uint16_t>(slot);
@@ -194,9 +197,9 @@ inline Thresholds thresholds(Real length_scale) {
 /// GJK's simplex on its way to a tetrahedron. `apex_on_triangle`: v[3] was added to the
 /// triangle v[0..2] by add_apex (the faces are then made in a different order).
 struct StartSimplex {
-  std::array<gjk::Vertex, 4> v{};
-  int size = 0;
-  bool apex_on_triangle = false;
+  std::array<gjk::Vertex, 4> v{};  ///< vertices of D with their support points
+  int size = 0;                    ///< vertices in use (1..4)
+  bool apex_on_triangle = false;   ///< v[3] is add_apex's apex on triangle v[0..2]
 };
 
 /// Copies GJK's simplex; an empty one gets D's support along +x.
