@@ -180,9 +180,10 @@ struct Ladder {
 
 /// True when both shapes are polytopes (the SAT applies).
 template <class A, class B>
-inline constexpr bool kPolytopePair = kIsPolytope<A>&& kIsPolytope<B>;
+inline constexpr bool kPolytopePair = (kIsPolytope<A> && kIsPolytope<B>);
 
-/// Writes a SAT answer (overlap) with the given witness on A's core.
+/// Writes what both SAT stages answer alike (normal, distance, method, axis, stage); the
+/// caller adds the witnesses and the status.
 template <class A, class B>
 void answer_from_sat(Ladder<A, B>& l, const SatResult& s, GenericStage stage) {
   l.ans.normal = s.normal;
