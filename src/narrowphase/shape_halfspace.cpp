@@ -21,7 +21,6 @@
 #include <proxima/narrowphase/contact.hpp>
 
 #include <array>
-#include <initializer_list>
 
 #include "narrowphase/generic_halfspace.hpp"
 #include "narrowphase/manifold_reduction.hpp"
@@ -45,13 +44,6 @@ struct Candidates {
     points[count] = p;
     index[count] = i;
     ++count;
-  }
-
-  /// The points `local` (A's frame) placed at pose, numbered in order.
-  static Candidates of(const Transform& pose, std::initializer_list<Vec3> local) {
-    Candidates c;
-    for (const Vec3& p : local) c.add(pose.apply(p), static_cast<std::uint32_t>(c.count));
-    return c;
   }
 
   /// The manifold of these candidates with core radius r.
@@ -128,15 +120,25 @@ ContactManifold candidate_manifold(const PlaneQuery& q, std::span<const Vec3> po
 }
 
 ContactManifold plane_contacts(const Segment& a, const Transform& pose_a, const PlaneQuery& q, const PairRequest& r) {
-  return Candidates::of(pose_a, {a.a(), a.b()}).manifold(q, Real(0), r);
+  Candidates c;
+  c.add(pose_a.apply(a.a()), 0);
+  c.add(pose_a.apply(a.b()), 1);
+  return c.manifold(q, Real(0), r);
 }
 
 ContactManifold plane_contacts(const Triangle& a, const Transform& pose_a, const PlaneQuery& q, const PairRequest& r) {
-  return Candidates::of(pose_a, {a.a(), a.b(), a.c()}).manifold(q, Real(0), r);
+  Candidates c;
+  c.add(pose_a.apply(a.a()), 0);
+  c.add(pose_a.apply(a.b()), 1);
+  c.add(pose_a.apply(a.c()), 2);
+  return c.manifold(q, Real(0), r);
 }
 
 ContactManifold plane_contacts(const Capsule& a, const Transform& pose_a, const PlaneQuery& q, const PairRequest& r) {
-  return Candidates::of(pose_a, {a.bottom(), a.top()}).manifold(q, a.radius(), r);
+  Candidates c;
+  c.add(pose_a.apply(a.bottom()), 0);
+  c.add(pose_a.apply(a.top()), 1);
+  return c.manifold(q, a.radius(), r);
 }
 
 ContactManifold plane_contacts(const Box& a, const Transform& pose_a, const PlaneQuery& q, const PairRequest& r) {
