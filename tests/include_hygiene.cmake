@@ -1,5 +1,5 @@
 # cmake -P script: fails when the project's C++ files reach into another tree sideways.
-#   - no #include "../…" anywhere: internal headers are included from the library's internal
+#   - no include of a relative parent path (dot-dot) anywhere: internal headers are included from the library's internal
 #     root (proxima::internal), shared test and bench code from proxima_support;
 #   - public headers (include/proxima) include only public headers and the standard library,
 #     GLM included, never an internal header of src/;
