@@ -640,7 +640,7 @@ void run_hulls(benchmark::State& state, const HullWorkload& w, HullQuery q, PerP
 }
 
 #if PROXIMA_BENCH_NARROWPHASE
-void proxima_hulls(benchmark::State& state, int points, HullQuery q, proxima::GjkVariant variant) {
+void proxima_hulls(benchmark::State& state, int points, HullQuery q, proxima::gjk::Variant variant) {
   const HullWorkload& w = hulls_of(points);
   proxima::PairRequest request;
   request.gjk = variant;
@@ -1297,9 +1297,9 @@ bool register_narrowphase(const std::string& dir) {
     for (const auto& [q, qname] : queries) {
       const std::string prefix = base + qname + "/";
 #if PROXIMA_BENCH_NARROWPHASE
-      add(prefix + "proxima_plain", proxima_hulls, points, q, proxima::GjkVariant::Plain);
+      add(prefix + "proxima_plain", proxima_hulls, points, q, proxima::gjk::Variant::Plain);
       if (q != HullQuery::Penetration)
-        add(prefix + "proxima_nesterov", proxima_hulls, points, q, proxima::GjkVariant::Nesterov);
+        add(prefix + "proxima_nesterov", proxima_hulls, points, q, proxima::gjk::Variant::Nesterov);
       if (q != HullQuery::Penetration) {
         add(prefix + "proxima_plain_cold", proxima_hulls_warm, points, q, false);
         add(prefix + "proxima_plain_warm", proxima_hulls_warm, points, q, true);

@@ -53,7 +53,7 @@ Vec3 face_normal(int face) {
 
 }  // namespace
 
-std::optional<RayHit> ray_aabb(const Ray& ray, Real max_t, const Aabb& box) {
+std::optional<RayHit> ray_aabb(const Ray& ray, Real max_t, const Aabb& box) noexcept {
   detail::UnitRay r;
   if (!detail::prepare(ray, max_t, r) || !box.is_valid()) return std::nullopt;
   const SlabResult s = slabs(ray.origin, ray.direction, box.min, box.max);
@@ -69,7 +69,7 @@ std::optional<RayHit> ray_aabb(const Ray& ray, Real max_t, const Aabb& box) {
 }
 
 std::optional<RayHit> ray_obb(const Ray& ray, Real max_t, const Vec3& center, const Mat3& axes,
-                              const Vec3& half_extents) {
+                              const Vec3& half_extents) noexcept {
   detail::UnitRay r;
   if (!detail::prepare(ray, max_t, r) || !is_finite(center) || !is_finite(axes[0]) || !is_finite(axes[1]) ||
       !is_finite(axes[2]) || !is_finite(half_extents) || !(half_extents.x >= Real(0)) || !(half_extents.y >= Real(0)) ||

@@ -22,7 +22,7 @@
 
 namespace proxima::geometry {
 
-std::optional<RayHit> ray_capsule(const Ray& ray, Real max_t, const Vec3& p0, const Vec3& p1, Real radius) {
+std::optional<RayHit> ray_capsule(const Ray& ray, Real max_t, const Vec3& p0, const Vec3& p1, Real radius) noexcept {
   detail::UnitRay r;
   if (!detail::prepare(ray, max_t, r) || !is_finite(p0) || !is_finite(p1) || !is_finite(radius) ||
       !(radius > Real(0))) {

@@ -42,7 +42,7 @@ using Wide = double;
 }  // namespace
 
 std::optional<RayHit> ray_cone(const Ray& ray, Real max_t, const Vec3& apex, const Vec3& base_center,
-                               Real base_radius) {
+                               Real base_radius) noexcept {
   detail::UnitRay r;
   if (!detail::prepare(ray, max_t, r) || !is_finite(apex) || !is_finite(base_center) || !is_finite(base_radius) ||
       !(base_radius > Real(0))) {

@@ -61,7 +61,7 @@ enum Feature : int { FeatureCapStart = 0, FeatureCapEnd = 1, FeatureLateral = 2 
 
 }  // namespace
 
-std::optional<RayHit> ray_cylinder(const Ray& ray, Real max_t, const Vec3& p0, const Vec3& p1, Real radius) {
+std::optional<RayHit> ray_cylinder(const Ray& ray, Real max_t, const Vec3& p0, const Vec3& p1, Real radius) noexcept {
   detail::UnitRay r;
   if (!detail::prepare(ray, max_t, r) || !is_finite(p0) || !is_finite(p1) || !is_finite(radius) ||
       !(radius > Real(0))) {

@@ -48,7 +48,7 @@ std::optional<RayHit> crossing(const Ray& ray, Real max_t, double dist, double r
 
 }  // namespace
 
-std::optional<RayHit> ray_plane(const Ray& ray, Real max_t, const Vec3& normal, Real offset) {
+std::optional<RayHit> ray_plane(const Ray& ray, Real max_t, const Vec3& normal, Real offset) noexcept {
   detail::UnitRay r;
   const auto n = plane_normal(ray, max_t, normal, offset, r);
   if (!n) return std::nullopt;
@@ -59,7 +59,7 @@ std::optional<RayHit> ray_plane(const Ray& ray, Real max_t, const Vec3& normal, 
   return crossing(ray, max_t, dist, rate, dist > 0.0 ? *n : -*n);
 }
 
-std::optional<RayHit> ray_halfspace(const Ray& ray, Real max_t, const Vec3& normal, Real offset) {
+std::optional<RayHit> ray_halfspace(const Ray& ray, Real max_t, const Vec3& normal, Real offset) noexcept {
   detail::UnitRay r;
   const auto n = plane_normal(ray, max_t, normal, offset, r);
   if (!n) return std::nullopt;

@@ -41,7 +41,7 @@ std::optional<Entry> ball_entry(const Vec3& m, const Vec3& u, Real radius) {
 
 }  // namespace detail
 
-std::optional<RayHit> ray_sphere(const Ray& ray, Real max_t, const Vec3& center, Real radius) {
+std::optional<RayHit> ray_sphere(const Ray& ray, Real max_t, const Vec3& center, Real radius) noexcept {
   detail::UnitRay r;
   if (!detail::prepare(ray, max_t, r) || !is_finite(center) || !is_finite(radius) || !(radius > Real(0))) {
     return std::nullopt;

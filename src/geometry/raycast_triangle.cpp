@@ -62,7 +62,7 @@ double edge_function(const Vec2& p, const Vec2& q) {
 
 }  // namespace
 
-TriangleRay TriangleRay::prepare(const Ray& ray) {
+TriangleRay TriangleRay::prepare(const Ray& ray) noexcept {
   TriangleRay p;
   p.ray = ray;
   if (!is_finite(ray.origin) || !is_finite(ray.direction)) return p;
@@ -99,7 +99,8 @@ TriangleRay TriangleRay::prepare(const Ray& ray) {
   return p;
 }
 
-std::optional<RayHit> ray_triangle(const TriangleRay& pr, Real max_t, const Vec3& a, const Vec3& b, const Vec3& c) {
+std::optional<RayHit> ray_triangle(const TriangleRay& pr, Real max_t, const Vec3& a, const Vec3& b,
+                                   const Vec3& c) noexcept {
   if (!pr.valid || !(max_t >= Real(0)) || !is_finite(a) || !is_finite(b) || !is_finite(c)) return std::nullopt;
   const Vec3 ra = a - pr.ray.origin;
   const Vec3 rb = b - pr.ray.origin;
@@ -136,7 +137,7 @@ std::optional<RayHit> ray_triangle(const TriangleRay& pr, Real max_t, const Vec3
   return detail::surface_hit(pr.ray, max_t, static_cast<Real>(t_wide), facing);
 }
 
-std::optional<RayHit> ray_triangle(const Ray& ray, Real max_t, const Vec3& a, const Vec3& b, const Vec3& c) {
+std::optional<RayHit> ray_triangle(const Ray& ray, Real max_t, const Vec3& a, const Vec3& b, const Vec3& c) noexcept {
   return ray_triangle(TriangleRay::prepare(ray), max_t, a, b, c);
 }
 

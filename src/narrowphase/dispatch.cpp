@@ -5,8 +5,8 @@
 /// Convex cells: cell (A, B) with A not after B calls pair_intersect /
 /// pair_distance / pair_collide on the concrete types: overload resolution picks a pair's
 /// closed-form routine when its group header declares one (kAnalyticPair<A, B>), else the
-/// generic GJK / EPA / SAT templates; a half-space pair without a closed form answers
-/// through the other shape's support mapping. collide_all gives the manifold's points.
+/// generic GJK / EPA / SAT templates; every half-space pair has its routine
+/// (pairs_halfspace.hpp). collide_all gives the manifold's points.
 /// Composite cells (a mesh or a compound on either side): a compound side runs
 /// compound_pairs.cpp, else a mesh against a convex shape runs mesh_convex.cpp and two
 /// meshes mesh_mesh.cpp; their collide reduces collide_all to one manifold.
@@ -44,62 +44,28 @@ namespace proxima::narrow {
 
 namespace {
 
+// Every convex shape meets a half-space through the generic routine of generic_halfspace.hpp.
 template <class A, class B>
-inline constexpr bool kHalfSpaceInvolved = std::is_same_v<A, HalfSpace> || std::is_same_v<B, HalfSpace>;
-
-// Support-mapping answer for a half-space pair that has no closed-form routine (yet):
-// B = {n . x <= d}; signed distance = n_w . s_A(-n_w) - d_w, normal -n_w (A to B).
-template <class A>
-DistanceResult support_halfspace_distance(const A& a, const Transform& pose_a, const HalfSpace& b,
-                                          const Transform& pose_b, const PairRequest& request) {
-  if (!finite_poses(pose_a, pose_b)) return invalid_distance();
-  const Vec3 n = pose_b.apply_vector(b.normal());
-  const Real d = b.offset() + glm::dot(n, pose_b.position);
-  const Vec3 p = support(a, pose_a, -n);
-  DistanceResult r;
-  r.signed_distance = glm::dot(n, p) - d;
-  r.normal = -n;
-  r.point_a = p;
-  r.point_b = p - r.signed_distance * n;
-  r.method = PairMethod::Support;
-  const Real scale = std::max({std::abs(d), glm::length(pose_a.position), Real(1)});
-  r.status = status_from_distance(r.signed_distance, resolve_tolerance(request, scale));
-  return r;
-}
+inline constexpr bool kHalfSpaceCovered =
+    !(std::is_same_v<A, HalfSpace> || std::is_same_v<B, HalfSpace>) || kAnalyticPair<A, B>;
 
 template <class A, class B>
 DistanceResult cell_distance_direct(const void* a, const Transform& pose_a, const void* b, const Transform& pose_b,
                                     const PairRequest& request, PairCache* cache, Real /*cutoff*/ = Real(0)) {
-  const A& sa = *static_cast<const A*>(a);
-  const B& sb = *static_cast<const B*>(b);
-  if constexpr (kHalfSpaceInvolved<A, B> && !kAnalyticPair<A, B>) {
-    (void)cache;
-    return support_halfspace_distance(sa, pose_a, sb, pose_b, request);
-  } else {
-    return pair_distance(sa, pose_a, sb, pose_b, request, cache);
-  }
+  static_assert(kHalfSpaceCovered<A, B>, "a convex shape without its half-space pair (shape_halfspace.cpp)");
+  return pair_distance(*static_cast<const A*>(a), pose_a, *static_cast<const B*>(b), pose_b, request, cache);
 }
 
 template <class A, class B>
 bool cell_intersect_direct(const void* a, const Transform& pose_a, const void* b, const Transform& pose_b,
                            const PairRequest& request, PairCache* cache) {
-  if constexpr (kHalfSpaceInvolved<A, B> && !kAnalyticPair<A, B>) {
-    const DistanceResult d = cell_distance_direct<A, B>(a, pose_a, b, pose_b, request, cache);
-    return d.status != PairStatus::InvalidInput && d.signed_distance <= request.contact_distance;
-  } else {
-    return pair_intersect(*static_cast<const A*>(a), pose_a, *static_cast<const B*>(b), pose_b, request, cache);
-  }
+  return pair_intersect(*static_cast<const A*>(a), pose_a, *static_cast<const B*>(b), pose_b, request, cache);
 }
 
 template <class A, class B>
 ContactManifold cell_collide_direct(const void* a, const Transform& pose_a, const void* b, const Transform& pose_b,
                                     const PairRequest& request, PairCache* cache) {
-  if constexpr (kHalfSpaceInvolved<A, B> && !kAnalyticPair<A, B>) {
-    if (!finite_poses(pose_a, pose_b)) return invalid_manifold();
-    return manifold_from_distance(cell_distance_direct<A, B>(a, pose_a, b, pose_b, request, cache), request);
-  } else {
-    return pair_collide(*static_cast<const A*>(a), pose_a, *static_cast<const B*>(b), pose_b, request, cache);
-  }
+  return pair_collide(*static_cast<const A*>(a), pose_a, *static_cast<const B*>(b), pose_b, request, cache);
 }
 
 // Mirrored cells: (A, B) with A after B runs (B, A) and swaps.

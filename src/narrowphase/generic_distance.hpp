@@ -5,20 +5,32 @@
 ///   2. GJK (plain or Nesterov, PairRequest::gjk) between the cores, warm-started from the
 ///      PairCache (axis in A's frame, hull support hints); the radii are added after:
 ///      distance = |v| - r_A - r_B, witnesses moved by the radii along the normal;
-///   3. cores overlapping (or touching within rounding): EPA from GJK's simplex for depth
-///      and normal; when EPA reports Degenerate, the SAT for polytope pairs, else GJK's own
-///      core contact (depth r_A + r_B along the best axis known), status Degenerate;
+///   3. a ladder of stages, the first that answers wins (GenericStage names it):
+///      a. SatAtGjkCap: polytopes whose GJK hit its cap: the SAT, when it proves an overlap;
+///      b. GjkDistance: the cores are apart: GJK's answer;
+///      c. Epa / InflatedEpa: the cores overlap: EPA from GJK's simplex (on cores inflated by
+///         a small ball when they only touch, or when that beats an EPA stopped by rounding),
+///         refined by epa::refine on curved pairs; it answers when it converged (or, on a
+///         curved pair, stopped at its cap);
+///      d. SatFallback: polytopes whose EPA failed or stopped: the SAT's depth (status
+///         Degenerate when EPA failed);
+///      e. CoreRefinement: D = core A - core B too thin for EPA: epa::refine from GJK's
+///         direction finds a normal along which D's support distance is within reach of 0;
+///      f. GjkCoreContact: GJK's core contact (depth r_A + r_B along the best axis known),
+///         status Degenerate;
 ///   4. tolerance from resolve_tolerance (size of the pair), outputs in the world frame,
 ///      cache written back.
 /// pair_intersect runs GJK in boolean mode with early exit on a separating axis.
 
 #include <proxima/core/tolerance.hpp>
 #include <proxima/geometry/epa.hpp>
+#include <proxima/geometry/epa_refine.hpp>
 #include <proxima/geometry/gjk.hpp>
 #include <proxima/shapes/halfspace.hpp>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <type_traits>
 
 #include "pair_support.hpp"
@@ -26,6 +38,34 @@
 #include "support_binding.hpp"
 
 namespace proxima::narrow {
+
+/// The stage of the generic ladder that gave an answer (see the file comment). The answer's
+/// PairMethod names the algorithm only; this says which rung of the ladder answered.
+enum class GenericStage : std::uint8_t {
+  NotRun,          ///< no stage ran (a pose was not finite: status InvalidInput)
+  SatAtGjkCap,     ///< polytopes, GJK at its cap: the SAT proved an overlap (method Sat)
+  GjkDistance,     ///< the cores are apart: GJK's distance (method Gjk)
+  Epa,             ///< the cores overlap: EPA on the cores, refined on curved pairs (method Epa)
+  InflatedEpa,     ///< EPA on the cores inflated by a small ball (touching cores, or a better bound) (method Epa)
+  SatFallback,     ///< polytopes, EPA failed or stopped at its cap: the SAT's depth (method Sat)
+  CoreRefinement,  ///< D too thin for EPA: epa::refine from GJK's direction (method Epa)
+  GjkCoreContact,  ///< nothing else answered: GJK's core contact, status Degenerate (method Gjk)
+};
+
+/// Name of a stage, for messages.
+constexpr const char* to_string(GenericStage s) {
+  switch (s) {
+    case GenericStage::NotRun: return "NotRun";
+    case GenericStage::SatAtGjkCap: return "SatAtGjkCap";
+    case GenericStage::GjkDistance: return "GjkDistance";
+    case GenericStage::Epa: return "Epa";
+    case GenericStage::InflatedEpa: return "InflatedEpa";
+    case GenericStage::SatFallback: return "SatFallback";
+    case GenericStage::CoreRefinement: return "CoreRefinement";
+    case GenericStage::GjkCoreContact: return "GjkCoreContact";
+  }
+  return "?";
+}
 
 namespace generic_detail {
 
@@ -76,7 +116,7 @@ struct PairSetup {
     gjk::Settings s;
     s.max_iterations = std::max(request.max_iterations, 1);
     s.abs_tolerance = Real(0.01) * tolerance;
-    s.variant = request.gjk == GjkVariant::Nesterov ? gjk::Variant::Nesterov : gjk::Variant::Plain;
+    s.variant = request.gjk;
     return s;
   }
 
@@ -91,17 +131,19 @@ struct PairSetup {
 
 /// A's-frame answer before the move to the world frame.
 struct LocalAnswer {
-  Real signed_distance = Real(0);
-  Vec3 point_a{Real(0)};
-  Vec3 point_b{Real(0)};
-  Vec3 normal{Real(0), Real(0), Real(1)};
+  Real signed_distance = Real(0);          ///< > 0 gap, < 0 penetration
+  Vec3 point_a{Real(0)};                   ///< witness on A (A's frame)
+  Vec3 point_b{Real(0)};                   ///< witness on B (A's frame)
+  Vec3 normal{Real(0), Real(0), Real(1)};  ///< unit, A to B (A's frame)
   PairStatus status = PairStatus::Separated;
   PairMethod method = PairMethod::Gjk;
-  int iterations = 0;
-  std::uint32_t sat_feature = 0;
-  bool sat_used = false;
+  int iterations = 0;                         ///< GJK + EPA iterations of every stage that ran
+  std::uint32_t sat_feature = 0;              ///< the SAT's axis (when sat_used)
+  bool sat_used = false;                      ///< the SAT answered
+  GenericStage stage = GenericStage::NotRun;  ///< the stage that answered
 };
 
+/// v made unit, else `fallback` made unit, else +z.
 inline Vec3 unit_or(const Vec3& v, const Vec3& fallback) {
   const Real l2 = glm::dot(v, v);
   if (l2 > Real(0) && std::isfinite(l2)) return v / std::sqrt(l2);
@@ -110,171 +152,297 @@ inline Vec3 unit_or(const Vec3& v, const Vec3& fallback) {
   return Vec3(Real(0), Real(0), Real(1));
 }
 
+/// The state the stages of the ladder share: the pair, GJK's run on the cores, and the
+/// answer being built (its iteration count adds up over the stages that ran).
+template <class A, class B>
+struct Ladder {
+  /// Runs GJK between the cores of `shape_a` and `shape_b` (the first step of every query).
+  Ladder(const A& shape_a, const B& shape_b, PairSetup<A, B>& pair, const PairRequest& options)
+      : a(shape_a),
+        b(shape_b),
+        setup(pair),
+        request(options),
+        core(gjk::distance(pair.support_a, pair.support_b, pair.axis, pair.gjk_settings(options))),
+        radii(pair.radius_a + pair.radius_b),
+        touching(core.simplex.size < 4) {
+    ans.iterations = core.iterations;
+  }
+
+  const A& a;                  ///< shape A (A's frame)
+  const B& b;                  ///< shape B
+  PairSetup<A, B>& setup;      ///< supports, radii, scale and tolerance
+  const PairRequest& request;  ///< caps and options
+  gjk::Outcome core;           ///< GJK between the cores
+  Real radii;                  ///< r_A + r_B
+  bool touching;               ///< GJK did not enclose the origin in a tetrahedron (the cores only touch)
+  LocalAnswer ans;             ///< the answer
+};
+
+/// True when both shapes are polytopes (the SAT applies).
+template <class A, class B>
+inline constexpr bool kPolytopePair = (kIsPolytope<A> && kIsPolytope<B>);
+
+/// Writes what both SAT stages answer alike (normal, distance, method, axis, stage); the
+/// caller adds the witnesses and the status.
+template <class A, class B>
+void answer_from_sat(Ladder<A, B>& l, const SatResult& s, GenericStage stage) {
+  l.ans.normal = s.normal;
+  l.ans.signed_distance = s.signed_distance - l.radii;
+  l.ans.method = PairMethod::Sat;
+  l.ans.sat_feature = s.feature;
+  l.ans.sat_used = true;
+  l.ans.stage = stage;
+}
+
+/// The SAT between the two polytopes (A's frame).
+template <class A, class B>
+SatResult run_sat(const Ladder<A, B>& l) {
+  const PolytopeView va(l.a);
+  const PolytopeView vb(l.b);
+  return polytope_sat(va, vb, l.setup.support_b.rotation, l.setup.support_b.translation);
+}
+
+/// Stage a: GJK stopped by the cap on a polytope pair: the SAT decides overlap exactly.
+template <class A, class B>
+bool sat_at_gjk_cap(Ladder<A, B>& l) {
+  if constexpr (kPolytopePair<A, B>) {
+    if (l.core.status != gjk::Status::MaxIterations) return false;
+    const SatResult s = run_sat(l);
+    if (!(s.valid && s.signed_distance < Real(0))) return false;
+    answer_from_sat(l, s, GenericStage::SatAtGjkCap);
+    l.ans.point_a = s.point_a;
+    l.ans.point_b = s.point_b;
+    l.ans.status = status_from_distance(l.ans.signed_distance, l.setup.tolerance);
+    return true;
+  } else {
+    (void)l;
+    return false;
+  }
+}
+
+/// Stage b: the cores are apart (beyond rounding): GJK's distance minus the radii.
+template <class A, class B>
+bool gjk_distance(Ladder<A, B>& l) {
+  const gjk::Outcome& g = l.core;
+  const Real core_contact = Real(16) * kEpsilon * l.setup.scale;
+  if (g.status == gjk::Status::Overlapping || !(g.distance > core_contact)) return false;
+  const Vec3 n = -g.v / g.distance;
+  l.ans.normal = n;
+  l.ans.signed_distance = g.distance - l.radii;
+  l.ans.point_a = g.point_a + l.setup.radius_a * n;
+  l.ans.point_b = g.point_b - l.setup.radius_b * n;
+  l.ans.method = PairMethod::Gjk;
+  l.ans.status = g.status == gjk::Status::MaxIterations
+                     ? PairStatus::MaxIterations
+                     : status_from_distance(l.ans.signed_distance, l.setup.tolerance);
+  l.ans.stage = GenericStage::GjkDistance;
+  return true;
+}
+
+/// EPA's options for the request. Curved shapes converge slowly: a relative 1e-9 of the
+/// pair's size is enough in double.
+template <class A, class B>
+epa::Settings epa_settings(const Ladder<A, B>& l) {
+  epa::Settings es;
+  es.max_iterations = std::max(l.request.max_iterations, 1);
+  es.max_faces = l.request.max_epa_faces;
+  es.abs_tolerance = std::max(Real(0.1) * l.setup.tolerance, Real(1e-9) * l.setup.scale);
+  return es;
+}
+
+/// EPA converges only linearly on curved supports: unless its gap is already within
+/// rounding, Newton steps on the support function of D (epa::refine) take its normal to the
+/// minimum. The refined support distance is an upper bound of the depth; the witnesses are
+/// support points (combined across an edge or face of D) with point_a - point_b = depth *
+/// normal. Nothing changes when `curved` is false or EPA failed.
+template <class A, class B, class SupportA, class SupportB>
+void polish(const Ladder<A, B>& l, epa::Outcome& ep, SupportA& sa, SupportB& sb, bool curved) {
+  if (!curved || ep.status == epa::Status::Degenerate) return;
+  const Real scale = l.setup.scale;
+  const Real target = Real(64) * kEpsilon * scale;
+  if (ep.status == epa::Status::Converged && ep.gap <= target) return;
+  // From the normal of EPA's least upper bound (its nearest face's normal may be worse).
+  const epa::Refinement f = epa::refine(sa, sb, ep.upper_normal, scale, std::clamp(l.request.max_iterations, 1, 96));
+  ep.iterations += f.iterations;
+  // Unconverged, EPA's own answer stands (at its cap: the nearest face, a lower bound).
+  if (!f.converged || !(f.depth <= ep.depth + ep.gap + kSqrtEpsilon * scale)) return;
+  // A converged EPA keeps its own answer where the refined witnesses could not be placed
+  // on both surfaces (an edge of D meeting a curved side off the tipped supports' reach).
+  if (ep.status == epa::Status::Converged && f.witness_gap > kSqrtEpsilon * scale) return;
+  ep.status = epa::Status::Converged;
+  ep.gap = std::max(f.depth - ep.depth, Real(0));
+  ep.depth = f.depth;
+  ep.normal = f.normal;
+  ep.point_a = f.support_a;
+  ep.point_b = f.support_b;
+}
+
+/// EPA on the cores inflated by a small ball delta, whose Minkowski difference holds the
+/// origin robustly when the cores only touch; the depth is then exactly 2 delta larger,
+/// and is corrected back. Its GJK run's iterations count into the answer.
+template <class A, class B>
+epa::Outcome inflated_epa(Ladder<A, B>& l, const epa::Settings& es) {
+  PairSetup<A, B>& setup = l.setup;
+  const Real delta = std::max(Real(1024) * kEpsilon * setup.scale, setup.tolerance);
+  InflatedSupport<decltype(setup.support_a)> ia{setup.support_a, delta};
+  InflatedSupport<decltype(setup.support_b)> ib{setup.support_b, delta};
+  const gjk::Outcome gi = gjk::distance(ia, ib, setup.axis, setup.gjk_settings(l.request));
+  l.ans.iterations += gi.iterations;
+  epa::Outcome ei = epa::penetration(ia, ib, gi.simplex, setup.scale, es);
+  // Inflated cores are curved; for polytopes only when the cores merely touch (deeper
+  // polytope pairs have the exact SAT fall-back, while a refinement stops at a local
+  // minimum of a starved EPA's normal).
+  polish(l, ei, ia, ib, !kPolytopePair<A, B> || l.touching);
+  if (ei.status != epa::Status::Degenerate) {
+    ei.depth -= Real(2) * delta;
+    ei.point_a -= delta * ei.normal;
+    ei.point_b += delta * ei.normal;
+  }
+  return ei;
+}
+
+/// EPA's answer and which EPA gave it.
+struct EpaRun {
+  epa::Outcome outcome;  ///< depth, normal, witnesses of the cores
+  GenericStage stage;    ///< Epa or InflatedEpa
+};
+
+/// The cores overlap or touch: EPA on the cores, or on inflated cores when they only touch.
+/// An EPA stopped at its cap by rounding is run again on the inflated cores, which meet
+/// other slivers; the answer with the smaller error bound is kept. Iterations of every run
+/// count into the answer.
+template <class A, class B>
+EpaRun run_epa(Ladder<A, B>& l) {
+  const epa::Settings es = epa_settings(l);
+  if (l.touching) {
+    EpaRun run{inflated_epa(l, es), GenericStage::InflatedEpa};
+    l.ans.iterations += run.outcome.iterations;
+    return run;
+  }
+  PairSetup<A, B>& setup = l.setup;
+  EpaRun run{epa::penetration(setup.support_a, setup.support_b, l.core.simplex, setup.scale, es), GenericStage::Epa};
+  polish(l, run.outcome, setup.support_a, setup.support_b, !kPolytopePair<A, B>);
+  if (run.outcome.status == epa::Status::MaxIterations) {
+    l.ans.iterations += run.outcome.iterations;
+    const epa::Outcome again = inflated_epa(l, es);
+    if (again.status != epa::Status::Degenerate && again.gap < run.outcome.gap)
+      run = {again, GenericStage::InflatedEpa};
+  }
+  l.ans.iterations += run.outcome.iterations;
+  return run;
+}
+
+/// Stage c: EPA's answer when it converged, or (curved pairs, which have no exact
+/// fall-back) when it stopped at its cap with a lower bound.
+template <class A, class B>
+bool epa_answer(Ladder<A, B>& l, const EpaRun& run) {
+  const epa::Outcome& e = run.outcome;
+  if (!(e.status == epa::Status::Converged || (e.status == epa::Status::MaxIterations && !kPolytopePair<A, B>)))
+    return false;
+  l.ans.normal = e.normal;
+  l.ans.signed_distance = -(e.depth + l.radii);  // e.depth may be slightly negative when touching
+  l.ans.point_a = e.point_a + l.setup.radius_a * e.normal;
+  l.ans.point_b = e.point_b - l.setup.radius_b * e.normal;
+  l.ans.method = PairMethod::Epa;
+  l.ans.status = e.status == epa::Status::MaxIterations
+                     ? PairStatus::MaxIterations
+                     : status_from_distance(l.ans.signed_distance, l.setup.tolerance);
+  l.ans.stage = run.stage;
+  return true;
+}
+
+/// Stage d: polytopes whose EPA failed or stopped at its cap: the SAT's depth. Touching
+/// cores keep GJK's witness (an exact point of both), else the SAT's feature point.
+template <class A, class B>
+bool sat_fallback(Ladder<A, B>& l, const epa::Outcome& e) {
+  if constexpr (kPolytopePair<A, B>) {
+    const SatResult s = run_sat(l);
+    if (!s.valid) return false;
+    answer_from_sat(l, s, GenericStage::SatFallback);
+    const Vec3 core_a = l.touching ? l.core.point_a : s.point_a;
+    l.ans.point_a = core_a + l.setup.radius_a * s.normal;
+    l.ans.point_b = l.ans.point_a + l.ans.signed_distance * s.normal;
+    l.ans.status = e.status == epa::Status::Degenerate ? PairStatus::Degenerate
+                                                       : status_from_distance(l.ans.signed_distance, l.setup.tolerance);
+    return true;
+  } else {
+    (void)l;
+    (void)e;
+    return false;
+  }
+}
+
+/// Stage e: the cores touch (distance ~0) and D = core A - core B, holding the origin, is
+/// too thin for EPA (a point against a segment, coincident segments). The depth is radii
+/// plus min over n of D's support distance, 0 along D's normals at the origin: descend the
+/// support function from `n` to such a normal. Answers when the support distance found
+/// (an upper bound of the core depth, 0 in exact arithmetic) is within reach of 0.
+template <class A, class B>
+bool core_refinement(Ladder<A, B>& l, const Vec3& n) {
+  PairSetup<A, B>& setup = l.setup;
+  const epa::Refinement f =
+      epa::refine(setup.support_a, setup.support_b, n, setup.scale, std::clamp(l.request.max_iterations, 1, 96));
+  l.ans.iterations += f.iterations;
+  const Real reach = std::max(setup.tolerance, kSqrtEpsilon * setup.scale);
+  if (!(f.depth <= reach && f.witness_gap <= reach)) return false;
+  l.ans.normal = f.normal;
+  l.ans.signed_distance = -std::max(f.depth, Real(0)) - l.radii;
+  l.ans.point_a = f.support_a + setup.radius_a * f.normal;
+  l.ans.point_b = l.ans.point_a + l.ans.signed_distance * f.normal;
+  l.ans.method = PairMethod::Epa;
+  l.ans.status = status_from_distance(l.ans.signed_distance, setup.tolerance);
+  l.ans.stage = GenericStage::CoreRefinement;
+  return true;
+}
+
+/// Stage f: nothing else answered: GJK's core contact along `n`, status Degenerate.
+template <class A, class B>
+void gjk_core_contact(Ladder<A, B>& l, const Vec3& n) {
+  l.ans.normal = n;
+  l.ans.signed_distance = l.core.distance - l.radii;
+  l.ans.point_a = l.core.point_a + l.setup.radius_a * n;
+  l.ans.point_b = l.ans.point_a + l.ans.signed_distance * n;  // keeps the witness relation exact
+  l.ans.method = PairMethod::Gjk;
+  l.ans.status = PairStatus::Degenerate;
+  l.ans.stage = GenericStage::GjkCoreContact;
+}
+
+/// The ladder (see the file comment): GJK on the cores, then the stages in order until one
+/// answers. A's-frame answer with the stage that gave it.
 template <class A, class B>
 LocalAnswer solve(const A& a, const B& b, PairSetup<A, B>& setup, const PairRequest& request) {
-  LocalAnswer ans;
-  const gjk::Result g = gjk::distance(setup.support_a, setup.support_b, setup.axis, setup.gjk_settings(request));
-  ans.iterations = g.iterations;
-  const Real radii = setup.radius_a + setup.radius_b;
-  const Real core_contact = Real(16) * kEpsilon * setup.scale;
-  if constexpr (kIsPolytope<A> && kIsPolytope<B>) {
-    // GJK stopped by the cap on a polytope pair: the SAT decides overlap exactly.
-    if (g.status == gjk::Status::MaxIterations) {
-      const PolytopeView va(a);
-      const PolytopeView vb(b);
-      const SatResult s = polytope_sat(va, vb, setup.support_b.rotation, setup.support_b.translation);
-      if (s.valid && s.signed_distance < Real(0)) {
-        ans.normal = s.normal;
-        ans.signed_distance = s.signed_distance - radii;
-        ans.point_a = s.point_a;
-        ans.point_b = s.point_b;
-        ans.method = PairMethod::Sat;
-        ans.status = status_from_distance(ans.signed_distance, setup.tolerance);
-        ans.sat_feature = s.feature;
-        ans.sat_used = true;
-        return ans;
-      }
-    }
+  Ladder<A, B> l(a, b, setup, request);
+  if (sat_at_gjk_cap(l) || gjk_distance(l)) return l.ans;
+  const EpaRun run = run_epa(l);
+  if (epa_answer(l, run) || sat_fallback(l, run.outcome)) return l.ans;
+  const Vec3 n = unit_or(-l.core.v, setup.axis);
+  if (!core_refinement(l, n)) gjk_core_contact(l, n);
+  return l.ans;
+}
+
+/// generic_distance's body: writes the world-frame answer into `r` and returns the stage
+/// that gave it.
+template <class A, class B>
+GenericStage distance_into(const A& a, const Transform& pose_a, const B& b, const Transform& pose_b,
+                           const PairRequest& request, PairCache* cache, DistanceResult& r) {
+  static_assert(!std::is_same_v<A, HalfSpace> && !std::is_same_v<B, HalfSpace>,
+                "half-space pairs are served by their closed-form routines");
+  if (!finite_poses(pose_a, pose_b)) {
+    r = invalid_distance();
+    return GenericStage::NotRun;
   }
-  if (g.status != gjk::Status::Overlapping && g.distance > core_contact) {
-    const Vec3 n = -g.v / g.distance;
-    ans.normal = n;
-    ans.signed_distance = g.distance - radii;
-    ans.point_a = g.point_a + setup.radius_a * n;
-    ans.point_b = g.point_b - setup.radius_b * n;
-    ans.method = PairMethod::Gjk;
-    ans.status = g.status == gjk::Status::MaxIterations ? PairStatus::MaxIterations
-                                                        : status_from_distance(ans.signed_distance, setup.tolerance);
-    return ans;
-  }
-  // Cores overlap or touch: EPA. When GJK did not enclose the origin (the cores only touch,
-  // within rounding), EPA runs on cores inflated by a small ball, whose Minkowski
-  // difference holds the origin robustly; the depth is then exactly 2 delta larger.
-  epa::Settings es;
-  es.max_iterations = std::max(request.max_iterations, 1);
-  es.max_faces = request.max_epa_faces;
-  // Curved shapes converge slowly: a relative 1e-9 of the pair's size is enough in double.
-  es.abs_tolerance = std::max(Real(0.1) * setup.tolerance, Real(1e-9) * setup.scale);
-  const bool touching = g.simplex.size < 4;
-  const bool polytopes = kIsPolytope<A> && kIsPolytope<B>;
-  // EPA converges only linearly on curved supports: unless its gap is already within
-  // rounding, Newton steps on the support function of D take its normal to the minimum.
-  // The refined support distance is an upper bound of the depth; the witnesses are support
-  // points (combined across an edge or face of D) with point_a - point_b = depth * normal.
-  const auto polish = [&](epa::Result& ep, auto& sa, auto& sb, bool curved) {
-    if (!curved || ep.status == epa::Status::Degenerate) return;
-    const Real target = Real(64) * kEpsilon * setup.scale;
-    if (ep.status == epa::Status::Converged && ep.gap <= target) return;
-    // From the normal of EPA's least upper bound (its nearest face's normal may be worse).
-    const epa::Refinement f =
-        epa::refine(sa, sb, ep.upper_normal, setup.scale, std::clamp(request.max_iterations, 1, 96));
-    ep.iterations += f.iterations;
-    // Unconverged, EPA's own answer stands (at its cap: the nearest face, a lower bound).
-    if (!f.converged || !(f.depth <= ep.depth + ep.gap + kSqrtEpsilon * setup.scale)) return;
-    // A converged EPA keeps its own answer where the refined witnesses could not be placed
-    // on both surfaces (an edge of D meeting a curved side off the tipped supports' reach).
-    if (ep.status == epa::Status::Converged && f.witness_gap > kSqrtEpsilon * setup.scale) return;
-    ep.status = epa::Status::Converged;
-    ep.gap = std::max(f.depth - ep.depth, Real(0));
-    ep.depth = f.depth;
-    ep.normal = f.normal;
-    ep.point_a = f.support_a;
-    ep.point_b = f.support_b;
-  };
-  const auto inflated_epa = [&]() {
-    const Real delta = std::max(Real(1024) * kEpsilon * setup.scale, setup.tolerance);
-    InflatedSupport<decltype(setup.support_a)> ia{setup.support_a, delta};
-    InflatedSupport<decltype(setup.support_b)> ib{setup.support_b, delta};
-    const gjk::Result gi = gjk::distance(ia, ib, setup.axis, setup.gjk_settings(request));
-    ans.iterations += gi.iterations;
-    epa::Result ei = epa::penetration(ia, ib, gi.simplex, setup.scale, es);
-    // Inflated cores are curved; for polytopes only when the cores merely touch (deeper
-    // polytope pairs have the exact SAT fall-back, while a refinement stops at a local
-    // minimum of a starved EPA's normal).
-    polish(ei, ia, ib, !polytopes || touching);
-    if (ei.status != epa::Status::Degenerate) {
-      ei.depth -= Real(2) * delta;
-      ei.point_a -= delta * ei.normal;
-      ei.point_b += delta * ei.normal;
-    }
-    return ei;
-  };
-  epa::Result e;
-  if (touching) {
-    e = inflated_epa();
-  } else {
-    e = epa::penetration(setup.support_a, setup.support_b, g.simplex, setup.scale, es);
-    polish(e, setup.support_a, setup.support_b, !polytopes);
-    if (e.status == epa::Status::MaxIterations) {
-      // Rounding stopped the expansion early: a second polytope, grown on the slightly
-      // inflated cores, meets other slivers; keep the answer with the smaller error bound.
-      ans.iterations += e.iterations;
-      const epa::Result e2 = inflated_epa();
-      if (e2.status != epa::Status::Degenerate && e2.gap < e.gap) e = e2;
-    }
-  }
-  ans.iterations += e.iterations;
-  if (e.status == epa::Status::Converged || (e.status == epa::Status::MaxIterations && !polytopes)) {
-    ans.normal = e.normal;
-    ans.signed_distance = -(e.depth + radii);  // e.depth may be slightly negative when touching
-    ans.point_a = e.point_a + setup.radius_a * e.normal;
-    ans.point_b = e.point_b - setup.radius_b * e.normal;
-    ans.method = PairMethod::Epa;
-    ans.status = e.status == epa::Status::MaxIterations ? PairStatus::MaxIterations
-                                                        : status_from_distance(ans.signed_distance, setup.tolerance);
-    return ans;
-  }
-  if constexpr (kIsPolytope<A> && kIsPolytope<B>) {
-    const PolytopeView va(a);
-    const PolytopeView vb(b);
-    const SatResult s = polytope_sat(va, vb, setup.support_b.rotation, setup.support_b.translation);
-    if (s.valid) {
-      ans.normal = s.normal;
-      ans.signed_distance = s.signed_distance - radii;
-      // Touching cores: GJK's witnesses are exact points of both; else the SAT's features.
-      const Vec3 core_a = touching ? g.point_a : s.point_a;
-      ans.point_a = core_a + setup.radius_a * s.normal;
-      ans.point_b = ans.point_a + ans.signed_distance * s.normal;
-      ans.method = PairMethod::Sat;
-      ans.status = e.status == epa::Status::Degenerate ? PairStatus::Degenerate
-                                                       : status_from_distance(ans.signed_distance, setup.tolerance);
-      ans.sat_feature = s.feature;
-      ans.sat_used = true;
-      return ans;
-    }
-  } else {
-    (void)a;
-    (void)b;
-  }
-  // GJK's core contact: the cores touch (distance ~0) and D = core A - core B, holding the
-  // origin, is too thin for EPA (a point against a segment, coincident segments). The depth
-  // is radii plus min over n of D's support distance, 0 along D's normals at the origin:
-  // descend the support function from GJK's last direction to such a normal.
-  Vec3 n = unit_or(-g.v, setup.axis);
-  {
-    const epa::Refinement f =
-        epa::refine(setup.support_a, setup.support_b, n, setup.scale, std::clamp(request.max_iterations, 1, 96));
-    ans.iterations += f.iterations;
-    // Its support distance is an upper bound of the core depth (0 in exact arithmetic).
-    const Real reach = std::max(setup.tolerance, kSqrtEpsilon * setup.scale);
-    if (f.depth <= reach && f.witness_gap <= reach) {
-      n = f.normal;
-      ans.normal = n;
-      ans.signed_distance = -std::max(f.depth, Real(0)) - radii;
-      ans.point_a = f.support_a + setup.radius_a * n;
-      ans.point_b = ans.point_a + ans.signed_distance * n;
-      ans.method = PairMethod::Epa;
-      ans.status = status_from_distance(ans.signed_distance, setup.tolerance);
-      return ans;
-    }
-  }
-  ans.normal = n;
-  ans.signed_distance = g.distance - radii;
-  ans.point_a = g.point_a + setup.radius_a * n;
-  ans.point_b = ans.point_a + ans.signed_distance * n;  // keeps the witness relation exact
-  ans.method = PairMethod::Gjk;
-  ans.status = PairStatus::Degenerate;
-  return ans;
+  PairSetup<A, B> setup(a, pose_a, b, pose_b, request, cache);
+  const LocalAnswer ans = solve(a, b, setup, request);
+  setup.store(cache, ans.normal);
+  if (cache && ans.sat_used) cache->sat_feature = ans.sat_feature;
+  r.signed_distance = ans.signed_distance;
+  r.point_a = pose_a.apply(ans.point_a);
+  r.point_b = pose_a.apply(ans.point_b);
+  r.normal = pose_a.apply_vector(ans.normal);
+  r.status = ans.status;
+  r.method = ans.method;
+  r.iterations = ans.iterations;
+  return ans.stage;
 }
 
 }  // namespace generic_detail
@@ -285,22 +453,24 @@ LocalAnswer solve(const A& a, const B& b, PairSetup<A, B>& setup, const PairRequ
 template <class A, class B>
 DistanceResult generic_distance(const A& a, const Transform& pose_a, const B& b, const Transform& pose_b,
                                 const PairRequest& request, PairCache* cache) {
-  static_assert(!std::is_same_v<A, HalfSpace> && !std::is_same_v<B, HalfSpace>,
-                "half-space pairs are served by their closed-form routines");
-  if (!finite_poses(pose_a, pose_b)) return invalid_distance();
-  generic_detail::PairSetup<A, B> setup(a, pose_a, b, pose_b, request, cache);
-  const generic_detail::LocalAnswer ans = generic_detail::solve(a, b, setup, request);
-  setup.store(cache, ans.normal);
-  if (cache && ans.sat_used) cache->sat_feature = ans.sat_feature;
   DistanceResult r;
-  r.signed_distance = ans.signed_distance;
-  r.point_a = pose_a.apply(ans.point_a);
-  r.point_b = pose_a.apply(ans.point_b);
-  r.normal = pose_a.apply_vector(ans.normal);
-  r.status = ans.status;
-  r.method = ans.method;
-  r.iterations = ans.iterations;
+  generic_detail::distance_into(a, pose_a, b, pose_b, request, cache, r);
   return r;
+}
+
+/// A generic distance with the stage of the ladder that gave it.
+struct StagedDistance {
+  DistanceResult result;                      ///< as generic_distance returns it
+  GenericStage stage = GenericStage::NotRun;  ///< the stage that answered
+};
+
+/// generic_distance with the stage of the ladder that answered (tests, diagnostics).
+template <class A, class B>
+StagedDistance generic_distance_staged(const A& a, const Transform& pose_a, const B& b, const Transform& pose_b,
+                                       const PairRequest& request, PairCache* cache) {
+  StagedDistance staged;
+  staged.stage = generic_detail::distance_into(a, pose_a, b, pose_b, request, cache, staged.result);
+  return staged;
 }
 
 /// True when A and B are within request.contact_distance (plus tolerance) of each other: GJK
@@ -315,7 +485,7 @@ bool generic_intersect(const A& a, const Transform& pose_a, const B& b, const Tr
   gjk::Settings s = setup.gjk_settings(request);
   const Real margin = setup.radius_a + setup.radius_b + std::max(request.contact_distance, Real(0)) + setup.tolerance;
   s.margin = margin;
-  const gjk::Result g = gjk::distance(setup.support_a, setup.support_b, setup.axis, s);
+  const gjk::Outcome g = gjk::distance(setup.support_a, setup.support_b, setup.axis, s);
   if (cache) {
     // A proven separating axis is the best start for the next, coherent query.
     const Vec3 n = g.status == gjk::Status::EarlyExit ? generic_detail::unit_or(g.separating_axis, -g.v)

@@ -1,5 +1,7 @@
 // Half-space against half-space: two unbounded solids, answered in closed form with a finite
-// result (see pairs_halfspace.hpp for the documented answers).
+// result (see pairs_halfspace.hpp for the documented answers). The generic routine of
+// generic_halfspace.hpp does not serve here: its answer would come from a corner of the cube
+// that clips A (HalfSpace::kSupportExtent) and differ from the documented one.
 //
 // Steps:
 //  1. both planes in world: n_a . x <= d_a and n_b . x <= d_b (offsets taken at A's origin);
@@ -10,7 +12,7 @@
 //     -kHalfSpacePairDepth, normal n_a, point_a as above, point_b = point_a + signed_distance
 //     n_a (a point inside both solids).
 // Manifold: the single point (feature ids: face 0 of each).
-#include "narrowphase/halfspace_common.hpp"
+#include "narrowphase/generic_halfspace.hpp"
 #include "narrowphase/pairs_halfspace.hpp"
 
 namespace proxima::narrow {

@@ -4,12 +4,14 @@
 /// for each pair (A, B), A not after B in ShapeType order, the three functions pair_intersect,
 /// pair_distance, pair_collide and the trait kAnalyticPair<A, B> = true.
 ///
-/// Every shape against a half-space (B = {n . x <= d} in B's frame). The signed distance is
-/// the plane offset of A's support point in the direction -n (core support plus radius):
-/// n_w . x - d_w. The normal (A to B) is -n_w, point_a the support point, point_b its
-/// projection on the plane. Manifolds (points sharing the normal -n_w, each with its own
-/// depth; a point is kept when its gap is at most contact_distance + tolerance, once the
-/// deepest is within contact_distance):
+/// Every convex shape against a half-space (B = {n . x <= d} in B's frame), all through one
+/// generic routine (generic_halfspace.hpp, instantiated in shape_halfspace.cpp with the
+/// closed-form candidates below); half-space against half-space in halfspace_halfspace.cpp.
+/// The signed distance is the plane offset of A's support point in the direction -n (core
+/// support plus radius): n_w . x - d_w. The normal (A to B) is -n_w, point_a the support
+/// point, point_b its projection on the plane. Manifolds (points sharing the normal -n_w, each
+/// with its own depth; a point is kept when its gap is at most contact_distance + tolerance,
+/// once the deepest is within contact_distance):
 ///  - point, sphere, ellipsoid: one point;
 ///  - segment: its end points; triangle: its vertices; capsule: its two core ends + radius;
 ///  - box: the up to 4 deepest of its 8 vertices (then reduced to max_contacts);
@@ -17,9 +19,10 @@
 ///    90, 180 and 270 degrees from it (a cylinder on its side gives 2, standing on a cap 4);
 ///  - cone: the apex and the same four rim points of the base;
 ///  - convex hull: its vertices within the contact distance, reduced to max_contacts by
-///    reduce_contacts (area-maximising).
+///    select_contacts (area-maximising).
 /// Feature ids: (Vertex, index on A, Face, 0), the index being the vertex number (box: bit i
-/// set for the + side on axis i; cylinder: 4 * cap + rim point; cone: 0 apex, 1..4 rim).
+/// set for the + side on axis i; cylinder: 4 * cap + rim point; cone: 0 apex, 1..4 rim);
+/// sphere and ellipsoid (Surface, 0, Face, 0).
 ///
 /// Half-space against half-space (both unbounded), documented finite answers:
 ///  - anti-parallel normals (n_a . n_b <= -(1 - kRelativeTolerance)): the signed gap between

@@ -2,24 +2,26 @@
 //
 // Steps (Naylor, "Constructing good partitioning trees", Graphics Interface 1993; Ericson,
 // Real-Time Collision Detection, 2005, sections 8.3-8.4):
-//  1. Validate the mesh with analyse_mesh: closed, consistently and outward oriented, no
-//     degenerate triangle. Compute every face plane once (double precision, relative to the
-//     centre of the mesh's box); fragments keep the plane of the face they came from.
-//  2. Build iteratively (an explicit task stack, so deep trees do not exhaust the call stack):
-//     for a node's polygon list, score up to max_candidates face planes and (nodes of at
-//     least 8 polygons) six axis-aligned planes, the median and the middle of the polygon
-//     centroids on each axis, by k * splits + (1 - k) * |front - back| - consumed (counted
-//     over at most 64 of the node's polygons; consumed: polygons coplanar with a face plane),
-//     and take the cheapest. Face planes alone (pure autopartition) give a chain of depth n on
-//     a convex solid, since every face plane leaves all other faces behind it; the
-//     axis-aligned planes are what balances such trees (Naylor 1993 on splitting planes not
-//     taken from faces). An axis plane is kept only when both sides receive polygons, each
-//     fewer than the node has. Polygons within the plane thickness of a face plane and facing
-//     its way are consumed, coplanar ones facing the other way go to the front, the others to
-//     their side, straddling ones are split (Sutherland-Hodgman with thick planes, Ericson
-//     8.3.4).
-//  3. After a face plane, an empty front list is an outside leaf (in front of an outward face with no other face
-//     in the cell), an empty back list an inside leaf.
+//  1. Validate the mesh with analyse_mesh (check_build_input): closed, consistently and
+//     outward oriented, no degenerate triangle. Compute every face plane once (add_faces:
+//     double precision, relative to the centre of the mesh's box); fragments keep the plane
+//     of the face they came from.
+//  2. Build iteratively (build: an explicit task stack, so deep trees do not exhaust the call
+//     stack). For a node's polygon list (split_node): score up to max_candidates face planes
+//     (choose_face_plane) and (nodes of at least 8 polygons) six axis-aligned planes, the
+//     median and the middle of the polygon centroids on each axis (choose_axis_plane), by
+//     k * splits + (1 - k) * |front - back| - consumed (score: counted over at most 64 of the
+//     node's polygons; consumed: polygons coplanar with a face plane), and take the cheapest.
+//     Face planes alone (pure autopartition) give a chain of depth n on a convex solid, since
+//     every face plane leaves all other faces behind it; the axis-aligned planes are what
+//     balances such trees (Naylor 1993 on splitting planes not taken from faces). An axis
+//     plane is kept only when both sides receive polygons, each fewer than the node has
+//     (try_axis_split). Polygons within the plane thickness of a face plane and facing its
+//     way are consumed, coplanar ones facing the other way go to the front, the others to
+//     their side, straddling ones are split (partition; PolygonPool::split: Sutherland-Hodgman
+//     with thick planes, Ericson 8.3.4).
+//  3. After a face plane, an empty front list is an outside leaf (in front of an outward face
+//     with no other face in the cell), an empty back list an inside leaf (make_leaf).
 //  4. Point queries descend by the sign of the plane distance; within the tolerance both
 //     sides are visited and differing answers mean OnBoundary (Ericson 8.4.1). Segment
 //     queries visit the leaves in increasing t, splitting the parameter interval at each
@@ -34,6 +36,8 @@
 #include <limits>
 #include <optional>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace proxima {
 
@@ -68,12 +72,14 @@ class WorkStack {
   std::size_t size_ = 0;
 };
 
+// A plane n . x = d in double precision (relative to the tree's reference point).
 struct PlaneD {
   std::array<double, 3> n{0, 0, 1};
   double d = 0;
   double distance(const std::array<double, 3>& p) const { return n[0] * p[0] + n[1] * p[1] + n[2] * p[2] - d; }
 };
 
+// A point in double precision (relative to the tree's reference point).
 using P3 = std::array<double, 3>;
 
 // A convex polygon: a range of the point pool and the face plane it lies in.
@@ -83,9 +89,12 @@ struct Polygon {
   std::uint32_t plane = 0;
 };
 
+// Where a point or polygon lies against a thick plane.
 enum class Side : std::uint8_t { Front, Back, On, Straddle };
 
-struct Builder {
+// Every polygon of the build (the faces, then the fragments of splits) over one point
+// pool, with the face planes and the plane tests at the build's thickness.
+struct PolygonPool {
   std::vector<P3> points;
   std::vector<Polygon> polygons;
   std::vector<PlaneD> planes;
@@ -184,16 +193,16 @@ constexpr std::size_t kScoredPolygons = 64;
 // (below it a chain of face planes is as short as anything an axis split leaves).
 constexpr std::size_t kAxisMinPolygons = 8;
 
+// A node still to build: its polygons and where its index goes in the parent.
 struct Task {
   std::vector<std::uint32_t> polys;
-  std::uint32_t parent = 0;
-  bool front_side = false;
-  std::uint32_t depth = 0;
+  std::uint32_t parent = 0;  // kBspOutside for the root
+  bool front_side = false;   // the parent's front (or back) child
+  std::uint32_t depth = 0;   // inner nodes above it
 };
 
-}  // namespace
-
-Result<BspPolyhedron> BspPolyhedron::create(const IndexedMesh& mesh, const BspBuildOptions& options) {
+// Step 1: the first problem of the mesh or the options, nothing when the build can go on.
+std::optional<Error> check_build_input(const IndexedMesh& mesh, const BspBuildOptions& options) {
   Result<MeshReport> analysed = analyse_mesh(mesh);
   if (!analysed) return analysed.error();
   const MeshReport& report = *analysed;
@@ -225,31 +234,67 @@ Result<BspPolyhedron> BspPolyhedron::create(const IndexedMesh& mesh, const BspBu
   if (!std::isfinite(options.plane_thickness)) {
     return make_error(ErrorCode::NotFinite, "options.plane_thickness", "must be finite");
   }
+  return std::nullopt;
+}
 
-  BspPolyhedron tree;
-  for (const Vec3& v : mesh.vertices) tree.bounds_.grow(v);
-  tree.reference_ = tree.bounds_.center();
-  const Real extent = max_abs_component(tree.bounds_.extents());
-  const Real thickness = options.plane_thickness >= Real(0) ? options.plane_thickness
-                                                            : Real(4) * kRelativeTolerance * std::max(extent, Real(0));
-  tree.tolerance_ = std::max(Real(2) * thickness, linear_tolerance(extent) * Real(0.5));
+// The tree under construction: the polygon pool, the nodes made so far and the
+// stack of nodes still to build.
+class TreeBuilder {
+ public:
+  TreeBuilder(const BspBuildOptions& options, double thickness) : options_(options) { pool_.thickness = thickness; }
 
-  Builder b;
-  b.thickness = double(thickness);
+  // Step 1 (end): every triangle as a polygon with its face plane, in double precision
+  // relative to `reference`; an error for a zero-area triangle.
+  std::optional<Error> add_faces(const IndexedMesh& mesh, const Vec3& reference);
+
+  // Steps 2-3: builds the nodes, from a root task holding every face.
+  void build();
+
+  // The nodes built, root first.
+  std::vector<BspNode>& nodes() { return nodes_; }
+  // Statistics of the build.
+  const BspStats& stats() const { return stats_; }
+
+ private:
+  // Where a candidate plane sends the scored sample of a node's polygons.
+  struct Score {
+    double cost = 0;
+    std::size_t front = 0;
+    std::size_t back = 0;
+  };
+
+  void make_leaf(const Task& task);
+  void split_node(Task& task);
+  Score score(const PlaneD& pl, bool face, const Task& task) const;
+  std::pair<std::uint32_t, double> choose_face_plane(const Task& task) const;
+  std::optional<PlaneD> choose_axis_plane(const Task& task, double best_face_cost);
+  std::uint32_t partition(const PlaneD& pl, bool face, const Task& task, Task& front, Task& back);
+  bool try_axis_split(const PlaneD& pl, const Task& task, Task& front, Task& back);
+  void link(const Task& task, std::uint32_t child);
+
+  BspBuildOptions options_;
+  PolygonPool pool_;
+  std::vector<BspNode> nodes_;
+  BspStats stats_;
+  std::vector<Task> tasks_;
+  std::vector<P3> centroids_;       // scratch of choose_axis_plane
+  std::vector<double> coordinate_;  // ...
+};
+
+std::optional<Error> TreeBuilder::add_faces(const IndexedMesh& mesh, const Vec3& reference) {
   const std::size_t nt = mesh.triangles.size();
-  b.points.reserve(nt * 3 + nt);
-  b.polygons.reserve(nt * 2);
-  b.planes.reserve(nt);
+  pool_.points.reserve(nt * 3 + nt);
+  pool_.polygons.reserve(nt * 2);
+  pool_.planes.reserve(nt);
   auto rel = [&](const Vec3& v) {
-    return P3{double(v.x) - double(tree.reference_.x), double(v.y) - double(tree.reference_.y),
-              double(v.z) - double(tree.reference_.z)};
+    return P3{double(v.x) - double(reference.x), double(v.y) - double(reference.y), double(v.z) - double(reference.z)};
   };
   for (std::size_t t = 0; t < nt; ++t) {
     const TriangleIndices& tri = mesh.triangles[t];
     const P3 a = rel(mesh.vertices[tri[0]]);
-    const P3 bb = rel(mesh.vertices[tri[1]]);
+    const P3 b = rel(mesh.vertices[tri[1]]);
     const P3 c = rel(mesh.vertices[tri[2]]);
-    const P3 e1{bb[0] - a[0], bb[1] - a[1], bb[2] - a[2]};
+    const P3 e1{b[0] - a[0], b[1] - a[1], b[2] - a[2]};
     const P3 e2{c[0] - a[0], c[1] - a[1], c[2] - a[2]};
     P3 n{e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
     const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
@@ -259,172 +304,223 @@ Result<BspPolyhedron> BspPolyhedron::create(const IndexedMesh& mesh, const BspBu
     for (double& x : n) x /= len;
     PlaneD pl;
     pl.n = n;
-    pl.d = (n[0] * (a[0] + bb[0] + c[0]) + n[1] * (a[1] + bb[1] + c[1]) + n[2] * (a[2] + bb[2] + c[2])) / 3.0;
-    b.planes.push_back(pl);
-    b.polygons.push_back(
-        Polygon{static_cast<std::uint32_t>(b.points.size()), 3u, static_cast<std::uint32_t>(b.planes.size() - 1)});
-    b.points.push_back(a);
-    b.points.push_back(bb);
-    b.points.push_back(c);
+    pl.d = (n[0] * (a[0] + b[0] + c[0]) + n[1] * (a[1] + b[1] + c[1]) + n[2] * (a[2] + b[2] + c[2])) / 3.0;
+    pool_.planes.push_back(pl);
+    pool_.polygons.push_back(Polygon{static_cast<std::uint32_t>(pool_.points.size()), 3u,
+                                     static_cast<std::uint32_t>(pool_.planes.size() - 1)});
+    pool_.points.push_back(a);
+    pool_.points.push_back(b);
+    pool_.points.push_back(c);
   }
+  stats_.input_faces = static_cast<std::uint32_t>(nt);
+  return std::nullopt;
+}
 
-  const double k = double(options.split_weight);
-  std::vector<P3> centroids;
-  std::vector<double> coordinate;
-  std::vector<Task> tasks;
-  {
-    Task root;
-    root.polys.resize(nt);
-    for (std::size_t i = 0; i < nt; ++i) root.polys[i] = static_cast<std::uint32_t>(i);
-    root.parent = kBspOutside;  // no parent
-    tasks.push_back(std::move(root));
-  }
-  tree.stats_.input_faces = static_cast<std::uint32_t>(nt);
-  auto link = [&](const Task& task, std::uint32_t child) {
-    if (task.parent == kBspOutside) return;
-    BspNode& parent = tree.nodes_[task.parent];
-    (task.front_side ? parent.front : parent.back) = child;
-  };
-  while (!tasks.empty()) {
-    Task task = std::move(tasks.back());
-    tasks.pop_back();
+void TreeBuilder::build() {
+  Task root;
+  root.polys.resize(pool_.polygons.size());
+  for (std::size_t i = 0; i < root.polys.size(); ++i) root.polys[i] = static_cast<std::uint32_t>(i);
+  root.parent = kBspOutside;  // no parent
+  tasks_.push_back(std::move(root));
+  while (!tasks_.empty()) {
+    Task task = std::move(tasks_.back());
+    tasks_.pop_back();
     if (task.polys.empty()) {
-      const std::uint32_t leaf = task.front_side ? kBspOutside : kBspInside;
-      ++(leaf == kBspInside ? tree.stats_.inside_leaves : tree.stats_.outside_leaves);
-      link(task, leaf);
-      continue;
+      make_leaf(task);
+    } else {
+      split_node(task);
     }
-    // Choose the splitting plane: up to max_candidates face planes spread over the list and,
-    // for lists of at least kAxisMinPolygons, six axis-aligned planes (the median and the
-    // middle of the polygon centroids on each axis), all scored against the same sample.
-    const std::size_t np = task.polys.size();
-    const std::size_t candidates = std::min<std::size_t>(np, options.max_candidates);
-    const std::size_t scored = std::min<std::size_t>(np, kScoredPolygons);
-    auto score = [&](const PlaneD& pl, bool face, std::size_t& front, std::size_t& back) {
-      front = 0;
-      back = 0;
-      std::size_t splits = 0;
-      std::size_t on = 0;
-      for (std::size_t si = 0; si < scored; ++si) {
-        switch (b.side_of_polygon(pl, b.polygons[task.polys[si * np / scored]])) {
-          case Side::Front: ++front; break;
-          case Side::Back: ++back; break;
-          case Side::Straddle:
-            ++splits;
-            ++front;
-            ++back;
-            break;
-          case Side::On: on += b.same_facing(pl, b.polygons[task.polys[si * np / scored]]) ? 1 : 0; break;
-        }
-      }
-      // Coplanar polygons facing its way are consumed by a face plane (never tested again below it): they
-      // lower its cost, so that a box's face planes beat any axis plane.
-      return k * double(splits) + (1.0 - k) * std::abs(double(front) - double(back)) - (face ? double(on) : 0.0);
-    };
-    std::uint32_t best_face = b.polygons[task.polys[0]].plane;
-    double best_face_cost = std::numeric_limits<double>::infinity();
-    for (std::size_t ci = 0; ci < candidates; ++ci) {
-      const std::uint32_t plane = b.polygons[task.polys[ci * np / candidates]].plane;
-      std::size_t front = 0;
-      std::size_t back = 0;
-      const double cost = score(b.planes[plane], true, front, back);
-      if (cost < best_face_cost) {
-        best_face_cost = cost;
-        best_face = plane;
-      }
-    }
-    std::optional<PlaneD> best_axis;
-    if (options.axis_planes && np >= kAxisMinPolygons) {
-      centroids.clear();
-      for (std::size_t si = 0; si < scored; ++si)
-        centroids.push_back(b.centroid(b.polygons[task.polys[si * np / scored]]));
-      double best_axis_cost = best_face_cost;
-      for (std::size_t axis = 0; axis < 3; ++axis) {
-        coordinate.clear();
-        for (const P3& c : centroids) coordinate.push_back(c[axis]);
-        const auto mid = coordinate.begin() + std::ptrdiff_t(coordinate.size() / 2);
-        std::nth_element(coordinate.begin(), mid, coordinate.end());
-        const auto [lo, hi] = std::minmax_element(coordinate.begin(), coordinate.end());
-        for (const double offset : {*mid, 0.5 * (*lo + *hi)}) {
-          PlaneD pl;
-          pl.n = {axis == 0 ? 1.0 : 0.0, axis == 1 ? 1.0 : 0.0, axis == 2 ? 1.0 : 0.0};
-          pl.d = offset;
-          std::size_t front = 0;
-          std::size_t back = 0;
-          const double cost = score(pl, false, front, back);
-          if (front != 0 && back != 0 && cost < best_axis_cost) {
-            best_axis_cost = cost;
-            best_axis = pl;
-          }
-        }
-      }
-    }
-    Task front_task;
-    Task back_task;
-    auto partition = [&](const PlaneD& pl, bool face) {
-      front_task.polys.clear();
-      back_task.polys.clear();
-      std::uint32_t splits = 0;
-      for (const std::uint32_t pi : task.polys) {
-        switch (b.side_of_polygon(pl, b.polygons[pi])) {
-          case Side::Front: front_task.polys.push_back(pi); break;
-          case Side::Back: back_task.polys.push_back(pi); break;
-          case Side::Straddle:
-            ++splits;
-            b.split(pl, pi, front_task.polys, back_task.polys);
-            break;
-          case Side::On:
-            // Coplanar: a polygon facing the plane's way is the plane (consumed) when the
-            // plane is a face plane and bounds the back side otherwise; one facing the
-            // other way bounds the solid in front, so it goes there.
-            if (b.same_facing(pl, b.polygons[pi])) {
-              if (!face) back_task.polys.push_back(pi);
-            } else {
-              front_task.polys.push_back(pi);
-            }
-            break;
-        }
-      }
-      return splits;
-    };
-    PlaneD pl = b.planes[best_face];
-    bool face = true;
-    if (best_axis) {
-      // An axis plane has no face to tell inside from outside, so it is kept only when both
-      // sides get polygons, each fewer than the node has (the recursion then terminates).
-      const std::size_t mark = b.polygons.size();
-      const std::size_t point_mark = b.points.size();
-      const std::uint32_t splits = partition(*best_axis, false);
-      if (!front_task.polys.empty() && !back_task.polys.empty() && front_task.polys.size() < np &&
-          back_task.polys.size() < np) {
-        pl = *best_axis;
-        face = false;
-        tree.stats_.split_faces += splits;
-      } else {
-        b.polygons.resize(mark);  // drop the fragments of the rejected split
-        b.points.resize(point_mark);
-      }
-    }
-    if (face) tree.stats_.split_faces += partition(pl, true);
-    const std::uint32_t index = static_cast<std::uint32_t>(tree.nodes_.size());
-    BspNode node;
-    node.normal = Vec3(Real(pl.n[0]), Real(pl.n[1]), Real(pl.n[2]));
-    node.offset = Real(pl.d);
-    tree.nodes_.push_back(node);
-    link(task, index);
-    tree.stats_.depth = std::max(tree.stats_.depth, task.depth + 1);
-    task.polys.clear();
-    task.polys.shrink_to_fit();
-    front_task.parent = index;
-    front_task.front_side = true;
-    front_task.depth = task.depth + 1;
-    back_task.parent = index;
-    back_task.front_side = false;
-    back_task.depth = task.depth + 1;
-    tasks.push_back(std::move(back_task));
-    tasks.push_back(std::move(front_task));
   }
-  tree.stats_.node_count = static_cast<std::uint32_t>(tree.nodes_.size());
+  stats_.node_count = static_cast<std::uint32_t>(nodes_.size());
+}
+
+// Writes `child` into the parent's front or back link (nothing for the root).
+void TreeBuilder::link(const Task& task, std::uint32_t child) {
+  if (task.parent == kBspOutside) return;
+  BspNode& parent = nodes_[task.parent];
+  (task.front_side ? parent.front : parent.back) = child;
+}
+
+// Step 3: a node without polygons is a leaf: outside in front of its parent's plane (an
+// outward face with no other face in the cell), inside behind it.
+void TreeBuilder::make_leaf(const Task& task) {
+  const std::uint32_t leaf = task.front_side ? kBspOutside : kBspInside;
+  ++(leaf == kBspInside ? stats_.inside_leaves : stats_.outside_leaves);
+  link(task, leaf);
+}
+
+// Cost of splitting the node by `pl` over its scored sample: k * splits + (1 - k) *
+// |front - back|, less the polygons a face plane consumes (coplanar and facing its way:
+// never tested again below it), so that a box's face planes beat any axis plane.
+TreeBuilder::Score TreeBuilder::score(const PlaneD& pl, bool face, const Task& task) const {
+  const std::size_t np = task.polys.size();
+  const std::size_t scored = std::min<std::size_t>(np, kScoredPolygons);
+  Score s;
+  std::size_t splits = 0;
+  std::size_t on = 0;
+  for (std::size_t si = 0; si < scored; ++si) {
+    const Polygon& poly = pool_.polygons[task.polys[si * np / scored]];
+    switch (pool_.side_of_polygon(pl, poly)) {
+      case Side::Front: ++s.front; break;
+      case Side::Back: ++s.back; break;
+      case Side::Straddle:
+        ++splits;
+        ++s.front;
+        ++s.back;
+        break;
+      case Side::On: on += pool_.same_facing(pl, poly) ? 1 : 0; break;
+    }
+  }
+  const double k = double(options_.split_weight);
+  s.cost = k * double(splits) + (1.0 - k) * std::abs(double(s.front) - double(s.back)) - (face ? double(on) : 0.0);
+  return s;
+}
+
+// Step 2a: the cheapest of up to max_candidates face planes spread over the node's polygons
+// (plane index and cost).
+std::pair<std::uint32_t, double> TreeBuilder::choose_face_plane(const Task& task) const {
+  const std::size_t np = task.polys.size();
+  const std::size_t candidates = std::min<std::size_t>(np, options_.max_candidates);
+  std::uint32_t best_face = pool_.polygons[task.polys[0]].plane;
+  double best_face_cost = std::numeric_limits<double>::infinity();
+  for (std::size_t ci = 0; ci < candidates; ++ci) {
+    const std::uint32_t plane = pool_.polygons[task.polys[ci * np / candidates]].plane;
+    const double cost = score(pool_.planes[plane], true, task).cost;
+    if (cost < best_face_cost) {
+      best_face_cost = cost;
+      best_face = plane;
+    }
+  }
+  return {best_face, best_face_cost};
+}
+
+// Step 2b: for nodes of at least kAxisMinPolygons (with options.axis_planes), the six
+// axis-aligned planes through the median and the middle of the sampled polygon centroids
+// on each axis; the cheapest that leaves sampled polygons on both sides and beats
+// `best_face_cost`, if any.
+std::optional<PlaneD> TreeBuilder::choose_axis_plane(const Task& task, double best_face_cost) {
+  const std::size_t np = task.polys.size();
+  if (!options_.axis_planes || np < kAxisMinPolygons) return std::nullopt;
+  const std::size_t scored = std::min<std::size_t>(np, kScoredPolygons);
+  centroids_.clear();
+  for (std::size_t si = 0; si < scored; ++si)
+    centroids_.push_back(pool_.centroid(pool_.polygons[task.polys[si * np / scored]]));
+  std::optional<PlaneD> best_axis;
+  double best_axis_cost = best_face_cost;
+  for (std::size_t axis = 0; axis < 3; ++axis) {
+    coordinate_.clear();
+    for (const P3& c : centroids_) coordinate_.push_back(c[axis]);
+    const auto mid = coordinate_.begin() + std::ptrdiff_t(coordinate_.size() / 2);
+    std::nth_element(coordinate_.begin(), mid, coordinate_.end());
+    const auto [lo, hi] = std::minmax_element(coordinate_.begin(), coordinate_.end());
+    for (const double offset : {*mid, 0.5 * (*lo + *hi)}) {
+      PlaneD pl;
+      pl.n = {axis == 0 ? 1.0 : 0.0, axis == 1 ? 1.0 : 0.0, axis == 2 ? 1.0 : 0.0};
+      pl.d = offset;
+      const Score s = score(pl, false, task);
+      if (s.front != 0 && s.back != 0 && s.cost < best_axis_cost) {
+        best_axis_cost = s.cost;
+        best_axis = pl;
+      }
+    }
+  }
+  return best_axis;
+}
+
+// Step 2c: sends every polygon of the node to `front` or `back` (straddling ones split);
+// returns the number split. Coplanar: a polygon facing the plane's way is the plane
+// (consumed) when the plane is a face plane and bounds the back side otherwise; one facing
+// the other way bounds the solid in front, so it goes there.
+std::uint32_t TreeBuilder::partition(const PlaneD& pl, bool face, const Task& task, Task& front, Task& back) {
+  front.polys.clear();
+  back.polys.clear();
+  std::uint32_t splits = 0;
+  for (const std::uint32_t pi : task.polys) {
+    switch (pool_.side_of_polygon(pl, pool_.polygons[pi])) {
+      case Side::Front: front.polys.push_back(pi); break;
+      case Side::Back: back.polys.push_back(pi); break;
+      case Side::Straddle:
+        ++splits;
+        pool_.split(pl, pi, front.polys, back.polys);
+        break;
+      case Side::On:
+        if (pool_.same_facing(pl, pool_.polygons[pi])) {
+          if (!face) back.polys.push_back(pi);
+        } else {
+          front.polys.push_back(pi);
+        }
+        break;
+    }
+  }
+  return splits;
+}
+
+// Step 2d: an axis plane has no face to tell inside from outside, so it is kept only when
+// both sides get polygons, each fewer than the node has (the recursion then terminates).
+// Else the fragments of the rejected split are dropped and false returned.
+bool TreeBuilder::try_axis_split(const PlaneD& pl, const Task& task, Task& front, Task& back) {
+  const std::size_t np = task.polys.size();
+  const std::size_t mark = pool_.polygons.size();
+  const std::size_t point_mark = pool_.points.size();
+  const std::uint32_t splits = partition(pl, false, task, front, back);
+  if (!front.polys.empty() && !back.polys.empty() && front.polys.size() < np && back.polys.size() < np) {
+    stats_.split_faces += splits;
+    return true;
+  }
+  pool_.polygons.resize(mark);
+  pool_.points.resize(point_mark);
+  return false;
+}
+
+// Step 2: an inner node: the chosen plane (an accepted axis plane, else the best face
+// plane), its two children pushed on the stack (front on top).
+void TreeBuilder::split_node(Task& task) {
+  const auto [best_face, best_face_cost] = choose_face_plane(task);
+  const std::optional<PlaneD> best_axis = choose_axis_plane(task, best_face_cost);
+  Task front_task;
+  Task back_task;
+  PlaneD pl = pool_.planes[best_face];
+  bool face = true;
+  if (best_axis && try_axis_split(*best_axis, task, front_task, back_task)) {
+    pl = *best_axis;
+    face = false;
+  }
+  if (face) stats_.split_faces += partition(pl, true, task, front_task, back_task);
+  const std::uint32_t index = static_cast<std::uint32_t>(nodes_.size());
+  BspNode node;
+  node.normal = Vec3(Real(pl.n[0]), Real(pl.n[1]), Real(pl.n[2]));
+  node.offset = Real(pl.d);
+  nodes_.push_back(node);
+  link(task, index);
+  stats_.depth = std::max(stats_.depth, task.depth + 1);
+  task.polys.clear();
+  task.polys.shrink_to_fit();
+  front_task.parent = index;
+  front_task.front_side = true;
+  front_task.depth = task.depth + 1;
+  back_task.parent = index;
+  back_task.front_side = false;
+  back_task.depth = task.depth + 1;
+  tasks_.push_back(std::move(back_task));
+  tasks_.push_back(std::move(front_task));
+}
+
+}  // namespace
+
+Result<BspPolyhedron> BspPolyhedron::create(const IndexedMesh& mesh, const BspBuildOptions& options) {
+  if (std::optional<Error> bad = check_build_input(mesh, options)) return std::move(*bad);
+  BspPolyhedron tree;
+  for (const Vec3& v : mesh.vertices) tree.bounds_.grow(v);
+  tree.reference_ = tree.bounds_.center();
+  const Real extent = max_abs_component(tree.bounds_.extents());
+  const Real thickness = options.plane_thickness >= Real(0) ? options.plane_thickness
+                                                            : Real(4) * kRelativeTolerance * std::max(extent, Real(0));
+  tree.tolerance_ = std::max(Real(2) * thickness, linear_tolerance(extent) * Real(0.5));
+  TreeBuilder builder(options, double(thickness));
+  if (std::optional<Error> bad = builder.add_faces(mesh, tree.reference_)) return std::move(*bad);
+  builder.build();
+  tree.nodes_ = std::move(builder.nodes());
+  tree.stats_ = builder.stats();
   return tree;
 }
 

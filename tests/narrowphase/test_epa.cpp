@@ -96,7 +96,7 @@ TEST(Epa, GrowsDegenerateSimplices) {
     const Vec3 dirs[3] = {{1, 0.1f, 0.2f}, {-0.3f, 1, 0.1f}, {0.1f, -0.2f, 1}};
     for (int i = 0; i < n; ++i) s.v[std::size_t(i)] = vertex(dirs[i]);
     s.size = n;
-    const epa::Result r = epa::penetration(sa, sb, s, Real(1), epa::Settings{});
+    const epa::Outcome r = epa::penetration(sa, sb, s, Real(1), epa::Settings{});
     ASSERT_NE(r.status, epa::Status::Degenerate) << n;
     EXPECT_NEAR(r.depth, 0.75, tol_at(1)) << n;
     EXPECT_NEAR(std::abs(r.normal.x), 1, 1e-3) << n;
@@ -105,7 +105,7 @@ TEST(Epa, GrowsDegenerateSimplices) {
   const Triangle tri = Triangle::create(Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)).value();
   auto ta = [&](const Vec3& d) { return tri.support(d); };
   auto tb = [&](const Vec3& d) { return tri.support(d) + Vec3(0.2f, 0.2f, 0); };
-  const epa::Result flat = epa::penetration(ta, tb, gjk::Simplex{}, Real(1), epa::Settings{});
+  const epa::Outcome flat = epa::penetration(ta, tb, gjk::Simplex{}, Real(1), epa::Settings{});
   EXPECT_EQ(flat.status, epa::Status::Degenerate);
 }
 

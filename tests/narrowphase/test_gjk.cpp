@@ -129,7 +129,7 @@ TEST(Gjk, AnalyticSpheresBoxesPoints) {
 TEST(Gjk, WarmStartEqualsColdAndNesterovEqualsPlain) {
   test::Random rng(404);
   PairRequest nesterov;
-  nesterov.gjk = GjkVariant::Nesterov;
+  nesterov.gjk = gjk::Variant::Nesterov;
   for (int t = 0; t < 600; ++t) {
     const ConvexHull a = ref::sphere_hull(rng, 64, Real(0.5));
     const Ellipsoid b = Ellipsoid::create(Vec3(0.5, 0.3, 0.2)).value();
@@ -233,7 +233,7 @@ TEST(Gjk, SignedVolumesSolverOnRawSupports) {
     const Vec3 shift = rng.unit_vector() * rng.uniform(Real(2.5), Real(4));
     auto sa = [&](const Vec3& d) { return a.support(d); };
     auto sb = [&](const Vec3& d) { return b.support(d) + shift; };
-    const gjk::Result r = gjk::distance(sa, sb, shift, gjk::Settings{});
+    const gjk::Outcome r = gjk::distance(sa, sb, shift, gjk::Settings{});
     Transform pb;
     pb.position = shift;
     const double expected = ref::polytope_distance_exhaustive(ref::world_poly(a, Transform{}), ref::world_poly(b, pb));

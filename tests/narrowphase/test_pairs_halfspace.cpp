@@ -2,15 +2,18 @@
 // half-spaces checked against a long double reference (minus the support function of the
 // shape, written from its definition, in the direction -n, minus the plane offset), the sign
 // convention, witnesses on the surfaces, the flip of intersect across the plane, manifold
-// counts against a brute-force count of the candidate features below the plane, named
-// resting cases (box, cylinder, cone, capsule, hull) and half-space against half-space.
+// counts against a brute-force count of the candidate features below the plane, the generic
+// routine's default steps against the closed forms that replace them, named resting cases
+// (box, cylinder, cone, capsule, hull) and half-space against half-space.
 #include <gtest/gtest.h>
 
 #include <proxima/narrowphase/contact.hpp>
 
 #include <string>
+#include <type_traits>
 #include <vector>
 
+#include "narrowphase/generic_halfspace.hpp"
 #include "narrowphase/pair_reference.hpp"
 #include "narrowphase/pairs_halfspace.hpp"
 #include "support/random.hpp"
@@ -213,6 +216,94 @@ TEST(PairsHalfSpace, ConvexHullSweep) {
         return *ConvexHull::create(pts);
       },
       [](const ConvexHull&, const Transform&) { return std::vector<Vec3>{}; }, Real(0), Real(3));
+}
+
+// ---------------------------------------------------------------------------------------------
+// The generic routine's default steps (generic_halfspace.hpp) against the closed forms.
+
+// The size from the local box equals each closed-form size (the hull keeps its own measure).
+TEST(PairsHalfSpace, GenericSizeMatchesTheClosedForms) {
+  test::Random rng(211);
+  for (int i = 0; i < 200; ++i) {
+    const auto same = [&](const auto& shape) {
+      using S = std::decay_t<decltype(shape)>;
+      EXPECT_EQ(narrow::detail::halfspace_size<S>(shape), narrow::detail::halfspace_size(shape)) << i;
+    };
+    same(*Point::create());
+    same(*Segment::create(rng.vec3(Real(-2), Real(2)), rng.vec3(Real(-2), Real(2))));
+    same(*Triangle::create(Vec3(0), rng.vec3(Real(0.5), Real(2)), rng.vec3(Real(-2), Real(-0.5))));
+    same(*Sphere::create(rng.uniform(Real(0.1), Real(2))));
+    same(*Capsule::create(rng.uniform(Real(0.1), Real(2)), i % 4 == 0 ? Real(0) : rng.uniform(Real(0), Real(2))));
+    same(*Box::create(rng.vec3(Real(0.1), Real(2))));
+    same(*Cylinder::create(rng.uniform(Real(0.1), Real(2)), rng.uniform(Real(0.1), Real(2))));
+    same(*Cone::create(rng.uniform(Real(0.1), Real(2)), rng.uniform(Real(0.1), Real(2))));
+    same(*Ellipsoid::create(rng.vec3(Real(0.1), Real(2))));
+  }
+}
+
+void expect_same_manifold(const ContactManifold& a, const ContactManifold& b, const std::string& ctx) {
+  ASSERT_EQ(a.count, b.count) << ctx;
+  EXPECT_EQ(a.normal, b.normal) << ctx;
+  EXPECT_EQ(a.status, b.status) << ctx;
+  for (std::size_t i = 0; i < static_cast<std::size_t>(a.count); ++i) {
+    EXPECT_EQ(a.points[i].point_a, b.points[i].point_a) << ctx << " point " << i;
+    EXPECT_EQ(a.points[i].point_b, b.points[i].point_b) << ctx << " point " << i;
+    EXPECT_EQ(a.points[i].depth, b.points[i].depth) << ctx << " point " << i;
+    EXPECT_EQ(a.points[i].feature_id, b.points[i].feature_id) << ctx << " point " << i;
+  }
+}
+
+// The supporting feature (the default third step) gives the same manifold as the closed-form
+// candidates of a segment, of a capsule with a core segment, and of a triangle whose front
+// faces the plane; the closed forms stay for their cost (and a triangle's back, a capsule of
+// half length 0).
+TEST(PairsHalfSpace, SupportingFeatureStepMatchesTheClosedForms) {
+  test::Random rng(212);
+  int compared = 0;
+  for (int i = 0; i < 3000; ++i) {
+    const Transform pa = rng.pose(Real(1.5));
+    const Transform pb = rng.pose(Real(1.5));
+    const HalfSpace b = *HalfSpace::create(rng.unit_vector(), rng.uniform(Real(-1), Real(1)));
+    PairRequest request;
+    request.contact_distance = i % 2 == 0 ? Real(0) : rng.uniform(Real(0), Real(0.5));
+    request.max_contacts = rng.integer(1, 4);
+    const auto compare = [&](const auto& a, const char* name) {
+      using S = std::decay_t<decltype(a)>;
+      const narrow::detail::PlaneQuery q = narrow::detail::plane_query(a, pa, b, pb, request);
+      if (!(q.distance.signed_distance <= request.contact_distance)) return;
+      ++compared;
+      expect_same_manifold(narrow::detail::plane_contacts<S>(a, pa, q, request),
+                           narrow::detail::plane_contacts(a, pa, q, request), name + std::to_string(i));
+    };
+    compare(*Segment::create(rng.vec3(Real(-1), Real(1)), rng.vec3(Real(-1), Real(1))), "segment ");
+    compare(*Capsule::create(rng.uniform(Real(0.1), Real(1)), rng.uniform(Real(0.01), Real(1.5))), "capsule ");
+    const Triangle t = *Triangle::create(Vec3(0), rng.vec3(Real(0.5), Real(1)), rng.vec3(Real(-1), Real(-0.5)));
+    const Vec3 down = pa.inverse_apply_vector(-pb.apply_vector(b.normal()));
+    if (glm::dot(t.normal(), down) >= Real(0)) compare(t, "triangle ");
+  }
+  EXPECT_GT(compared, 1000);
+}
+
+// Where the supporting feature would change the answer: a triangle on its back turns to a, c, b
+// (with equal gaps, the order of the points), a capsule of half length 0 is one point.
+TEST(PairsHalfSpace, SupportingFeatureStepDiffersWhereClosedFormsStay) {
+  using narrow::detail::plane_contacts;
+  const auto vertex = [](std::uint32_t i) { return make_feature_id(FeatureKind::Vertex, i, FeatureKind::Face, 0); };
+  const HalfSpace f = floor_at(0);
+  const Triangle t = *Triangle::create(Vec3(0), Vec3(1, 0, 0), Vec3(0, 1, 0));  // normal +z, away from the floor
+  const Transform pt = at({0, 0, Real(-0.01)});
+  const narrow::detail::PlaneQuery qt = narrow::detail::plane_query(t, pt, f, at({}), {});
+  const ContactManifold closed = plane_contacts(t, pt, qt, {});
+  const ContactManifold generic = plane_contacts<Triangle>(t, pt, qt, {});
+  ASSERT_EQ(closed.count, 3);
+  ASSERT_EQ(generic.count, 3);
+  EXPECT_EQ(closed.points[1].feature_id, vertex(1));
+  EXPECT_EQ(generic.points[1].feature_id, vertex(2));
+  const Capsule c = *Capsule::create(Real(0.5), Real(0));
+  const Transform pc = at({0, 0, Real(0.49)});
+  const narrow::detail::PlaneQuery qc = narrow::detail::plane_query(c, pc, f, at({}), {});
+  EXPECT_EQ(plane_contacts(c, pc, qc, {}).count, 2);
+  EXPECT_EQ(plane_contacts<Capsule>(c, pc, qc, {}).count, 1);
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -2,6 +2,22 @@
 /// @file result.hpp
 /// Error and Result<T>: how construction reports bad input. A Result holds either a value
 /// or an Error naming the offending field; queries on valid objects never fail this way.
+///
+/// Check ok() (or test the Result as a bool) before using the value. Asking for value()
+/// of a Result that holds an Error is a programming error with one policy per build of
+/// the library (PROXIMA_EXCEPTIONS in core/config.hpp):
+///   - PROXIMA_EXCEPTIONS == 1 (the default): value() throws BadResultAccess, which
+///     carries the Error;
+///   - PROXIMA_EXCEPTIONS == 0 (configured with -DPROXIMA_EXCEPTIONS=OFF, the library
+///     compiled with -fno-exceptions): value() calls the assert handler (core/assert.hpp,
+///     replaceable with set_assert_handler) with the text
+///     "Result::value() on an error (<code>): <field>: <message>", then std::abort() if
+///     the handler returns. value() never returns in this case.
+/// The failure path lives in the library (not in this header), so code built with or
+/// without exceptions against one library gets the same policy. operator* and operator->
+/// do not check: use them only after ok().
+
+#include <proxima/core/config.hpp>
 
 #include <stdexcept>
 #include <string>
@@ -36,7 +52,8 @@ struct Error {
   std::string what() const { return field.empty() ? message : field + ": " + message; }
 };
 
-/// Thrown by Result<T>::value() when the Result holds an Error.
+/// Thrown by Result<T>::value() when the Result holds an Error (only in a library built
+/// with exceptions, PROXIMA_EXCEPTIONS == 1; declared in both builds).
 class BadResultAccess : public std::runtime_error {
  public:
   explicit BadResultAccess(const Error& e) : std::runtime_error(e.what()), error_(e) {}
@@ -46,6 +63,15 @@ class BadResultAccess : public std::runtime_error {
  private:
   Error error_;
 };
+
+namespace detail {
+
+/// The failure of Result<T>::value() on an Error, out of line: throws BadResultAccess
+/// (PROXIMA_EXCEPTIONS == 1), or calls the assert handler with a text naming the error's
+/// code and field and then aborts (PROXIMA_EXCEPTIONS == 0). Never returns.
+[[noreturn]] void bad_result_access(const Error& error);
+
+}  // namespace detail
 
 /// Either a T or an Error (a minimal std::expected for C++20).
 template <class T>
@@ -61,19 +87,22 @@ class [[nodiscard]] Result {
   /// True when a value is held.
   explicit operator bool() const { return ok(); }
 
-  /// The value; throws BadResultAccess if an Error is held.
+  /// The value; if an Error is held, throws BadResultAccess (or, without exceptions, calls
+  /// the assert handler and aborts: see the file comment).
   const T& value() const& {
-    if (!ok()) throw BadResultAccess(std::get<1>(data_));
+    if (!ok()) detail::bad_result_access(std::get<1>(data_));
     return std::get<0>(data_);
   }
-  /// The value; throws BadResultAccess if an Error is held.
+  /// The value; if an Error is held, throws BadResultAccess (or, without exceptions, calls
+  /// the assert handler and aborts: see the file comment).
   T& value() & {
-    if (!ok()) throw BadResultAccess(std::get<1>(data_));
+    if (!ok()) detail::bad_result_access(std::get<1>(data_));
     return std::get<0>(data_);
   }
-  /// The value, moved out; throws BadResultAccess if an Error is held.
+  /// The value, moved out; if an Error is held, throws BadResultAccess (or, without
+  /// exceptions, calls the assert handler and aborts: see the file comment).
   T&& value() && {
-    if (!ok()) throw BadResultAccess(std::get<1>(data_));
+    if (!ok()) detail::bad_result_access(std::get<1>(data_));
     return std::get<0>(std::move(data_));
   }
   /// The value (unchecked: only after ok()).

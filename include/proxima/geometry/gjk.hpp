@@ -28,6 +28,7 @@
 
 #include <proxima/core/math.hpp>
 #include <proxima/core/tolerance.hpp>
+#include <proxima/geometry/gjk_variant.hpp>
 
 #include <algorithm>
 #include <array>
@@ -59,9 +60,6 @@ enum class Status : std::uint8_t {
   EarlyExit,      ///< boolean mode: a separating axis proves distance > margin
 };
 
-/// Which iteration to run.
-enum class Variant : std::uint8_t { Plain, Nesterov };
-
 /// Options of one GJK run.
 struct Settings {
   int max_iterations = 128;                 ///< iteration cap
@@ -70,22 +68,22 @@ struct Settings {
   /// Boolean mode: when >= 0, stop as soon as distance > margin is proven (EarlyExit) or
   /// distance <= margin is proven (Overlapping-or-Separated with distance <= margin).
   Real margin = Real(-1);
-  Variant variant = Variant::Plain;
+  Variant variant = Variant::Plain;  ///< plain or Nesterov-accelerated iteration (gjk_variant.hpp)
 };
 
-/// Outcome of gjk::distance.
-struct Result {
-  Status status = Status::Separated;
-  Real distance = Real(0);     ///< |v|: distance between the sets (0 when overlapping)
-  Vec3 v{Real(0)};             ///< closest point of D to the origin: point_a - point_b
-  Vec3 point_a{Real(0)};       ///< witness on A (common frame)
-  Vec3 point_b{Real(0)};       ///< witness on B (common frame)
-  Simplex simplex;             ///< final simplex (EPA starts from it)
-  Real lower_bound = Real(0);  ///< proven lower bound on the distance
+/// What gjk::distance found: how it stopped, the distance, witnesses and final simplex.
+struct Outcome {
+  Status status = Status::Separated;  ///< how the iteration stopped (the meaning of the fields below)
+  Real distance = Real(0);            ///< |v|: distance between the sets (0 when overlapping)
+  Vec3 v{Real(0)};                    ///< closest point of D to the origin: point_a - point_b
+  Vec3 point_a{Real(0)};              ///< witness on A (common frame)
+  Vec3 point_b{Real(0)};              ///< witness on B (common frame)
+  Simplex simplex;                    ///< final simplex (EPA starts from it)
+  Real lower_bound = Real(0);         ///< proven lower bound on the distance
   /// EarlyExit: the direction u (A to B, not unit) whose supporting plane of D proves the
   /// distance above the margin (support of D along u below -margin |u|); zero otherwise.
   Vec3 separating_axis{Real(0)};
-  int iterations = 0;
+  int iterations = 0;  ///< iterations of the main loop (at most Settings::max_iterations)
 };
 
 namespace detail {
@@ -270,8 +268,8 @@ inline Vec3 combine(const Simplex& s, int which) {
 /// vector, not necessarily unit). `initial_direction` is a guess of the direction from A to
 /// B (any non-zero vector; the warm-start axis). O(iterations x support cost).
 template <class SupportA, class SupportB>
-Result distance(SupportA& support_a, SupportB& support_b, const Vec3& initial_direction, const Settings& settings) {
-  Result r;
+Outcome distance(SupportA& support_a, SupportB& support_b, const Vec3& initial_direction, const Settings& settings) {
+  Outcome r;
   const auto make_vertex = [&](const Vec3& d) {  // support of D = A - B in direction d
     Vertex x;
     x.a = support_a(d);

@@ -21,7 +21,7 @@
 ///    centre, vertex minus origin...), so a primitive far from the world origin costs no
 ///    more than rounding at its own size; grazing rays are as well-conditioned as their
 ///    geometry allows (discriminants in the form (r - f)(r + f), stable quadratic roots).
-/// Each query is O(1), allocates nothing and never throws.
+/// Each query is O(1), allocates nothing and never throws (declared noexcept).
 
 #include <proxima/core/math.hpp>
 #include <proxima/geometry/aabb.hpp>
@@ -33,40 +33,41 @@ namespace proxima::geometry {
 
 /// Solid sphere (centre, radius > 0). Analytic quadratic, cancellation-safe form; the
 /// normal is (hit point - centre) / radius.
-std::optional<RayHit> ray_sphere(const Ray& ray, Real max_t, const Vec3& center, Real radius);
+std::optional<RayHit> ray_sphere(const Ray& ray, Real max_t, const Vec3& center, Real radius) noexcept;
 
 /// Solid axis-aligned box, slab method (Kay-Kajiya / Williams et al.); robust to direction
 /// components of +-0 and to flat boxes. The normal is the entry face's (one of them when
 /// entering through an edge or corner) and the point lies exactly on that face.
-std::optional<RayHit> ray_aabb(const Ray& ray, Real max_t, const Aabb& box);
+std::optional<RayHit> ray_aabb(const Ray& ray, Real max_t, const Aabb& box) noexcept;
 
 /// Solid oriented box: centre, `axes` (columns = unit, orthogonal box axes in this
 /// frame), half extents >= 0. The normal is +-the entry face's axis.
 std::optional<RayHit> ray_obb(const Ray& ray, Real max_t, const Vec3& center, const Mat3& axes,
-                              const Vec3& half_extents);
+                              const Vec3& half_extents) noexcept;
 
 /// Solid capsule: the points within `radius` of segment p0p1 (p0 == p1 gives a sphere).
 /// The normal is (hit point - nearest point of the segment) / radius.
-std::optional<RayHit> ray_capsule(const Ray& ray, Real max_t, const Vec3& p0, const Vec3& p1, Real radius);
+std::optional<RayHit> ray_capsule(const Ray& ray, Real max_t, const Vec3& p0, const Vec3& p1, Real radius) noexcept;
 
 /// Solid capped cylinder with axis p0p1 (p0 != p1) and `radius` > 0. The normal is
 /// radial on the side, -+(p1 - p0)/|p1 - p0| on the caps at p0 / p1.
-std::optional<RayHit> ray_cylinder(const Ray& ray, Real max_t, const Vec3& p0, const Vec3& p1, Real radius);
+std::optional<RayHit> ray_cylinder(const Ray& ray, Real max_t, const Vec3& p0, const Vec3& p1, Real radius) noexcept;
 
 /// Solid capped cone: `apex`, the centre of its base disc `base_center` (!= apex) and
 /// the base radius > 0. The normal is the slant surface's on the side, the axis direction
 /// (base_center - apex, normalised) on the base, and its opposite at the apex itself.
-std::optional<RayHit> ray_cone(const Ray& ray, Real max_t, const Vec3& apex, const Vec3& base_center, Real base_radius);
+std::optional<RayHit> ray_cone(const Ray& ray, Real max_t, const Vec3& apex, const Vec3& base_center,
+                               Real base_radius) noexcept;
 
 /// The plane n.x = d as a two-sided surface (`normal` unit; a non-unit normal describes
 /// the plane n.x = d all the same). An origin on the plane (e.g. a ray lying in it) hits
 /// at t = 0. The returned normal faces the ray origin (for an origin on the plane: faces
 /// against the direction).
-std::optional<RayHit> ray_plane(const Ray& ray, Real max_t, const Vec3& normal, Real offset);
+std::optional<RayHit> ray_plane(const Ray& ray, Real max_t, const Vec3& normal, Real offset) noexcept;
 
 /// The solid half-space n.x <= d (`normal` unit, or any non-zero vector); inside origin
 /// hits at t = 0; the normal of a surface hit is n / |n|.
-std::optional<RayHit> ray_halfspace(const Ray& ray, Real max_t, const Vec3& normal, Real offset);
+std::optional<RayHit> ray_halfspace(const Ray& ray, Real max_t, const Vec3& normal, Real offset) noexcept;
 
 /// Two-sided triangle abc, watertight (Woop, Benthin, Wald, "Watertight Ray/Triangle
 /// Intersection", JCGT 2013): a ray through a shared edge or vertex of a closed mesh hits
@@ -78,7 +79,7 @@ std::optional<RayHit> ray_halfspace(const Ray& ray, Real max_t, const Vec3& norm
 /// 16 epsilon of Real. A ray parallel to the triangle's plane (including one lying in it)
 /// misses, and a zero direction never hits. For many triangles against one ray (a mesh),
 /// prepare the ray once with TriangleRay. O(1).
-std::optional<RayHit> ray_triangle(const Ray& ray, Real max_t, const Vec3& a, const Vec3& b, const Vec3& c);
+std::optional<RayHit> ray_triangle(const Ray& ray, Real max_t, const Vec3& a, const Vec3& b, const Vec3& c) noexcept;
 
 /// A ray prepared for the watertight triangle test: the axis permutation and shear that
 /// map the direction to +z, with the direction scaled by a power of two so that the shear
@@ -96,10 +97,11 @@ struct TriangleRay {
   TriangleRay() = default;
 
   /// Prepares `ray` (any direction; zero or non-finite ones give valid == false).
-  static TriangleRay prepare(const Ray& ray);
+  static TriangleRay prepare(const Ray& ray) noexcept;
 };
 
 /// Watertight ray-triangle test with a prepared ray; same answer as the overload above.
-std::optional<RayHit> ray_triangle(const TriangleRay& ray, Real max_t, const Vec3& a, const Vec3& b, const Vec3& c);
+std::optional<RayHit> ray_triangle(const TriangleRay& ray, Real max_t, const Vec3& a, const Vec3& b,
+                                   const Vec3& c) noexcept;
 
 }  // namespace proxima::geometry

@@ -11,6 +11,7 @@
 
 #include <proxima/core/math.hpp>
 #include <proxima/core/sub_shape_id.hpp>
+#include <proxima/geometry/gjk_variant.hpp>
 
 #include <array>
 #include <cstdint>
@@ -38,13 +39,6 @@ enum class PairMethod : std::uint8_t {
   Support,   ///< half-space against a support mapping
 };
 
-/// Which GJK iteration to run.
-enum class GjkVariant : std::uint8_t {
-  Plain,     ///< classic GJK with the signed-volumes sub-simplex solver
-  Nesterov,  ///< Nesterov-accelerated GJK (Montaut et al., RSS 2022), restarts to plain
-             ///< steps when momentum stops helping
-};
-
 /// Options for every narrow-phase query. Defaults suit a real-time world in metres.
 struct PairRequest {
   /// Largest number of contact points `collide` reports (1..4).
@@ -59,7 +53,7 @@ struct PairRequest {
   /// Largest number of faces EPA may create before it stops with status Degenerate.
   int max_epa_faces = 256;
   /// The GJK iteration to run for distance and boolean queries.
-  GjkVariant gjk = GjkVariant::Plain;
+  gjk::Variant gjk = gjk::Variant::Plain;
 };
 
 /// Warm-start data kept by the caller between frames for one ordered pair (A, B). Pass the

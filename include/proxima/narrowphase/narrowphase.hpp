@@ -27,6 +27,8 @@
 ///   - a compound against anything: its BVH walked (two compounds: both together), each
 ///     child answered at its pose, nested compounds included.
 /// The PairCache warm-starts convex pairs; mesh and compound pairs do not use it yet.
+/// The four entry points are not noexcept: mesh and compound pairs keep per-thread scratch
+/// lists that may allocate (and the collector is the caller's code).
 ///
 /// Cost: one table lookup to reach the pair's routine; see bench/RESULTS.md for timings.
 #include <proxima/core/transform.hpp>

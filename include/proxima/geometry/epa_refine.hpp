@@ -1,0 +1,441 @@
+#pragma once
+/// @file epa_refine.hpp
+/// Refinement of a penetration normal on the support function of D = A - B. The depth of
+/// overlapping convex sets is the minimum over unit n of h(n) = n . s_D(n) (the distance from
+/// the origin to D's boundary; van den Bergen, Collision Detection in Interactive 3D
+/// Environments, 2004), a smooth function of n where D is strictly convex: its gradient on
+/// the sphere is the part of s_D(n) across n and its Hessian the support map's Jacobian
+/// minus h(n). EPA (epa.hpp) converges only linearly on curved supports; a few Newton steps
+/// on h from EPA's normal reach the precision's accuracy.
+///
+/// Steps:
+///   1. at the current n: a tangent basis (Duff et al., "Building an orthonormal basis,
+///      revisited", JCGT 2017), the gradient of h, and its Hessian by forward differences of
+///      the support (two more support queries); a gradient within rounding is a minimum;
+///   2. a trust-region step (Nocedal, Wright, Numerical Optimization, 2006, ch. 4): the
+///      Newton step on the Hessian shifted to positive definite (Levenberg-Marquardt),
+///      clipped to the radius; after a failed Newton step, a plain gradient step;
+///   3. keep the trial normal only when it lowers h beyond rounding (then widen the radius);
+///      else try the gradient, then shrink the radius; stop at a Newton step that predicts
+///      no gain beyond rounding or when no step within reach can gain more than a settle
+///      threshold (a kink of h, where D has an edge or a ruled side);
+///   4. witnesses: where D's support along n is a face or an edge, a small GJK in the plane
+///      across n (Gilbert, Johnson, Keerthi, IEEE J. Robotics and Automation 1988) over
+///      supports tipped by sqrt(eps) finds the feature's point nearest the line along n; its
+///      convex weights give points of A and B, moved to obey support_a - support_b = depth n.
+/// Each kept step lowers h, so the answer is an upper bound of the depth no worse than the
+/// start. Header-only, templated on the support functors: no virtual call, no allocation,
+/// never NaN (a start of zero length uses +z). O(max_steps x 3 support queries).
+
+#include <proxima/core/math.hpp>
+#include <proxima/core/tolerance.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+
+namespace proxima::epa {
+
+/// What epa::refine found.
+struct Refinement {
+  bool improved = false;                   ///< a normal with a smaller support distance than the start was found
+  bool converged = false;                  ///< the last Newton step changed the support distance by rounding only
+  Real depth = Real(0);                    ///< support distance of D along `normal`: an upper bound of the depth
+  Vec3 normal{Real(0), Real(0), Real(1)};  ///< unit, from A to B
+  Vec3 support_a{Real(0)};                 ///< witness on A: support points of A along normal (tipped), combined
+  Vec3 support_b{Real(0)};     ///< witness on B: the same for B along -normal; support_a - support_b = depth normal
+  Vec3 tangential{Real(0)};    ///< D's support along normal minus depth * normal: 0 at a smooth minimum
+  Real witness_gap = Real(0);  ///< distance of the combined witnesses from the exact relation before it was enforced
+  int iterations = 0;          ///< support-pair queries made
+};
+
+namespace refine_detail {
+
+/// v scaled to unit length (v non-zero).
+inline Vec3 unit(const Vec3& v) { return v / std::sqrt(glm::dot(v, v)); }
+
+/// Two unit vectors that complete unit n to an orthonormal basis (Duff et al. 2017).
+struct TangentBasis {
+  Vec3 t1;  ///< first tangent
+  Vec3 t2;  ///< second tangent
+};
+
+/// The tangent basis of unit n, continuous except across n.z = 0 from below.
+inline TangentBasis tangent_basis(const Vec3& n) {
+  const Real sign = std::copysign(Real(1), n.z);
+  const Real q = Real(-1) / (sign + n.z);
+  const Real m = n.x * n.y * q;
+  return {Vec3(Real(1) + sign * n.x * n.x * q, sign * m, -sign * n.x), Vec3(m, sign + n.y * n.y * q, -n.y)};
+}
+
+/// A normal with D's support along it: the point of the descent.
+struct SupportSample {
+  Vec3 n;  ///< unit normal
+  Vec3 a;  ///< support point of A along n
+  Vec3 b;  ///< support point of B along -n
+  Vec3 p;  ///< a - b: D's support along n
+  Real h;  ///< n . p: the support distance
+};
+
+/// D's support along unit n.
+template <class SupportA, class SupportB>
+SupportSample sample(SupportA& support_a, SupportB& support_b, const Vec3& n) {
+  const Vec3 a = support_a(n);
+  const Vec3 b = support_b(-n);
+  const Vec3 p = a - b;
+  return {n, a, b, p, glm::dot(n, p)};
+}
+
+/// Quadratic model of h at a sample, in the tangent plane (coordinates along t1, t2).
+struct TangentModel {
+  TangentBasis basis{Vec3(Real(0)), Vec3(Real(0))};  ///< the plane's axes
+  Real g1 = Real(0);                                 ///< gradient along t1
+  Real g2 = Real(0);                                 ///< gradient along t2
+  Real h11 = Real(0);                                ///< Hessian
+  Real h12 = Real(0);                                ///< ...
+  Real h22 = Real(0);                                ///< ...
+};
+
+/// The tolerances of one refinement, proportional to the size of the problem.
+struct RefineTolerances {
+  Real scale;   ///< size of the problem (> 0)
+  Real eta;     ///< forward-difference step (radians): truncation ~eta against rounding ~eps/eta
+  Real flat;    ///< a change of h within rounding
+  Real settle;  ///< least gain worth a step: below it, a shrinking radius stops
+};
+
+/// The tolerances for a problem of size `length_scale`.
+inline RefineTolerances refine_tolerances(Real length_scale) {
+  const Real scale = std::max(length_scale, std::numeric_limits<Real>::min());
+  return {scale, Real(4) * std::cbrt(kEpsilon), Real(8) * kEpsilon * scale,
+          std::sqrt(kEpsilon) * std::sqrt(std::sqrt(kEpsilon)) * scale};
+}
+
+/// Step 1a: tangent basis and gradient of h at `at`.
+inline TangentModel gradient_at(const SupportSample& at) {
+  TangentModel m;
+  m.basis = tangent_basis(at.n);
+  m.g1 = glm::dot(m.basis.t1, at.p);
+  m.g2 = glm::dot(m.basis.t2, at.p);
+  return m;
+}
+
+/// Step 1b: the Hessian of h at `at` by forward differences along the tangents (two support
+/// pairs, counted in `queries`).
+template <class SupportA, class SupportB>
+void estimate_hessian(SupportA& support_a, SupportB& support_b, const SupportSample& at, Real eta, TangentModel& m,
+                      int& queries) {
+  const Vec3& t1 = m.basis.t1;
+  const Vec3& t2 = m.basis.t2;
+  const Vec3 n1 = unit(at.n + eta * t1);
+  const Vec3 n2 = unit(at.n + eta * t2);
+  const Vec3 p1 = support_a(n1) - support_b(-n1);
+  const Vec3 p2 = support_a(n2) - support_b(-n2);
+  queries += 2;
+  m.h11 = glm::dot(t1, p1 - at.p) / eta - at.h;
+  m.h22 = glm::dot(t2, p2 - at.p) / eta - at.h;
+  m.h12 = Real(0.5) * (glm::dot(t2, p1 - at.p) + glm::dot(t1, p2 - at.p)) / eta;
+}
+
+/// A step in the tangent plane.
+struct TangentStep {
+  Real d1;            ///< along t1 (radians)
+  Real d2;            ///< along t2
+  Real len;           ///< its length
+  bool newton_exact;  ///< a full Newton step on a positive definite Hessian predicting no gain beyond rounding
+};
+
+/// Step 2: the Newton step of the model on its Hessian shifted to positive definite
+/// (Levenberg-Marquardt), clipped to `radius`; a gradient step of length `radius` when
+/// `steepest` or when the Newton step is zero or not finite.
+inline TangentStep trust_region_step(const TangentModel& m, Real radius, bool steepest, Real flat) {
+  const Real tr = Real(0.5) * (m.h11 + m.h22);
+  const Real disc = std::sqrt(Real(0.25) * (m.h11 - m.h22) * (m.h11 - m.h22) + m.h12 * m.h12);
+  const Real lambda_min = tr - disc;
+  const Real floor = Real(1e-3) * std::max(std::abs(tr) + disc, flat);
+  const Real mu = lambda_min < floor ? floor - lambda_min : Real(0);
+  const Real k11 = m.h11 + mu;
+  const Real k22 = m.h22 + mu;
+  const Real det = k11 * k22 - m.h12 * m.h12;
+  TangentStep s{Real(0), Real(0), Real(0), false};
+  if (det > Real(0) && std::isfinite(det)) {
+    s.d1 = -(k22 * m.g1 - m.h12 * m.g2) / det;
+    s.d2 = -(k11 * m.g2 - m.h12 * m.g1) / det;
+  }
+  const Real gl = std::sqrt(m.g1 * m.g1 + m.g2 * m.g2);
+  s.len = std::sqrt(s.d1 * s.d1 + s.d2 * s.d2);
+  s.newton_exact = mu == Real(0) && s.len <= radius && Real(-0.5) * (m.g1 * s.d1 + m.g2 * s.d2) <= flat;
+  if (steepest || !(s.len > Real(0)) || !std::isfinite(s.len)) {
+    s.d1 = -m.g1 / gl * radius;
+    s.d2 = -m.g2 / gl * radius;
+    s.len = radius;
+  } else if (s.len > radius) {
+    s.d1 *= radius / s.len;
+    s.d2 *= radius / s.len;
+    s.len = radius;
+  }
+  return s;
+}
+
+/// State of the trust-region descent.
+struct Descent {
+  SupportSample at;          ///< the best normal so far
+  TangentModel model;        ///< the model at `at` (valid when `fresh`)
+  Real radius = Real(0.25);  ///< trust radius (radians)
+  bool fresh = false;        ///< the model belongs to `at`
+  bool steepest = false;     ///< the next trial is a gradient step (the Newton one failed)
+  bool converged = false;    ///< stopped at a minimum (within rounding) or a settled kink
+  int queries = 0;           ///< support-pair queries made
+};
+
+/// Step 3: takes the trial sample when it lowers h beyond rounding (a flat stretch of h
+/// stays put), else falls back from Newton to gradient to a smaller radius. True when the
+/// descent is done.
+inline bool accept_or_shrink(Descent& d, const SupportSample& trial, const TangentStep& step,
+                             const RefineTolerances& tol) {
+  if (trial.h < d.at.h - tol.flat) {
+    d.at = trial;
+    d.fresh = false;
+    d.steepest = false;
+    d.radius = std::min(Real(0.5), std::max(d.radius, Real(2) * step.len));
+    return false;
+  }
+  if (step.newton_exact && !d.steepest) {
+    d.converged = true;
+    return true;
+  }
+  if (!d.steepest) {
+    d.steepest = true;  // at a kink of h the Newton model misleads: try the plain gradient
+    return false;
+  }
+  d.steepest = false;
+  d.radius = Real(0.25) * step.len;
+  if (d.radius * tol.scale <= tol.settle) {  // no step within reach can gain more than `settle`
+    d.converged = true;
+    return true;
+  }
+  return false;
+}
+
+/// Steps 1-3: the trust-region Newton descent of h from `start`, at most `max_steps` trials.
+template <class SupportA, class SupportB>
+Descent descend(SupportA& support_a, SupportB& support_b, const SupportSample& start, const RefineTolerances& tol,
+                int max_steps) {
+  Descent d;
+  d.at = start;
+  d.queries = 1;
+  for (int step = 0; step < max_steps; ++step) {
+    if (!d.fresh) {
+      d.model = gradient_at(d.at);
+      if (std::sqrt(d.model.g1 * d.model.g1 + d.model.g2 * d.model.g2) <= tol.flat) {
+        d.converged = true;
+        break;
+      }
+      estimate_hessian(support_a, support_b, d.at, tol.eta, d.model, d.queries);
+      d.fresh = true;
+    }
+    const TangentStep s = trust_region_step(d.model, d.radius, d.steepest, tol.flat);
+    const Vec3 n_try = unit(d.at.n + s.d1 * d.model.basis.t1 + s.d2 * d.model.basis.t2);
+    const SupportSample trial = sample(support_a, support_b, n_try);
+    ++d.queries;
+    if (accept_or_shrink(d, trial, s, tol)) break;
+  }
+  return d;
+}
+
+/// Up to three kept support pairs plus one new one, with their coordinates (u, v) in the
+/// plane across n and their convex weights.
+struct TangentPoints {
+  std::array<Vec3, 4> pa{};   ///< support points of A
+  std::array<Vec3, 4> pb{};   ///< support points of B
+  std::array<Real, 4> u{};    ///< coordinate of pa - pb along t1
+  std::array<Real, 4> v{};    ///< ... along t2
+  std::array<Real, 4> lam{};  ///< weights of the kept points (sum 1)
+  int count = 0;              ///< kept points
+};
+
+/// The best candidate so far of nearest_hull_weights: weights over the points and the
+/// squared norm of the point they make.
+struct NearestCandidate {
+  std::array<Real, 4> weights{};                       ///< convex weights
+  Real norm2 = std::numeric_limits<Real>::infinity();  ///< |sum weights x (u, v)|^2
+
+  /// Keeps `l` when its point is nearer the origin than the best so far.
+  void consider(const TangentPoints& t, const std::array<Real, 4>& l) {
+    Real x = Real(0);
+    Real y = Real(0);
+    for (std::size_t c = 0; c < 4; ++c) {
+      x += l[c] * t.u[c];
+      y += l[c] * t.v[c];
+    }
+    const Real nn = x * x + y * y;
+    if (nn < norm2) {
+      norm2 = nn;
+      weights = l;
+    }
+  }
+};
+
+/// Segment (i, j): the weights of its point nearest the origin when that point lies strictly
+/// inside it.
+inline void consider_segment(const TangentPoints& t, std::size_t i, std::size_t j, NearestCandidate& best) {
+  const auto& u = t.u;
+  const auto& v = t.v;
+  const Real eu = u[j] - u[i];
+  const Real ev = v[j] - v[i];
+  const Real ee = eu * eu + ev * ev;
+  if (!(ee > Real(0))) return;
+  const Real s = -(u[i] * eu + v[i] * ev) / ee;
+  if (!(s > Real(0) && s < Real(1))) return;
+  std::array<Real, 4> w{};
+  w[i] = Real(1) - s;
+  w[j] = s;
+  best.consider(t, w);
+}
+
+/// Triangle (i, j, k): the barycentric weights of the origin when it lies inside.
+inline void consider_triangle(const TangentPoints& t, std::size_t i, std::size_t j, std::size_t k,
+                              NearestCandidate& best) {
+  const auto& u = t.u;
+  const auto& v = t.v;
+  const Real den = (u[j] - u[i]) * (v[k] - v[i]) - (v[j] - v[i]) * (u[k] - u[i]);
+  if (!(std::abs(den) > Real(0))) return;
+  const Real li = (u[j] * v[k] - v[j] * u[k]) / den;
+  const Real lj = (u[k] * v[i] - v[k] * u[i]) / den;
+  const Real lk = Real(1) - li - lj;
+  if (!(li >= Real(0) && lj >= Real(0) && lk >= Real(0))) return;
+  std::array<Real, 4> w{};
+  w[i] = li;
+  w[j] = lj;
+  w[k] = lk;
+  best.consider(t, w);
+}
+
+/// Weights (over the first `total` points) of the point of their convex hull nearest the
+/// origin of the (u, v) plane: the best of every vertex, segment and triangle.
+inline std::array<Real, 4> nearest_hull_weights(const TangentPoints& t, int total) {
+  NearestCandidate best;
+  const auto n = static_cast<std::size_t>(total);
+  for (std::size_t i = 0; i < n; ++i) {
+    std::array<Real, 4> vertex{};
+    vertex[i] = Real(1);
+    best.consider(t, vertex);
+    for (std::size_t j = i + 1; j < n; ++j) {
+      consider_segment(t, i, j, best);
+      for (std::size_t k = j + 1; k < n; ++k) consider_triangle(t, i, j, k, best);
+    }
+  }
+  return best.weights;
+}
+
+/// Keeps the points of positive weight (packed to the front, at most three) and returns
+/// their weighted coordinates in mu, mv.
+inline void keep_weighted(TangentPoints& t, const std::array<Real, 4>& best, int total, Real& mu, Real& mv) {
+  t.count = 0;
+  mu = Real(0);
+  mv = Real(0);
+  for (std::size_t c = 0; c < static_cast<std::size_t>(total); ++c) {
+    if (!(best[c] > Real(0))) continue;
+    const auto o = static_cast<std::size_t>(t.count++);
+    t.pa[o] = t.pa[c];
+    t.pb[o] = t.pb[c];
+    t.u[o] = t.u[c];
+    t.v[o] = t.v[c];
+    t.lam[o] = best[c];
+    mu += best[c] * t.u[c];
+    mv += best[c] * t.v[c];
+  }
+  for (auto c = static_cast<std::size_t>(t.count); c < 4; ++c) t.lam[c] = Real(0);
+}
+
+/// Step 4a: D's support feature along `at.n` (a face or edge of D: a cylinder's cap or side
+/// against a point) as convex weights over support pairs. The feature's own support in a
+/// tangent direction e is D's support along n tipped by sqrt(eps) towards e, so a small GJK
+/// in the tangent plane (at most 16 support pairs, counted in `queries`) finds the feature's
+/// point nearest the line along n.
+template <class SupportA, class SupportB>
+TangentPoints feature_points(SupportA& support_a, SupportB& support_b, const SupportSample& at, Real scale,
+                             int& queries) {
+  const Vec3& n = at.n;
+  const TangentBasis tb = tangent_basis(n);
+  const Real tip = std::sqrt(kEpsilon);
+  TangentPoints t;
+  t.pa[0] = at.a;
+  t.pb[0] = at.b;
+  t.u[0] = glm::dot(tb.t1, at.p);
+  t.v[0] = glm::dot(tb.t2, at.p);
+  t.lam[0] = Real(1);
+  t.count = 1;
+  Real mu = t.u[0];
+  Real mv = t.v[0];
+  const Real close = Real(4) * kEpsilon * scale;
+  for (int it = 0; it < 16; ++it) {
+    const Real mm = mu * mu + mv * mv;
+    if (std::sqrt(mm) <= close) break;
+    const Real ml = std::sqrt(mm);
+    const Vec3 d = unit(n - tip * (mu / ml * tb.t1 + mv / ml * tb.t2));
+    const Vec3 na = support_a(d);
+    const Vec3 nb = support_b(-d);
+    ++queries;
+    const Vec3 w = na - nb;
+    const Real nu = glm::dot(tb.t1, w);
+    const Real nv = glm::dot(tb.t2, w);
+    if (mm - (mu * nu + mv * nv) <= close * ml) break;  // no progress towards the line
+    const auto k = static_cast<std::size_t>(t.count);
+    t.pa[k] = na;
+    t.pb[k] = nb;
+    t.u[k] = nu;
+    t.v[k] = nv;
+    const int total = t.count + 1;
+    keep_weighted(t, nearest_hull_weights(t, total), total, mu, mv);
+    if (t.count >= 3) break;  // the origin's projection is inside a triangle: done
+  }
+  return t;
+}
+
+/// Step 4b: the witnesses: the feature points' weights applied to A's and B's support
+/// points, moved half each to obey support_a - support_b = h n.
+template <class SupportA, class SupportB>
+void tangent_witnesses(SupportA& support_a, SupportB& support_b, const SupportSample& at, Real scale, Refinement& r) {
+  const TangentPoints t = feature_points(support_a, support_b, at, scale, r.iterations);
+  Vec3 wa(Real(0));
+  Vec3 wb(Real(0));
+  for (std::size_t c = 0; c < static_cast<std::size_t>(t.count); ++c) {
+    wa += t.lam[c] * t.pa[c];
+    wb += t.lam[c] * t.pb[c];
+  }
+  const Vec3 residual = (wa - wb) - at.h * at.n;
+  r.witness_gap = glm::length(residual);
+  r.support_a = wa - Real(0.5) * residual;
+  r.support_b = wb + Real(0.5) * residual;
+}
+
+}  // namespace refine_detail
+
+/// Refines a penetration normal on the support function of D = A - B (see the file
+/// comment): trust-region Newton steps from `start_normal`, at most `max_steps` trials, then
+/// witnesses on D's support feature. `length_scale` (> 0) is the size of the problem, for
+/// the rounding thresholds. Never NaN (a start of zero length uses +z).
+template <class SupportA, class SupportB>
+Refinement refine(SupportA& support_a, SupportB& support_b, const Vec3& start_normal, Real length_scale,
+                  int max_steps = 96) {
+  namespace rd = refine_detail;
+  const rd::RefineTolerances tol = rd::refine_tolerances(length_scale);
+  const Real l2 = glm::dot(start_normal, start_normal);
+  const Vec3 n0 = l2 > Real(0) && std::isfinite(l2) ? start_normal / std::sqrt(l2) : Vec3(Real(0), Real(0), Real(1));
+  const rd::SupportSample start = rd::sample(support_a, support_b, n0);
+  const rd::Descent d = rd::descend(support_a, support_b, start, tol, max_steps);
+  Refinement r;
+  r.iterations = d.queries;
+  r.converged = d.converged;
+  r.improved = d.at.h < start.h;
+  r.depth = d.at.h;
+  r.normal = d.at.n;
+  r.tangential = d.at.p - d.at.h * d.at.n;
+  rd::tangent_witnesses(support_a, support_b, d.at, tol.scale, r);
+  return r;
+}
+
+}  // namespace proxima::epa

@@ -1,0 +1,189 @@
+// The stages of the generic distance's ladder (narrowphase/generic_distance.hpp): each
+// stage answers the cases it is for, with the method that goes with it; the staged call
+// returns the same answer as generic_distance; the two last-resort stages, which the ladder
+// reaches only when EPA fails on curved cores, answer by their contract when called directly.
+#include <gtest/gtest.h>
+
+#include <proxima/shapes/shape.hpp>
+
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <string>
+
+#include "gjk_reference.hpp"
+#include "narrowphase/generic_distance.hpp"
+#include "support/random.hpp"
+
+namespace proxima {
+namespace {
+
+using narrow::generic_distance_staged;
+using narrow::GenericStage;
+
+Real tol_at(Real s) { return (sizeof(Real) == 4 ? Real(2e-4) : Real(1e-9)) * std::max(Real(1), s); }
+
+Transform at(const Vec3& position) {
+  Transform t;
+  t.position = position;
+  return t;
+}
+
+// A pose turned off the axes, so that no support of the boxes below is ambiguous.
+Transform tilted(const Vec3& position) {
+  Transform t = at(position);
+  t.rotation = glm::angleAxis(Real(0.5), glm::normalize(Vec3(1, 2, 3)));
+  return t;
+}
+
+// The algorithm each stage's answer reports.
+PairMethod method_of(GenericStage s) {
+  switch (s) {
+    case GenericStage::SatAtGjkCap:
+    case GenericStage::SatFallback: return PairMethod::Sat;
+    case GenericStage::Epa:
+    case GenericStage::InflatedEpa:
+    case GenericStage::CoreRefinement: return PairMethod::Epa;
+    case GenericStage::GjkDistance:
+    case GenericStage::GjkCoreContact:
+    case GenericStage::NotRun: return PairMethod::Gjk;
+  }
+  return PairMethod::Analytic;
+}
+
+bool same_bits(const DistanceResult& x, const DistanceResult& y) {
+  return std::memcmp(&x.signed_distance, &y.signed_distance, sizeof(Real)) == 0 &&
+         std::memcmp(&x.point_a, &y.point_a, sizeof(Vec3)) == 0 &&
+         std::memcmp(&x.point_b, &y.point_b, sizeof(Vec3)) == 0 &&
+         std::memcmp(&x.normal, &y.normal, sizeof(Vec3)) == 0 && x.status == y.status && x.method == y.method &&
+         x.iterations == y.iterations;
+}
+
+const Box& cube() {
+  static const Box box = Box::create(Vec3(0.5)).value();
+  return box;
+}
+
+TEST(GenericStages, SeparatedCoresAnswerByGjkDistance) {
+  const auto s = generic_distance_staged(cube(), Transform{}, cube(), at(Vec3(3, 0, 0)), {}, nullptr);
+  EXPECT_EQ(s.stage, GenericStage::GjkDistance);
+  EXPECT_EQ(s.result.method, PairMethod::Gjk);
+  EXPECT_NEAR(s.result.signed_distance, 2, tol_at(3));
+}
+
+TEST(GenericStages, OverlappingCoresAnswerByEpa) {
+  const auto s = generic_distance_staged(cube(), Transform{}, cube(), tilted(Vec3(0.3, 0.1, 0.05)), {}, nullptr);
+  EXPECT_EQ(s.stage, GenericStage::Epa);
+  EXPECT_EQ(s.result.method, PairMethod::Epa);
+  EXPECT_LT(s.result.signed_distance, Real(-0.5));
+}
+
+TEST(GenericStages, PointCoreInsideCylinderAnswersByInflatedEpa) {
+  // A point inside the cylinder: GJK's simplex never holds the origin in a tetrahedron.
+  const Cylinder cyl = Cylinder::create(Real(0.4), Real(0.5)).value();
+  const Point point = Point::create().value();
+  const auto s = generic_distance_staged(cyl, Transform{}, point, at(Vec3(0.1, 0, 0)), {}, nullptr);
+  EXPECT_EQ(s.stage, GenericStage::InflatedEpa);
+  EXPECT_EQ(s.result.method, PairMethod::Epa);
+  EXPECT_NEAR(s.result.signed_distance, -0.3, Real(2e-3));
+}
+
+TEST(GenericStages, PolytopesUnderStarvedGjkOrEpaAnswerBySat) {
+  PairRequest one_step;
+  one_step.max_iterations = 1;  // GJK stops at its cap: the SAT proves the overlap
+  const Transform pose_b = tilted(Vec3(0.3, 0.1, 0.05));
+  const DistanceResult exact = narrow::generic_distance(cube(), Transform{}, cube(), pose_b, {}, nullptr);
+  const auto capped = generic_distance_staged(cube(), Transform{}, cube(), pose_b, one_step, nullptr);
+  EXPECT_EQ(capped.stage, GenericStage::SatAtGjkCap);
+  EXPECT_EQ(capped.result.method, PairMethod::Sat);
+  EXPECT_NEAR(capped.result.signed_distance, exact.signed_distance, tol_at(1));
+  PairRequest four_faces;
+  four_faces.max_epa_faces = 4;  // EPA cannot grow past its start: the SAT's depth
+  const auto starved = generic_distance_staged(cube(), Transform{}, cube(), pose_b, four_faces, nullptr);
+  EXPECT_EQ(starved.stage, GenericStage::SatFallback);
+  EXPECT_EQ(starved.result.method, PairMethod::Sat);
+  EXPECT_NEAR(starved.result.signed_distance, exact.signed_distance, tol_at(1));
+}
+
+TEST(GenericStages, NonFinitePoseRunsNoStage) {
+  const Real nan = std::numeric_limits<Real>::quiet_NaN();
+  const auto s = generic_distance_staged(cube(), at(Vec3(nan, 0, 0)), cube(), Transform{}, {}, nullptr);
+  EXPECT_EQ(s.stage, GenericStage::NotRun);
+  EXPECT_EQ(s.result.status, PairStatus::InvalidInput);
+}
+
+// Every pair kind under several requests: the staged answer is generic_distance's, bit for
+// bit, and its method is the stage's.
+template <class A, class B>
+void check_staged(test::Random& rng, const A& a, const B& b, const char* what) {
+  PairRequest tight;
+  tight.max_epa_faces = 6;
+  tight.max_iterations = 3;
+  PairRequest nesterov;
+  nesterov.gjk = gjk::Variant::Nesterov;
+  const PairRequest requests[3] = {PairRequest{}, tight, nesterov};
+  for (int t = 0; t < 60; ++t) {
+    const Transform pa = rng.pose(Real(0.4));
+    const Transform pb = rng.pose(Real(0.4));
+    for (const PairRequest& request : requests) {
+      const auto s = generic_distance_staged(a, pa, b, pb, request, nullptr);
+      const DistanceResult d = narrow::generic_distance(a, pa, b, pb, request, nullptr);
+      EXPECT_TRUE(same_bits(s.result, d)) << what << " case " << t;
+      EXPECT_NE(s.stage, GenericStage::NotRun) << what << " case " << t;
+      EXPECT_EQ(s.result.method, method_of(s.stage)) << what << " case " << t << " stage " << to_string(s.stage);
+    }
+  }
+}
+
+TEST(GenericStages, StagedAnswerIsGenericDistanceAndMethodMatchesStage) {
+  test::Random rng(31);
+  const ConvexHull hull = test::gjkref::random_hull(rng, 24, Real(0.5));
+  const Box box = Box::create(Vec3(0.5, 0.3, 0.2)).value();
+  const Cylinder cyl = Cylinder::create(Real(0.4), Real(0.5)).value();
+  const Ellipsoid ell = Ellipsoid::create(Vec3(0.5, 0.35, 0.25)).value();
+  const Capsule cap = Capsule::create(Real(0.2), Real(0.5)).value();
+  const Segment seg = Segment::create(Vec3(-0.5, 0, 0), Vec3(0.5, 0.1, 0)).value();
+  const Triangle tri = Triangle::create(Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)).value();
+  check_staged(rng, hull, hull, "hull-hull");
+  check_staged(rng, box, hull, "box-hull");
+  check_staged(rng, cyl, ell, "cylinder-ellipsoid");
+  check_staged(rng, cap, cyl, "capsule-cylinder");
+  check_staged(rng, seg, tri, "segment-triangle");
+  check_staged(rng, tri, box, "triangle-box");
+}
+
+// The last two stages, on a point lying on a segment: D = core A - core B is a segment
+// through the origin, too thin for EPA.
+TEST(GenericStages, LastResortStagesAnswerByTheirContract) {
+  const Point point = Point::create().value();
+  const Segment seg = Segment::create(Vec3(-0.5, 0, 0), Vec3(0.5, 0, 0)).value();
+  const Transform pose_b = at(Vec3(0.2, 0, 0));
+  const PairRequest request;
+  narrow::generic_detail::PairSetup<Point, Segment> setup(point, Transform{}, seg, pose_b, request, nullptr);
+  const Vec3 start = narrow::generic_detail::unit_or(Vec3(0.3, 0.4, 0.5), setup.axis);
+  {
+    // The Newton descent of D's support function finds a normal across the segment.
+    narrow::generic_detail::Ladder<Point, Segment> ladder(point, seg, setup, request);
+    ASSERT_TRUE(narrow::generic_detail::core_refinement(ladder, start));
+    const auto& ans = ladder.ans;
+    EXPECT_EQ(ans.stage, GenericStage::CoreRefinement);
+    EXPECT_EQ(ans.method, PairMethod::Epa);
+    EXPECT_NEAR(ans.signed_distance, 0, tol_at(1));
+    EXPECT_NEAR(ans.normal.x, 0, Real(1e-3));
+    EXPECT_NEAR(glm::length(ans.normal), 1, tol_at(1));
+  }
+  {
+    // GJK's core contact: the cores' distance along the given normal, status Degenerate.
+    narrow::generic_detail::Ladder<Point, Segment> ladder(point, seg, setup, request);
+    narrow::generic_detail::gjk_core_contact(ladder, start);
+    const auto& ans = ladder.ans;
+    EXPECT_EQ(ans.stage, GenericStage::GjkCoreContact);
+    EXPECT_EQ(ans.method, PairMethod::Gjk);
+    EXPECT_EQ(ans.status, PairStatus::Degenerate);
+    EXPECT_EQ(ans.signed_distance, ladder.core.distance);
+    EXPECT_LT(glm::length(ans.point_b - (ans.point_a + ans.signed_distance * ans.normal)), tol_at(1));
+  }
+}
+
+}  // namespace
+}  // namespace proxima
