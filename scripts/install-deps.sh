@@ -13,7 +13,7 @@ packages=(
   libassimp-dev                      # the proxima tool: mesh files (OBJ, STL, PLY, glTF)
   libgtest-dev libgmock-dev          # tests
   libcgal-dev                        # exact reference computations in tests
-  clang-format                       # the formatting test
+  clang clang-format                 # the sanitizer build (clang), the formatting test
   libbenchmark-dev                   # benchmarks
   libtbb-dev                         # the oneTBB executor example (examples/tbb_executor.cpp)
   # Peer libraries: references for the cross-validation tests and the side-by-side

@@ -17,7 +17,8 @@ if command -v ccache >/dev/null; then
 fi
 
 # Open defects (tests/known_failures.txt): an exclusion regex of exact ctest names for one
-# precision, printed so that nobody mistakes the run for a clean one.
+# build (float, double, or asan: the clang sanitizer build), printed so that nobody mistakes
+# the run for a clean one.
 known_failures() {
   local precision=$1 names
   names=$(awk -v p="${precision}" '$1 == p { print $2 }' tests/known_failures.txt)
@@ -43,7 +44,7 @@ build_and_test() {
 }
 
 status=0
-build_and_test ci-asan float -DPROXIMA_TEST_PACKAGE=OFF || status=1
+build_and_test ci-asan asan -DPROXIMA_TEST_PACKAGE=OFF || status=1
 build_and_test ci-double double -DPROXIMA_TEST_PACKAGE=OFF -DPROXIMA_BUILD_BENCH=OFF || status=1
 build_and_test ci-release float || status=1
 exit "${status}"

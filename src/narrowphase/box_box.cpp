@@ -259,7 +259,7 @@ void edge_separations(const BoxPair& p, SatResult& s, Real floor = -kInfinity) {
       const Real ee = e * e;
       const Real ff = floor2 * len2;
       const bool may_exceed = all | (below ? ((e >= Real(0)) | (ee < ff)) : ((e > Real(0)) & (ee > ff)));
-      s.sep[6 + 3 * i + j] = (len2 > kParallelSine2) & may_exceed ? e / std::sqrt(len2) : -kInfinity;
+      s.sep[6 + 3 * i + j] = ((len2 > kParallelSine2) & may_exceed) ? e / std::sqrt(len2) : -kInfinity;
     }
   }
   Real edge_sep = -kInfinity;

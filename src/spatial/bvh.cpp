@@ -62,8 +62,8 @@ struct Bin {
   std::uint32_t count;
 };
 
-inline Real fmin_(Real a, Real b) { return b < a ? b : a; }
-inline Real fmax_(Real a, Real b) { return a < b ? b : a; }
+[[maybe_unused]] inline Real fmin_(Real a, Real b) { return b < a ? b : a; }
+[[maybe_unused]] inline Real fmax_(Real a, Real b) { return a < b ? b : a; }
 
 /// Empties a bin.
 inline void clear_bin(Bin& b) {

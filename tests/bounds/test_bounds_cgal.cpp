@@ -28,7 +28,7 @@
 #endif
 
 namespace proxima {
-namespace {
+namespace test_bounds_cgal {
 
 #if PROXIMA_HAVE_CGAL
 using K = CGAL::Homogeneous<double>;
@@ -118,5 +118,5 @@ TEST(BoundsCgal, OverlapsMatchExactDistanceKdop26) { overlaps_against_cgal<26>(9
 TEST(BoundsCgal, NotAvailable) { GTEST_SKIP() << "CGAL not found: exact references skipped"; }
 #endif
 
-}  // namespace
+}  // namespace test_bounds_cgal
 }  // namespace proxima

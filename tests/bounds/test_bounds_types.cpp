@@ -18,7 +18,7 @@
 #include "support/random.hpp"
 
 namespace proxima {
-namespace {
+namespace test_bounds_types {
 
 const Real kNan = std::numeric_limits<Real>::quiet_NaN();
 const Real kInf = std::numeric_limits<Real>::infinity();
@@ -254,5 +254,5 @@ TEST(BoundsTypes, ObbCornersSupportAndBox) {
   }
 }
 
-}  // namespace
+}  // namespace test_bounds_types
 }  // namespace proxima

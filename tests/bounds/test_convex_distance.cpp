@@ -10,9 +10,10 @@
 
 #include "bounds/test_bounds_reference.hpp"
 #include "support/random.hpp"
+#include "sweep_size.hpp"
 
 namespace proxima {
-namespace {
+namespace test_convex_distance {
 
 std::vector<test::D3> to_d(const std::vector<Vec3>& v) {
   std::vector<test::D3> out;
@@ -30,7 +31,7 @@ Real support_value(const std::vector<Vec3>& s, const Vec3& d) {
 TEST(ConvexDistance, MatchesFrankWolfeBounds) {
   test::Random rng(801);
   int compared = 0;
-  for (int i = 0; i < 3000; ++i) {
+  for (int i = 0; i < test::sweep_size(3000); ++i) {
     const int variant = i % 4;
     const Real scale = variant == 1 ? Real(1e-4) : (variant == 2 ? Real(1e4) : Real(1));
     const Vec3 offset = variant == 3 ? Vec3(Real(1e4), Real(2e3), Real(-1e4)) : Vec3(0);
@@ -54,7 +55,7 @@ TEST(ConvexDistance, MatchesFrankWolfeBounds) {
     }
     ++compared;
   }
-  EXPECT_EQ(compared, 3000);
+  EXPECT_EQ(compared, test::sweep_size(3000));
 }
 
 TEST(ConvexDistance, AnalyticCases) {
@@ -91,5 +92,5 @@ TEST(ConvexDistance, AnalyticCases) {
   EXPECT_EQ(convex_distance({}, p).distance, Real(0));
 }
 
-}  // namespace
+}  // namespace test_convex_distance
 }  // namespace proxima

@@ -15,7 +15,7 @@
 #include "support/random.hpp"
 
 namespace proxima {
-namespace {
+namespace test_fit_obb {
 
 constexpr ObbFit kMethods[] = {ObbFit::Pca, ObbFit::Dito14, ObbFit::Dito26, ObbFit::MinVolume};
 
@@ -188,5 +188,5 @@ TEST(FitObb, ValidationErrors) {
   EXPECT_EQ(fit_obb_dito(ok, 10).error().field, "k");
 }
 
-}  // namespace
+}  // namespace test_fit_obb
 }  // namespace proxima

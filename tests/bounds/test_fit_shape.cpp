@@ -21,7 +21,7 @@
 #include "support/random.hpp"
 
 namespace proxima {
-namespace {
+namespace test_fit_shape {
 
 template <class S>
 std::vector<Vec3> sample_world(const S& shape, const Transform& pose, test::Random& rng, bool bounded) {
@@ -176,5 +176,5 @@ TEST(FitShape, SpheresOfShapesAreTheAnalyticMinimalSpheres) {
   EXPECT_TRUE(std::isfinite(ho.half_extents.x) && std::isfinite(ho.center.z));
 }
 
-}  // namespace
+}  // namespace test_fit_shape
 }  // namespace proxima

@@ -15,7 +15,7 @@
 #include "support/random.hpp"
 
 namespace proxima {
-namespace {
+namespace test_fit_sphere {
 
 using LD = long double;
 struct LVec {
@@ -211,5 +211,5 @@ TEST(FitSphere, ValidationErrorsNameTheField) {
   }
 }
 
-}  // namespace
+}  // namespace test_fit_sphere
 }  // namespace proxima

@@ -20,7 +20,7 @@
 #include "support/random.hpp"
 
 namespace proxima {
-namespace {
+namespace test_fit_volumes {
 
 TEST(FitVolumes, AabbIsTheExactBox) {
   const auto sweep = test::make_cloud_sweep(501, 2000, 60);
@@ -214,5 +214,5 @@ TEST(FitVolumes, ValidationErrors) {
   EXPECT_EQ(fit_hull(bad).error().field, "points[2].z");
 }
 
-}  // namespace
+}  // namespace test_fit_volumes
 }  // namespace proxima

@@ -20,7 +20,7 @@
 #include "support/random.hpp"
 
 namespace proxima {
-namespace {
+namespace test_overlap {
 
 using test::D3;
 using test::VolumeType;
@@ -195,5 +195,5 @@ TEST(Overlap, EmptyAndDegenerateVolumes) {
   EXPECT_FALSE(overlaps(flat, BoundingSphere{Vec3(Real(0.2), Real(0.2), Real(-0.5)), Real(0.49)}));
 }
 
-}  // namespace
+}  // namespace test_overlap
 }  // namespace proxima

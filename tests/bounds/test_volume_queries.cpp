@@ -16,7 +16,7 @@
 #include "support/random.hpp"
 
 namespace proxima {
-namespace {
+namespace test_volume_queries {
 
 using test::D3;
 using test::VolumeType;
@@ -211,5 +211,5 @@ TEST(VolumeQueries, PlaneNamedCases) {
   EXPECT_EQ(classify_plane(s, Vec3(0, 2, 0), Real(2.01)), PlaneSide::Back);
 }
 
-}  // namespace
+}  // namespace test_volume_queries
 }  // namespace proxima

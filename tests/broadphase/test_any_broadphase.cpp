@@ -15,7 +15,7 @@
 #include "core/executor_set.hpp"
 
 namespace proxima {
-namespace {
+namespace test_any_broadphase {
 
 TEST(AnyBroadPhase, RegistryNamesAreUniqueAndMake) {
   const auto names = broadphase_names();
@@ -104,5 +104,5 @@ TEST(AnyBroadPhase, ParallelStructuresEqualSerialOnEveryExecutor) {
   }
 }
 
-}  // namespace
+}  // namespace test_any_broadphase
 }  // namespace proxima

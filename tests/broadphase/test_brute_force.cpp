@@ -11,7 +11,7 @@
 #include "broadphase/broadphase_scenes.hpp"
 
 namespace proxima {
-namespace {
+namespace test_brute_force {
 
 struct Naive {
   ProxyId id;
@@ -138,5 +138,5 @@ TEST(BruteForce, HarnessRunsOnTheReferenceItself) {
   }
 }
 
-}  // namespace
+}  // namespace test_brute_force
 }  // namespace proxima

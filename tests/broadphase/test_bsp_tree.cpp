@@ -9,7 +9,7 @@
 #include "broadphase/tree_structure_checks.hpp"
 
 namespace proxima {
-namespace {
+namespace test_bsp_tree {
 
 static_assert(BroadPhaseStructure<BspTree>);
 
@@ -85,5 +85,5 @@ TEST(BspTree, ThreadedPairsEqualAnO2Loop) {
   test::expect_threaded_pairs_match_o2_loop([] { return BspTree(); });
 }
 
-}  // namespace
+}  // namespace test_bsp_tree
 }  // namespace proxima

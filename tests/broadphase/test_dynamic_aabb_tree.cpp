@@ -10,7 +10,7 @@
 #include "core/executor_set.hpp"
 
 namespace proxima {
-namespace {
+namespace test_dynamic_aabb_tree {
 
 static_assert(BroadPhaseStructure<DynamicAabbTree>);
 
@@ -171,5 +171,5 @@ TEST(DynamicAabbTree, FatBoxAbsorbsSmallMotion) {
   EXPECT_TRUE(tree.fat_box(99).min.x > tree.fat_box(99).max.x);  // unknown: empty
 }
 
-}  // namespace
+}  // namespace test_dynamic_aabb_tree
 }  // namespace proxima

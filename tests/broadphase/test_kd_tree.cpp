@@ -9,7 +9,7 @@
 #include "broadphase/tree_structure_checks.hpp"
 
 namespace proxima {
-namespace {
+namespace test_kd_tree {
 
 static_assert(BroadPhaseStructure<KdTree>);
 
@@ -82,5 +82,5 @@ TEST(KdTree, ThreadedPairsEqualAnO2Loop) {
   test::expect_threaded_pairs_match_o2_loop([] { return KdTree(); });
 }
 
-}  // namespace
+}  // namespace test_kd_tree
 }  // namespace proxima

@@ -10,7 +10,7 @@
 #include "broadphase/structure_checks.hpp"
 
 namespace proxima {
-namespace {
+namespace test_loose_octree {
 
 PROXIMA_BROADPHASE_DIFFERENTIAL_SUITE(
     LooseOctreeDifferential, [] { return LooseOctree(); }, 12);
@@ -119,5 +119,5 @@ TEST(LooseQuadtree, BoxesStackedInZ) {
   EXPECT_EQ(s.node_count(), std::size_t(s.depth()) + 1);
 }
 
-}  // namespace
+}  // namespace test_loose_octree
 }  // namespace proxima

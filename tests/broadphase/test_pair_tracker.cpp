@@ -10,7 +10,7 @@
 #include <vector>
 
 namespace proxima {
-namespace {
+namespace test_pair_tracker {
 
 TEST(SortPairs, MatchesStdSortOnRandomLists) {
   std::mt19937_64 rng(7);
@@ -72,5 +72,5 @@ TEST(PairTracker, DeltaMatchesSetDifference) {
   EXPECT_TRUE(tracker.delta().ended.empty());
 }
 
-}  // namespace
+}  // namespace test_pair_tracker
 }  // namespace proxima

@@ -23,7 +23,7 @@
 #include "broadphase/broadphase_scenes.hpp"
 
 namespace proxima {
-namespace {
+namespace test_query_callbacks {
 
 template <class S>
 class QueryCallbackTest : public testing::Test {};
@@ -132,5 +132,5 @@ TEST(AnyBroadPhaseQueries, ReturnTheStructuresCounters) {
   }
 }
 
-}  // namespace
+}  // namespace test_query_callbacks
 }  // namespace proxima

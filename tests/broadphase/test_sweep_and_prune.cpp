@@ -12,7 +12,7 @@
 #include "core/executor_set.hpp"
 
 namespace proxima {
-namespace {
+namespace test_sweep_and_prune {
 
 PROXIMA_BROADPHASE_DIFFERENTIAL_SUITE(
     SweepAndPruneScenes, [] { return SweepAndPrune(); }, 16);
@@ -110,5 +110,5 @@ TEST(SweepAndPrune, AxisByVariance) {
   EXPECT_LT(sap.stats().pairs_tested, 100u);  // the sweep prunes everything
 }
 
-}  // namespace
+}  // namespace test_sweep_and_prune
 }  // namespace proxima

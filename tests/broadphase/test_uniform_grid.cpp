@@ -13,7 +13,7 @@
 #include "core/executor_set.hpp"
 
 namespace proxima {
-namespace {
+namespace test_uniform_grid {
 
 // The shared differential harness: every standard scene against the brute-force reference.
 PROXIMA_BROADPHASE_DIFFERENTIAL_SUITE(
@@ -245,5 +245,5 @@ TEST(UniformGrid, RayMarchMatchesEveryBoxItEnters) {
   }
 }
 
-}  // namespace
+}  // namespace test_uniform_grid
 }  // namespace proxima

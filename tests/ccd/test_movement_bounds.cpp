@@ -25,7 +25,7 @@
 #include "support/random.hpp"
 
 namespace proxima {
-namespace {
+namespace test_movement_bounds {
 
 Motion random_motion(test::Random& rng, bool rotate) {
   Motion m;
@@ -259,5 +259,5 @@ TEST(MovementBounds, SweptHullContainsSampledPlacements) {
   EXPECT_FALSE(swept_hull(tet, Motion{}, bad).ok());
 }
 
-}  // namespace
+}  // namespace test_movement_bounds
 }  // namespace proxima

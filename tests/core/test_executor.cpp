@@ -17,7 +17,7 @@
 #include "core/executor_set.hpp"
 
 namespace proxima {
-namespace {
+namespace test_executor {
 
 /// Runs [0, count) on `executor` and checks that every item was called exactly once.
 void expect_each_item_once(Executor& executor, std::size_t count) {
@@ -127,5 +127,5 @@ TEST(ThreadPool, ManySmallRunsInARow) {
   for (int round = 0; round < 2000; ++round) expect_each_item_once(pool, std::size_t(round % 40));
 }
 
-}  // namespace
+}  // namespace test_executor
 }  // namespace proxima

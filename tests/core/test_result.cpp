@@ -13,7 +13,7 @@
 #include <utility>
 
 namespace proxima {
-namespace {
+namespace test_result {
 
 Result<Transform> bad_position() {
   return Transform::create(Vec3(Real(0), std::numeric_limits<Real>::quiet_NaN(), Real(0)), kIdentityQuat);
@@ -83,5 +83,5 @@ TEST(ResultDeathTest, ValueNeverReturnsEvenWhenTheHandlerDoes) {
 
 #endif
 
-}  // namespace
+}  // namespace test_result
 }  // namespace proxima

@@ -6,7 +6,7 @@
 #include "support/random.hpp"
 
 namespace proxima {
-namespace {
+namespace test_transform {
 
 constexpr Real kTol = sizeof(Real) == 4 ? Real(2e-5) : Real(1e-12);
 
@@ -93,5 +93,5 @@ TEST(Tolerance, ScalesWithPrecision) {
   EXPECT_EQ(linear_tolerance(Real(1000)), kRelativeTolerance * 1000);
 }
 
-}  // namespace
+}  // namespace test_transform
 }  // namespace proxima

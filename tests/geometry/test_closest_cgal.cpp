@@ -22,7 +22,7 @@
 #endif
 
 namespace proxima::geometry {
-namespace {
+namespace test_closest_cgal {
 
 #if PROXIMA_HAVE_CGAL
 
@@ -246,5 +246,5 @@ TEST(ClosestCgal, NeedsCgal) { GTEST_SKIP() << "CGAL not found: exact references
 
 #endif
 
-}  // namespace
+}  // namespace test_closest_cgal
 }  // namespace proxima::geometry

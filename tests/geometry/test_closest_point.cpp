@@ -17,7 +17,7 @@
 #include "support/random.hpp"
 
 namespace proxima::geometry {
-namespace {
+namespace test_closest_point {
 
 using test::LD, test::LVec, test::ld, test::dist2, test::tol_at, test::max_abs, test::golden_min,
     test::ref_dist2_point_segment;
@@ -464,5 +464,5 @@ TEST(ClosestPoint, NanInputPropagates) {
   }
 }
 
-}  // namespace
+}  // namespace test_closest_point
 }  // namespace proxima::geometry

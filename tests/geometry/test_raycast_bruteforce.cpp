@@ -27,7 +27,7 @@
 #include "support/random.hpp"
 
 namespace proxima::geometry {
-namespace {
+namespace test_raycast_bruteforce {
 
 using D3 = glm::dvec3;
 
@@ -544,5 +544,5 @@ TEST(RayCastBruteForce, Plane) {
   }
 }
 
-}  // namespace
+}  // namespace test_raycast_bruteforce
 }  // namespace proxima::geometry

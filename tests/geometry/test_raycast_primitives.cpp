@@ -13,7 +13,7 @@
 #include "support/random.hpp"
 
 namespace proxima::geometry {
-namespace {
+namespace test_raycast_primitives {
 
 constexpr Real kInf = std::numeric_limits<Real>::infinity();
 constexpr Real kNaN = std::numeric_limits<Real>::quiet_NaN();
@@ -677,5 +677,5 @@ TEST(RayCastInput, ExtremeValidInputNeverNaN) {
   ::testing::Test::RecordProperty("hits", fuzz::g_hits);
 }
 
-}  // namespace
+}  // namespace test_raycast_primitives
 }  // namespace proxima::geometry

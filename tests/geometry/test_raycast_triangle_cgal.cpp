@@ -24,7 +24,7 @@
 #include "support/random.hpp"
 
 namespace proxima::geometry {
-namespace {
+namespace test_raycast_triangle_cgal {
 
 #if PROXIMA_HAVE_CGAL
 
@@ -194,5 +194,5 @@ TEST(RayTriangleCgal, SkippedWithoutCgal) { GTEST_SKIP() << "CGAL not found: the
 
 #endif
 
-}  // namespace
+}  // namespace test_raycast_triangle_cgal
 }  // namespace proxima::geometry

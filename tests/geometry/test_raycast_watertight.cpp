@@ -21,7 +21,7 @@
 #include "support/random.hpp"
 
 namespace proxima::geometry {
-namespace {
+namespace test_raycast_watertight {
 
 using D3 = glm::dvec3;
 constexpr Real kInf = std::numeric_limits<Real>::infinity();
@@ -371,5 +371,5 @@ TEST(RayTriangleWatertight, ExactlyThroughSharedVerticesAndEdges) {
   EXPECT_GT(checked, 1000);
 }
 
-}  // namespace
+}  // namespace test_raycast_watertight
 }  // namespace proxima::geometry

@@ -19,7 +19,7 @@
 #include "support/random.hpp"
 
 namespace proxima::geometry {
-namespace {
+namespace test_segment_segment {
 
 using test::LD, test::LVec, test::ld, test::dist2, test::tol_at, test::max_abs, test::golden_min,
     test::ref_dist2_point_segment;
@@ -412,5 +412,5 @@ TEST(SegmentSegment, RandomZeroLength) {
   }
 }
 
-}  // namespace
+}  // namespace test_segment_segment
 }  // namespace proxima::geometry

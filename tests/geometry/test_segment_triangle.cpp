@@ -18,7 +18,7 @@
 #include "support/random.hpp"
 
 namespace proxima::geometry {
-namespace {
+namespace test_segment_triangle {
 
 using test::LD, test::LVec, test::ld, test::dist2, test::tol_at, test::max_abs, test::golden_min,
     test::ref_dist2_point_segment, test::ref_dist2_point_triangle;
@@ -294,5 +294,5 @@ TEST(SegmentTriangle, RandomDegenerate) {
   }
 }
 
-}  // namespace
+}  // namespace test_segment_triangle
 }  // namespace proxima::geometry

@@ -22,7 +22,7 @@
 #include "support/random.hpp"
 
 namespace proxima::geometry {
-namespace {
+namespace test_triangle_triangle {
 
 using test::LD, test::LVec, test::ld, test::dist2, test::tol_at, test::golden_min, test::ref_dist2_point_triangle;
 
@@ -452,5 +452,5 @@ TEST(TriangleTriangle, RandomDegenerate) {
   }
 }
 
-}  // namespace
+}  // namespace test_triangle_triangle
 }  // namespace proxima::geometry

@@ -24,18 +24,18 @@ namespace proxima::test {
 
 using LD = long double;
 
-struct LVec {
+struct PolyVec {
   LD x = 0, y = 0, z = 0;
 };
-inline LVec operator-(const LVec& a, const LVec& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-inline LD dot(const LVec& a, const LVec& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-inline LVec cross(const LVec& a, const LVec& b) {
+inline PolyVec operator-(const PolyVec& a, const PolyVec& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+inline LD dot(const PolyVec& a, const PolyVec& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+inline PolyVec cross(const PolyVec& a, const PolyVec& b) {
   return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
-inline LD norm(const LVec& a) { return std::sqrt(dot(a, a)); }
+inline LD norm(const PolyVec& a) { return std::sqrt(dot(a, a)); }
 
 // A transform applied in long double (quaternion rotation written out).
-inline LVec apply_ld(const Transform& t, const Vec3& p) {
+inline PolyVec apply_ld(const Transform& t, const Vec3& p) {
   const LD w = t.rotation.w, x = t.rotation.x, y = t.rotation.y, z = t.rotation.z;
   const LD n = std::sqrt(w * w + x * x + y * y + z * z);
   const LD qw = w / n, qx = x / n, qy = y / n, qz = z / n;
@@ -50,9 +50,9 @@ inline LVec apply_ld(const Transform& t, const Vec3& p) {
 
 // A polytope given by its world vertices, face normals and edge directions (long double).
 struct LPolytope {
-  std::vector<LVec> vertices;
-  std::vector<LVec> face_normals;
-  std::vector<LVec> edge_dirs;
+  std::vector<PolyVec> vertices;
+  std::vector<PolyVec> face_normals;
+  std::vector<PolyVec> edge_dirs;
 };
 
 inline LPolytope box_polytope(const Box& box, const Transform& pose) {
@@ -61,11 +61,11 @@ inline LPolytope box_polytope(const Box& box, const Transform& pose) {
   for (int c = 0; c < 8; ++c) {
     p.vertices.push_back(apply_ld(pose, Vec3((c & 1) ? h.x : -h.x, (c & 2) ? h.y : -h.y, (c & 4) ? h.z : -h.z)));
   }
-  const LVec o = apply_ld(pose, Vec3(0));
+  const PolyVec o = apply_ld(pose, Vec3(0));
   for (int i = 0; i < 3; ++i) {
     Vec3 e(0);
     e[i] = 1;
-    const LVec d = apply_ld(pose, e) - o;
+    const PolyVec d = apply_ld(pose, e) - o;
     p.face_normals.push_back(d);
     p.edge_dirs.push_back(d);
   }
@@ -75,10 +75,10 @@ inline LPolytope box_polytope(const Box& box, const Transform& pose) {
 inline LPolytope triangle_polytope(const Triangle& tri, const Transform& pose) {
   LPolytope p;
   for (int i = 0; i < 3; ++i) p.vertices.push_back(apply_ld(pose, tri.vertex(i)));
-  const LVec n = cross(p.vertices[1] - p.vertices[0], p.vertices[2] - p.vertices[0]);
+  const PolyVec n = cross(p.vertices[1] - p.vertices[0], p.vertices[2] - p.vertices[0]);
   p.face_normals.push_back(n);
   for (int i = 0; i < 3; ++i) {
-    const LVec e = p.vertices[(i + 1) % 3] - p.vertices[i];
+    const PolyVec e = p.vertices[(i + 1) % 3] - p.vertices[i];
     p.edge_dirs.push_back(e);
     p.face_normals.push_back(cross(n, e));  // in-plane normals (matter only for coplanar pairs)
   }
@@ -86,15 +86,15 @@ inline LPolytope triangle_polytope(const Triangle& tri, const Transform& pose) {
 }
 
 // Overlap of the two projections on axis l (negative: separated by that much).
-inline LD overlap_on(const LPolytope& a, const LPolytope& b, LVec l) {
+inline LD overlap_on(const LPolytope& a, const LPolytope& b, PolyVec l) {
   const LD len = norm(l);
   l = {l.x / len, l.y / len, l.z / len};
   LD amin = std::numeric_limits<LD>::infinity(), amax = -amin, bmin = amin, bmax = -amin;
-  for (const LVec& v : a.vertices) {
+  for (const PolyVec& v : a.vertices) {
     amin = std::min(amin, dot(v, l));
     amax = std::max(amax, dot(v, l));
   }
-  for (const LVec& v : b.vertices) {
+  for (const PolyVec& v : b.vertices) {
     bmin = std::min(bmin, dot(v, l));
     bmax = std::max(bmax, dot(v, l));
   }
@@ -106,13 +106,13 @@ inline LD overlap_on(const LPolytope& a, const LPolytope& b, LVec l) {
 inline LD sat_overlap(const LPolytope& a, const LPolytope& b) {
   LD best = std::numeric_limits<LD>::infinity();
   LD scale = 0;
-  for (const LVec& v : a.vertices) scale = std::max(scale, norm(v));
-  for (const LVec& v : b.vertices) scale = std::max(scale, norm(v));
-  for (const LVec& n : a.face_normals) best = std::min(best, overlap_on(a, b, n));
-  for (const LVec& n : b.face_normals) best = std::min(best, overlap_on(a, b, n));
-  for (const LVec& ea : a.edge_dirs) {
-    for (const LVec& eb : b.edge_dirs) {
-      const LVec c = cross(ea, eb);
+  for (const PolyVec& v : a.vertices) scale = std::max(scale, norm(v));
+  for (const PolyVec& v : b.vertices) scale = std::max(scale, norm(v));
+  for (const PolyVec& n : a.face_normals) best = std::min(best, overlap_on(a, b, n));
+  for (const PolyVec& n : b.face_normals) best = std::min(best, overlap_on(a, b, n));
+  for (const PolyVec& ea : a.edge_dirs) {
+    for (const PolyVec& eb : b.edge_dirs) {
+      const PolyVec c = cross(ea, eb);
       if (norm(c) > 1e-9L * norm(ea) * norm(eb)) best = std::min(best, overlap_on(a, b, c));
     }
   }

@@ -13,7 +13,7 @@
 #include "support/random.hpp"
 
 namespace proxima::test {
-namespace {
+namespace test_box_box {
 
 constexpr bool kFloat = sizeof(Real) == 4;
 
@@ -366,5 +366,5 @@ TEST(BoxBox, NonFinitePose) {
   EXPECT_FALSE(narrow::pair_intersect(a, {}, a, bad, {}, nullptr));
 }
 
-}  // namespace
+}  // namespace test_box_box
 }  // namespace proxima::test

@@ -48,7 +48,7 @@
 #endif
 
 namespace proxima {
-namespace {
+namespace test_crossvalidate_peers {
 
 // ---------------------------------------------------------------------------------------
 // Cases and tallies
@@ -482,5 +482,5 @@ TEST(CrossValidatePeers, OdeBoxBox) {
 }
 #endif
 
-}  // namespace
+}  // namespace test_crossvalidate_peers
 }  // namespace proxima

@@ -15,7 +15,7 @@
 #include "shapes/shape_visit.hpp"
 
 namespace proxima {
-namespace {
+namespace test_degenerate {
 
 using test::PairChecker;
 
@@ -538,5 +538,5 @@ TEST(DegenerateRegression, FarOffsetKeepsTheAnswer) {
   }
 }
 
-}  // namespace
+}  // namespace test_degenerate
 }  // namespace proxima

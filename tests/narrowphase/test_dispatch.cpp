@@ -16,7 +16,7 @@
 #include "support/random.hpp"
 
 namespace proxima {
-namespace {
+namespace test_dispatch {
 
 std::vector<Shape> one_of_each() {
   std::vector<Shape> s;
@@ -163,11 +163,11 @@ TEST(Dispatch, SeparatedAndOverlappingSpheresThroughEveryEntryPoint) {
   EXPECT_EQ(collide(s, Transform{}, box, near).count >= 1, true);
 }
 
-}  // namespace
+}  // namespace test_dispatch
 }  // namespace proxima
 
 namespace proxima {
-namespace {
+namespace test_dispatch {
 
 // Every cell answers every query on a touching, an overlapping and a separated placement:
 // intersect agrees with the distance's sign, collide_all's contacts are within the contact
@@ -243,5 +243,5 @@ TEST(Dispatch, ShapeRefViewsEveryKind) {
   EXPECT_EQ(ShapeRef(c.children()[2].shape).type(), ShapeType::Compound);
 }
 
-}  // namespace
+}  // namespace test_dispatch
 }  // namespace proxima

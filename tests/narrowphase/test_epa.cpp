@@ -13,9 +13,10 @@
 #include "gjk_reference.hpp"
 #include "narrowphase/generic_distance.hpp"
 #include "support/random.hpp"
+#include "sweep_size.hpp"
 
 namespace proxima {
-namespace {
+namespace test_epa {
 
 namespace ref = test::gjkref;
 using narrow::generic_distance;
@@ -25,7 +26,7 @@ Real tol_at(Real s) { return (sizeof(Real) == 4 ? Real(2e-4) : Real(1e-9)) * std
 TEST(Epa, OverlappingHullsMatchExhaustiveSat) {
   test::Random rng(11);
   int count = 0;
-  for (int t = 0; t < 1500; ++t) {
+  for (int t = 0; t < test::sweep_size(1500); ++t) {
     const ConvexHull a = ref::random_hull(rng, rng.integer(4, 40), Real(0.6));
     const ConvexHull b = ref::random_hull(rng, rng.integer(4, 40), Real(0.6));
     const Transform pa = rng.pose(Real(0.4));
@@ -44,7 +45,7 @@ TEST(Epa, OverlappingHullsMatchExhaustiveSat) {
     EXPECT_NEAR(ref::polytope_sat_exhaustive(wa, ref::world_poly(b, moved)), 0, 10 * tol_at(2)) << "case " << t;
     EXPECT_LT(glm::length(d.point_b - (d.point_a + d.signed_distance * d.normal)), tol_at(2));
   }
-  EXPECT_GT(count, 800);
+  EXPECT_GT(count, test::sweep_share(800));
 }
 
 TEST(Epa, OverlappingCurvedShapesMatchSupportReference) {
@@ -165,5 +166,5 @@ TEST(Epa, RefinedDepthOfCurvedShapesMatchesClosedForm) {
   }
 }
 
-}  // namespace
+}  // namespace test_epa
 }  // namespace proxima

@@ -19,7 +19,7 @@
 #include "support/random.hpp"
 
 namespace proxima::test {
-namespace {
+namespace test_face_manifold {
 
 constexpr bool kFloat = sizeof(Real) == 4;
 
@@ -134,5 +134,5 @@ TEST(FaceManifold, GenericTemplateOnRandomBoxes) {
   EXPECT_GT(multi, 200);
 }
 
-}  // namespace
+}  // namespace test_face_manifold
 }  // namespace proxima::test

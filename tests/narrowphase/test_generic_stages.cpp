@@ -16,7 +16,7 @@
 #include "support/random.hpp"
 
 namespace proxima {
-namespace {
+namespace test_generic_stages {
 
 using narrow::generic_distance_staged;
 using narrow::GenericStage;
@@ -185,5 +185,5 @@ TEST(GenericStages, LastResortStagesAnswerByTheirContract) {
   }
 }
 
-}  // namespace
+}  // namespace test_generic_stages
 }  // namespace proxima

@@ -19,9 +19,10 @@
 #include "narrowphase/narrowphase_test_util.hpp"
 #include "support/random.hpp"
 #include "support/solid_test_meshes.hpp"
+#include "sweep_size.hpp"
 
 namespace proxima {
-namespace {
+namespace test_geometry_queries {
 
 const Real kTol = sizeof(Real) == 4 ? Real(2e-3) : Real(1e-6);
 
@@ -174,7 +175,7 @@ TEST(Compound, CompoundAgainstCompoundAgreesWithAllChildPairs) {
   const TriangleMesh mesh = TriangleMesh::create(test::tessellate_sphere(Real(0.3), 12, 6)).value();
   PairRequest request;
   int hits = 0;
-  for (int k = 0; k < 300; ++k) {
+  for (int k = 0; k < test::sweep_size(300); ++k) {
     const Compound a = random_compound(rng, mesh), b = random_compound(rng, mesh);
     const Transform pa = rng.pose(Real(1)), pb = rng.pose(Real(1));
     Real best = std::numeric_limits<Real>::infinity();
@@ -336,7 +337,7 @@ TEST(MeshMesh, ShapeRefQueriesAgreeWithAllTrianglePairs) {
   PairRequest request;
   request.contact_distance = Real(0.02);
   int hits = 0, separated = 0;
-  for (int k = 0; k < 150; ++k) {
+  for (int k = 0; k < test::sweep_size(150); ++k) {
     const Transform pa = rng.pose(Real(0.2));
     const Transform pb{pa.position + rng.uniform(Real(0.3), Real(1.2)) * rng.unit_vector(), rng.rotation()};
     const std::vector<Triangle> ta = triangles(ma, pa), tb = triangles(mb, pb);
@@ -399,9 +400,9 @@ TEST(MeshMesh, ShapeRefQueriesAgreeWithAllTrianglePairs) {
       ++separated;
     }
   }
-  EXPECT_GT(hits, 30);
-  EXPECT_GT(separated, 30);
+  EXPECT_GT(hits, test::sweep_share(30));
+  EXPECT_GT(separated, test::sweep_share(30));
 }
 
-}  // namespace
+}  // namespace test_geometry_queries
 }  // namespace proxima

@@ -12,9 +12,10 @@
 #include "gjk_reference.hpp"
 #include "narrowphase/generic_distance.hpp"
 #include "support/random.hpp"
+#include "sweep_size.hpp"
 
 namespace proxima {
-namespace {
+namespace test_gjk {
 
 using narrow::generic_distance;
 using narrow::generic_intersect;
@@ -41,7 +42,7 @@ void expect_convention(const DistanceResult& d, const A& a, const Transform& pa,
 TEST(Gjk, RandomHullPairsMatchExhaustiveSearch) {
   test::Random rng(101);
   int separated = 0;
-  for (int t = 0; t < 1500; ++t) {
+  for (int t = 0; t < test::sweep_size(1500); ++t) {
     const ConvexHull a = ref::random_hull(rng, rng.integer(4, 30), Real(0.5));
     const ConvexHull b = ref::random_hull(rng, rng.integer(4, 30), Real(0.5));
     const Transform pa = rng.pose(Real(1));
@@ -243,5 +244,5 @@ TEST(Gjk, SignedVolumesSolverOnRawSupports) {
   }
 }
 
-}  // namespace
+}  // namespace test_gjk
 }  // namespace proxima

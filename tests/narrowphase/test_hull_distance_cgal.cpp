@@ -17,7 +17,7 @@
 #include "narrowphase/narrowphase_test_util.hpp"
 
 namespace proxima {
-namespace {
+namespace test_hull_distance_cgal {
 
 using K = CGAL::Homogeneous<double>;
 using CPoint = K::Point_3;
@@ -94,5 +94,5 @@ TEST(HullDistanceCgal, PolyhedralPairsMatchExactPolytopeDistance) {
   EXPECT_GT(meeting, 0);
 }
 
-}  // namespace
+}  // namespace test_hull_distance_cgal
 }  // namespace proxima

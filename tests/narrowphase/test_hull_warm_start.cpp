@@ -20,7 +20,7 @@
 #include "support/random.hpp"
 
 namespace proxima {
-namespace {
+namespace test_hull_warm_start {
 
 ConvexHull random_hull(test::Random& rng, int n) {
   std::vector<Vec3> pts;
@@ -88,5 +88,5 @@ TEST(HullWarmStart, WarmEqualsColdAlongCoherentPaths) {
   EXPECT_LT(boolean_band, compared / 10);
 }
 
-}  // namespace
+}  // namespace test_hull_warm_start
 }  // namespace proxima

@@ -14,7 +14,7 @@
 #include "narrowphase/pair_checker.hpp"
 
 namespace proxima {
-namespace {
+namespace test_invariants {
 
 struct PairParam {
   ShapeType a;
@@ -88,5 +88,5 @@ TEST(Invariants, DispatchTableIsComplete) {
   }
 }
 
-}  // namespace
+}  // namespace test_invariants
 }  // namespace proxima

@@ -12,7 +12,7 @@
 #include "support/random.hpp"
 
 namespace proxima {
-namespace {
+namespace test_manifold_reduction {
 
 using narrow::reduce_contacts;
 using narrow::select_contacts;
@@ -143,5 +143,5 @@ TEST(ManifoldReduction, StreamedFilter) {
   for (int i = 0; i < count; ++i) EXPECT_EQ(chosen[static_cast<std::size_t>(i)] % 2, 0);
 }
 
-}  // namespace
+}  // namespace test_manifold_reduction
 }  // namespace proxima

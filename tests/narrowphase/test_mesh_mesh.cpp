@@ -30,9 +30,10 @@
 #include "narrowphase/narrowphase_test_util.hpp"
 #include "support/random.hpp"
 #include "support/solid_test_meshes.hpp"
+#include "sweep_size.hpp"
 
 namespace proxima {
-namespace {
+namespace test_mesh_mesh {
 
 // ---- test meshes ------------------------------------------------------------------------
 
@@ -216,7 +217,8 @@ struct Scene {
   Real reach;  ///< B's centre is placed within this distance of A's
 };
 
-void sweep(const Scene& s, std::uint64_t seed, int cases) {
+void sweep(const Scene& s, std::uint64_t seed, int full_cases) {
+  const int cases = test::sweep_size(full_cases);
   test::Random rng(seed);
   Stats stats;
   for (int k = 0; k < cases; ++k) {
@@ -257,7 +259,7 @@ TEST(MeshMesh, OrientedMatchesAabb) {
   const TriangleMesh b = make(torus(Real(0.8), Real(0.2), 48, 16));
   test::Random rng(21);
   int hits = 0;
-  const int cases = 200;
+  const int cases = test::sweep_size(200);
   for (int k = 0; k < cases; ++k) {
     SCOPED_TRACE(k);
     const Transform pose_a = rng.pose(Real(2));
@@ -274,7 +276,7 @@ TEST(MeshMesh, BoxGapAnalytic) {
   const TriangleMesh a = make(box_mesh(Vec3(0.5, 0.5, 0.5), 3));
   const TriangleMesh b = make(box_mesh(Vec3(0.3, 0.2, 0.4), 2));
   test::Random rng(15);
-  for (int k = 0; k < 200; ++k) {
+  for (int k = 0; k < test::sweep_size(200); ++k) {
     const Quat q = rng.rotation();
     const Vec3 origin = rng.vec3(Real(-3), Real(3));
     const Real gap = k < 20 ? Real(0) : rng.uniform(Real(1e-3), Real(1));
@@ -310,7 +312,7 @@ TEST(MeshMesh, ContactDistanceBruteForce) {
   const TriangleMesh b = make(torus(Real(0.6), Real(0.2), 12, 6));
   test::Random rng(16);
   int within = 0;
-  for (int k = 0; k < 60; ++k) {
+  for (int k = 0; k < test::sweep_size(60); ++k) {
     const Transform pa = rng.pose(Real(2));
     const Transform pb{pa.position + rng.in_ball(Real(2)), rng.rotation()};
     const Brute ref = brute_force(world_triangles(a, pa), world_triangles(b, pb));
@@ -340,7 +342,7 @@ TEST(MeshMesh, ContactDistanceBruteForce) {
     }
     EXPECT_GE(pairs.size(), expected_pairs);
   }
-  EXPECT_GT(within, 6);
+  EXPECT_GT(within, test::sweep_share(6));
 }
 
 // The same mesh at the same pose: every triangle touches its neighbours and itself.
@@ -375,5 +377,5 @@ TEST(MeshMesh, FarSpheresBracket) {
   }
 }
 
-}  // namespace
+}  // namespace test_mesh_mesh
 }  // namespace proxima

@@ -34,7 +34,7 @@
 #include "support/workloads.hpp"
 
 namespace proxima {
-namespace {
+namespace test_mesh_mesh_peers {
 
 namespace pb = bench;
 using Tri = std::array<Vec3, 3>;
@@ -292,7 +292,7 @@ TEST(MeshMeshPeers, DistanceAgainstFcl) {
               static_cast<double>(distance_tolerance()), fcl_wrong);
 }
 
-}  // namespace
+}  // namespace test_mesh_mesh_peers
 }  // namespace proxima
 
 #else

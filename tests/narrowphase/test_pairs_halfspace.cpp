@@ -19,7 +19,7 @@
 #include "support/random.hpp"
 
 namespace proxima {
-namespace {
+namespace test_pairs_halfspace {
 
 using narrow::pair_collide;
 using narrow::pair_distance;
@@ -478,5 +478,5 @@ TEST(PairsHalfSpace, NonFinitePoses) {
   EXPECT_EQ(m.status, PairStatus::InvalidInput);
 }
 
-}  // namespace
+}  // namespace test_pairs_halfspace
 }  // namespace proxima

@@ -14,7 +14,7 @@
 #include "support/random.hpp"
 
 namespace proxima {
-namespace {
+namespace test_pairs_rounded {
 
 using narrow::pair_collide;
 using narrow::pair_distance;
@@ -476,5 +476,5 @@ TEST(PairsRounded, CapsuleBoxTwoPointsNoDeeperThanThePair) {
   }
 }
 
-}  // namespace
+}  // namespace test_pairs_rounded
 }  // namespace proxima

@@ -13,7 +13,7 @@
 #include "support/random.hpp"
 
 namespace proxima {
-namespace {
+namespace test_polytope_sat {
 
 namespace ref = test::gjkref;
 using narrow::polytope_sat;
@@ -150,5 +150,5 @@ TEST(PolytopeSat, GenericRoutineUsesSatWhenEpaCannotAnswer) {
   EXPECT_NEAR(std::abs(d.normal.z), 1, 1e-3);
 }
 
-}  // namespace
+}  // namespace test_polytope_sat
 }  // namespace proxima

@@ -13,7 +13,7 @@
 #include "support/random.hpp"
 
 namespace proxima::test {
-namespace {
+namespace test_supporting_face {
 
 constexpr bool kFloat = sizeof(Real) == 4;
 
@@ -107,5 +107,5 @@ TEST(SupportingFace, BoxFaceIdsAreCornerBits) {
   }
 }
 
-}  // namespace
+}  // namespace test_supporting_face
 }  // namespace proxima::test

@@ -19,7 +19,7 @@
 #include "support/random.hpp"
 
 namespace proxima::test {
-namespace {
+namespace test_triangle_pairs {
 
 constexpr bool kFloat = sizeof(Real) == 4;
 
@@ -43,7 +43,7 @@ LD dense_depth_bound(const LPolytope& a, const LPolytope& b) {
   for (int i = 0; i < kDirections; ++i) {
     const LD z = 1 - (2 * (i + 0.5L)) / kDirections;
     const LD r = std::sqrt(1 - z * z);
-    best = std::min(best, overlap_on(a, b, LVec{r * std::cos(golden * i), r * std::sin(golden * i), z}));
+    best = std::min(best, overlap_on(a, b, PolyVec{r * std::cos(golden * i), r * std::sin(golden * i), z}));
   }
   return best;
 }
@@ -53,10 +53,10 @@ LD dense_depth_bound(const LPolytope& a, const LPolytope& b) {
 // face plane; the depth is the smallest distance from the origin to a face plane (0 for a
 // flat difference through the origin). Independent of the SAT's choice of axes.
 LD hull_depth(const LPolytope& a, const LPolytope& b) {
-  std::vector<LVec> m;
+  std::vector<PolyVec> m;
   LD scale = 0;
-  for (const LVec& va : a.vertices) {
-    for (const LVec& vb : b.vertices) {
+  for (const PolyVec& va : a.vertices) {
+    for (const PolyVec& vb : b.vertices) {
       m.push_back(va - vb);
       scale = std::max(scale, norm(m.back()));
     }
@@ -67,14 +67,14 @@ LD hull_depth(const LPolytope& a, const LPolytope& b) {
   for (std::size_t i = 0; i < n; ++i) {
     for (std::size_t j = i + 1; j < n; ++j) {
       for (std::size_t k = j + 1; k < n; ++k) {
-        LVec nn = cross(m[j] - m[i], m[k] - m[i]);
+        PolyVec nn = cross(m[j] - m[i], m[k] - m[i]);
         const LD len = norm(nn);
         if (!(len > 1e-9L * scale * scale)) continue;
         nn = {nn.x / len, nn.y / len, nn.z / len};
         const LD off = dot(nn, m[i]);
         bool below = true;
         bool above = true;
-        for (const LVec& v : m) {
+        for (const PolyVec& v : m) {
           const LD d = dot(nn, v) - off;
           below = below && d <= eps;
           above = above && d >= -eps;
@@ -228,5 +228,5 @@ TEST(TrianglePairs, FlatContacts) {
   for (int i = 0; i < t.count; ++i) EXPECT_NEAR(t.points[i].depth, Real(-0.01), Real(1e-5));
 }
 
-}  // namespace
+}  // namespace test_triangle_pairs
 }  // namespace proxima::test

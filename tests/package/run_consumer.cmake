@@ -1,9 +1,9 @@
 # cmake -P script: configures, builds and runs tests/package/consumer in one of its modes.
 # Inputs (-D): MODE, SOURCE (proxima source dir), WORK (scratch dir), BUILD (proxima build
 # dir, for MODE=installed), GENERATOR, LAUNCHER (compiler launcher such as ccache; optional).
-# The consumers that compile the library from source (subdirectory, fetchcontent) build it
-# unoptimised: they test how the package is consumed, not its speed, and -O0 compiles the
-# library several times faster.
+# The consumers that compile the library from source (subdirectory, fetchcontent,
+# noexceptions) build it unoptimised and with clang when it is installed: they test how the
+# package is consumed, not its speed, and -O0 compiles the library several times faster.
 file(REMOVE_RECURSE "${WORK}")
 file(MAKE_DIRECTORY "${WORK}")
 
@@ -35,6 +35,12 @@ endif()
 set(build_type Release)
 if(NOT MODE STREQUAL "installed")
   set(build_type Debug)
+  # A user's project built with the other compiler: the library's sources compile with
+  # clang as well as GCC (and clang -O0 compiles them faster).
+  find_program(clang_compiler NAMES clang++ clang++-14)
+  if(clang_compiler)
+    list(APPEND extra "-DCMAKE_CXX_COMPILER=${clang_compiler}")
+  endif()
 endif()
 run(${CMAKE_COMMAND} -S "${SOURCE}/tests/package/consumer" -B "${WORK}/build" -G "${GENERATOR}"
   -DCMAKE_BUILD_TYPE=${build_type} -DPROXIMA_MODE=${MODE} "-DPROXIMA_SOURCE=${SOURCE}" ${extra})

@@ -15,7 +15,7 @@
 #include "support/random.hpp"
 
 namespace proxima {
-namespace {
+namespace test_box {
 
 using test::precision_tolerance;
 
@@ -325,5 +325,5 @@ TEST(Box, MassPropertiesAnalyticAndIntegrated) {
 
 TEST(Box, NonFiniteQueryInputHasDefinedAnswers) { test::exercise_queries_with_non_finite_input(make(Vec3(1, 2, 3))); }
 
-}  // namespace
+}  // namespace test_box
 }  // namespace proxima

@@ -27,7 +27,7 @@
 #include "support/solid_test_meshes.hpp"
 
 namespace proxima {
-namespace {
+namespace test_bsp_polyhedron {
 
 struct NamedMesh {
   std::string name;
@@ -378,5 +378,5 @@ TEST(BspPolyhedron, FacesTouchingFaceToFace) {
   EXPECT_EQ(bsp.classify(Vec3(0.8f, 0.8f, 0.3f)), PointClass::Outside);
 }
 
-}  // namespace
+}  // namespace test_bsp_polyhedron
 }  // namespace proxima

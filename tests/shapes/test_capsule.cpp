@@ -14,7 +14,7 @@
 #include "support/random.hpp"
 
 namespace proxima {
-namespace {
+namespace test_capsule {
 
 using test::precision_tolerance;
 
@@ -337,5 +337,5 @@ TEST(Capsule, NonFiniteQueryInputHasDefinedAnswers) {
   test::exercise_queries_with_non_finite_input(make(Real(0.5), Real(1.5)));
 }
 
-}  // namespace
+}  // namespace test_capsule
 }  // namespace proxima

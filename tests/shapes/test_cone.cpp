@@ -25,7 +25,7 @@
 #include "support/random.hpp"
 
 namespace proxima {
-namespace {
+namespace test_cone {
 
 using test::DPose, test::DVec3, test::march, test::MarchResult, test::kPiD, test::Patch, test::RefSurface, test::Sample,
     test::to_d;
@@ -608,5 +608,5 @@ TEST(Cone, NonFiniteQueriesHaveDefinedAnswers) {
   EXPECT_TRUE(test::all_finite(hit->point) && std::isfinite(hit->t));
 }
 
-}  // namespace
+}  // namespace test_cone
 }  // namespace proxima

@@ -21,7 +21,7 @@
 #include "support/random.hpp"
 
 namespace proxima {
-namespace {
+namespace test_convex_hull {
 
 using D3 = std::array<double, 3>;
 
@@ -1044,5 +1044,5 @@ TEST(ConvexHull, RaycastAnalyticCube) {
   EXPECT_NEAR(segment->t, Real(0.4), Real(1e-6));
 }
 
-}  // namespace
+}  // namespace test_convex_hull
 }  // namespace proxima

@@ -19,7 +19,7 @@
 #include "support/random.hpp"
 
 namespace proxima {
-namespace {
+namespace test_convex_hull_cgal {
 
 constexpr Real kEps = std::numeric_limits<Real>::epsilon();
 
@@ -77,5 +77,5 @@ TEST(ConvexHullCgal, VolumeAndCentroidMatchCgal) {
   }
 }
 
-}  // namespace
+}  // namespace test_convex_hull_cgal
 }  // namespace proxima

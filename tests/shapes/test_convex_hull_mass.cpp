@@ -15,7 +15,7 @@
 #include "support/random.hpp"
 
 namespace proxima {
-namespace {
+namespace test_convex_hull_mass {
 
 constexpr Real kEps = std::numeric_limits<Real>::epsilon();
 
@@ -264,5 +264,5 @@ TEST(ConvexHullMass, MatchesQuasiMonteCarloIntegrationOfContains) {
   }
 }
 
-}  // namespace
+}  // namespace test_convex_hull_mass
 }  // namespace proxima

@@ -25,7 +25,7 @@
 #include "support/random.hpp"
 
 namespace proxima {
-namespace {
+namespace test_convex_hull_scan {
 
 using test::brute_support;
 
@@ -134,5 +134,5 @@ TEST(ConvexHullScan, BoxesAndPrismsWithExactTies) {
   }
 }
 
-}  // namespace
+}  // namespace test_convex_hull_scan
 }  // namespace proxima

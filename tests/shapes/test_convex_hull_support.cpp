@@ -18,7 +18,7 @@
 #include "support/random.hpp"
 
 namespace proxima {
-namespace {
+namespace test_convex_hull_support {
 
 using test::brute_support;
 
@@ -82,5 +82,5 @@ TEST(ConvexHullSupport, PrismTiesGiveTheFirstVertex) {
   }
 }
 
-}  // namespace
+}  // namespace test_convex_hull_support
 }  // namespace proxima

@@ -24,7 +24,7 @@
 #include "support/random.hpp"
 
 namespace proxima {
-namespace {
+namespace test_cylinder {
 
 using test::DPose, test::DVec3, test::march, test::MarchResult, test::kPiD, test::Patch, test::RefSurface, test::Sample,
     test::to_d;
@@ -513,5 +513,5 @@ TEST(Cylinder, NonFiniteQueriesHaveDefinedAnswers) {
   EXPECT_TRUE(test::all_finite(hit->point) && std::isfinite(hit->t));
 }
 
-}  // namespace
+}  // namespace test_cylinder
 }  // namespace proxima

@@ -27,7 +27,7 @@
 #include "support/random.hpp"
 
 namespace proxima {
-namespace {
+namespace test_ellipsoid {
 
 using test::DPose, test::DVec3, test::march, test::MarchResult, test::kPiD, test::Patch, test::RefSurface, test::Sample,
     test::to_d;
@@ -586,5 +586,5 @@ TEST(Ellipsoid, NonFiniteQueriesHaveDefinedAnswers) {
   EXPECT_TRUE(test::all_finite(hit->point) && std::isfinite(hit->t));
 }
 
-}  // namespace
+}  // namespace test_ellipsoid
 }  // namespace proxima

@@ -15,7 +15,7 @@
 #include "support/random.hpp"
 
 namespace proxima {
-namespace {
+namespace test_halfspace {
 
 using test::precision_tolerance;
 
@@ -311,5 +311,5 @@ TEST(HalfSpace, NonFiniteQueryInputHasDefinedAnswers) {
   test::exercise_queries_with_non_finite_input(make(Vec3(1, 2, 2), 3));
 }
 
-}  // namespace
+}  // namespace test_halfspace
 }  // namespace proxima

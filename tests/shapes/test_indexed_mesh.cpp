@@ -20,7 +20,7 @@
 #include "support/random.hpp"
 
 namespace proxima {
-namespace {
+namespace test_indexed_mesh {
 
 constexpr bool kFloat = sizeof(Real) == 4;
 
@@ -614,5 +614,5 @@ TEST(IndexedMesh, ScrambledClosedMeshesAreRestored) {
   EXPECT_EQ(cases, 60);
 }
 
-}  // namespace
+}  // namespace test_indexed_mesh
 }  // namespace proxima

@@ -21,7 +21,7 @@
 #include "tessellation.hpp"
 
 namespace proxima {
-namespace {
+namespace test_mesh_raycast {
 
 /// Brute force: every triangle, same tie rule (lower index), same culling rule.
 bool passes(FaceCulling culling, const RayHit& h, const std::array<Vec3, 3>& t) {
@@ -456,5 +456,5 @@ TEST(RayBatch, EqualsSerialOnEveryExecutor) {
   EXPECT_FALSE(raycast_batch(mesh, rays, small, test::shared_pool(2)).ok());
 }
 
-}  // namespace
+}  // namespace test_mesh_raycast
 }  // namespace proxima

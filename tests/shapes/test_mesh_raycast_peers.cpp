@@ -24,7 +24,7 @@
 #include "support/workloads.hpp"
 
 namespace proxima {
-namespace {
+namespace test_mesh_raycast_peers {
 
 namespace pb = bench;
 
@@ -120,7 +120,7 @@ TEST(MeshRaycastPeers, SharedRayWorkloadMatchesEmbree) {
   }
 }
 
-}  // namespace
+}  // namespace test_mesh_raycast_peers
 }  // namespace proxima
 
 #else

@@ -19,7 +19,7 @@
 #include "support/solid_test_meshes.hpp"
 
 namespace proxima {
-namespace {
+namespace test_oriented_tree {
 
 IndexedMesh soup(test::Random& rng, int count, Real spread, Real size) {
   IndexedMesh m;
@@ -173,5 +173,5 @@ TEST(OrientedTree, FirstUseFromManyThreadsBuildsOnce) {
   expect_bounds(mesh);
 }
 
-}  // namespace
+}  // namespace test_oriented_tree
 }  // namespace proxima

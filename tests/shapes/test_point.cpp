@@ -13,7 +13,7 @@
 #include "support/random.hpp"
 
 namespace proxima {
-namespace {
+namespace test_point {
 
 using test::precision_tolerance;
 
@@ -185,5 +185,5 @@ TEST(Point, PlacedQueries) {
 
 TEST(Point, NonFiniteQueryInputHasDefinedAnswers) { test::exercise_queries_with_non_finite_input(kPoint); }
 
-}  // namespace
+}  // namespace test_point
 }  // namespace proxima

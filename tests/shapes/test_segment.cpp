@@ -14,7 +14,7 @@
 #include "support/random.hpp"
 
 namespace proxima {
-namespace {
+namespace test_segment {
 
 using test::precision_tolerance;
 
@@ -340,5 +340,5 @@ TEST(Segment, NonFiniteQueryInputHasDefinedAnswers) {
   test::exercise_queries_with_non_finite_input(make(Vec3(-1, 0, 0), Vec3(2, 1, 0)));
 }
 
-}  // namespace
+}  // namespace test_segment
 }  // namespace proxima

@@ -13,7 +13,7 @@
 #include "support/random.hpp"
 
 namespace proxima {
-namespace {
+namespace test_sphere {
 
 using test::precision_tolerance;
 
@@ -265,5 +265,5 @@ TEST(Sphere, DefaultDensityIsOne) {
 
 TEST(Sphere, NonFiniteQueryInputHasDefinedAnswers) { test::exercise_queries_with_non_finite_input(make(Real(1.5))); }
 
-}  // namespace
+}  // namespace test_sphere
 }  // namespace proxima

@@ -27,9 +27,10 @@
 #include "shapes/shape_visit.hpp"
 #include "support/random.hpp"
 #include "support/solid_test_meshes.hpp"
+#include "sweep_size.hpp"
 
 namespace proxima {
-namespace {
+namespace test_tessellation_consistency {
 
 // Narrow-phase accuracy on curved shapes (EPA, GJK) bounds the agreement; float needs more.
 const Real kTol = sizeof(Real) == 4 ? Real(2e-3) : Real(1e-6);
@@ -118,7 +119,7 @@ TEST(TessellationConsistency, DistancesBracketedWhenSeparated) {
   test::Random rng(502);
   for (const Case& c : cases()) {
     int checked = 0;
-    for (int k = 0; k < 1500; ++k) {
+    for (int k = 0; k < test::sweep_size(1500); ++k) {
       const Transform pose = rng.pose(Real(1));
       const Shape probe = random_probe(rng);
       const Transform pp{pose.position + rng.uniform(Real(1), Real(2.5)) * rng.unit_vector(), rng.rotation()};
@@ -140,7 +141,7 @@ TEST(TessellationConsistency, DistancesBracketedWhenSeparated) {
       EXPECT_NEAR(back.signed_distance, mesh.signed_distance, kTol);
       EXPECT_EQ(back.sub_b.triangle, mesh.sub_a.triangle);
     }
-    EXPECT_GT(checked, 800) << c.name;
+    EXPECT_GT(checked, test::sweep_share(800)) << c.name;
   }
 }
 
@@ -165,7 +166,7 @@ TEST(TessellationConsistency, ShallowContactDepthsBracketed) {
   PairRequest request;
   for (const Case& c : cases()) {
     int checked = 0, below_inner = 0;
-    for (int k = 0; k < 600; ++k) {
+    for (int k = 0; k < test::sweep_size(600); ++k) {
       const Transform pose = rng.pose(Real(1));
       const Shape probe = random_probe(rng);
       // Probe placed on a random ray from the centre, just touching the outer primitive,
@@ -217,12 +218,12 @@ TEST(TessellationConsistency, ShallowContactDepthsBracketed) {
       ASSERT_GT(m.count, 0);
       EXPECT_NEAR(m.points[0].depth, deepest, kTol);
     }
-    EXPECT_GT(checked, 300) << c.name;
+    EXPECT_GT(checked, test::sweep_share(300)) << c.name;
     std::printf("%s: %d of %d cases with the deepest contact below the inner primitive's depth\n", c.name, below_inner,
                 checked);
     RecordProperty(std::string(c.name) + "_below_inner", below_inner);
   }
 }
 
-}  // namespace
+}  // namespace test_tessellation_consistency
 }  // namespace proxima

@@ -16,7 +16,7 @@
 #include "support/random.hpp"
 
 namespace proxima {
-namespace {
+namespace test_triangle {
 
 using test::precision_tolerance;
 
@@ -385,5 +385,5 @@ TEST(Triangle, NonFiniteQueryInputHasDefinedAnswers) {
   test::exercise_queries_with_non_finite_input(make(Vec3(-1, 0, 0), Vec3(2, 0, 0), Vec3(0, 1, 1)));
 }
 
-}  // namespace
+}  // namespace test_triangle
 }  // namespace proxima

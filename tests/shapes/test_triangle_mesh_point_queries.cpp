@@ -34,9 +34,10 @@
 #include "shapes/mesh_point_queries.hpp"
 #include "support/random.hpp"
 #include "support/solid_test_meshes.hpp"
+#include "sweep_size.hpp"
 
 namespace proxima {
-namespace {
+namespace test_triangle_mesh_point_queries {
 
 struct Prepared {
   std::string name;
@@ -310,7 +311,7 @@ TEST(TriangleMeshPointQueries, PrunedDescentEqualsLinearScan) {
   ASSERT_EQ(mesh.triangle_count(), m.mesh.triangles.size());
   const detail::MeshView view = m.view(true);
   test::Random rng(5150);
-  for (int i = 0; i < 400; ++i) {
+  for (int i = 0; i < test::sweep_size(400); ++i) {
     const Vec3 p = i % 4 == 0 ? rng.vec3(Real(-20), Real(20)) : random_point_near(rng, m.box);
     const SurfacePoint a = mesh.closest_point(p);
     const SurfacePoint b = detail::mesh_closest_point(view, Bvh{}, p);
@@ -473,5 +474,5 @@ TEST(TriangleMeshContains, OpenMeshesFastWindingNumberIsExactWhereDefined) {
   }
 }
 
-}  // namespace
+}  // namespace test_triangle_mesh_point_queries
 }  // namespace proxima

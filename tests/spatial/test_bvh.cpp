@@ -13,7 +13,7 @@
 #include "support/random.hpp"
 
 namespace proxima {
-namespace {
+namespace test_bvh {
 
 std::vector<Vec3> centers_of(const std::vector<Aabb>& boxes) {
   std::vector<Vec3> c(boxes.size());
@@ -277,5 +277,5 @@ TEST(Bvh, FlatAndDegenerateBoxes) {
         Aabb::from_center_half_extents(Vec3(rng.uniform(-5, 5), rng.uniform(-5, 5), 0), Vec3(rng.uniform(0, 1))));
 }
 
-}  // namespace
+}  // namespace test_bvh
 }  // namespace proxima

@@ -15,7 +15,7 @@
 #include "bench_command.hpp"
 
 namespace proxima::tool {
-namespace {
+namespace test_bench_command {
 
 // A small W1 file: 300 boxes on a 0.25 lattice (half extents multiples of 0.25, so many
 // boxes touch exactly), velocities of +-0.25 so they stay on the lattice, 6 frames.
@@ -140,5 +140,5 @@ TEST(BenchCommand, EndToEnd) {
   EXPECT_NE(text.find("check:       agrees"), std::string::npos) << text;
 }
 
-}  // namespace
+}  // namespace test_bench_command
 }  // namespace proxima::tool

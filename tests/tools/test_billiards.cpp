@@ -13,7 +13,7 @@
 #include "demo_billiards.hpp"
 
 namespace proxima {
-namespace {
+namespace test_billiards {
 
 using tool::BilliardConfig;
 using tool::BilliardTable;
@@ -175,5 +175,5 @@ TEST(Billiards, DemoPrintsStatistics) {
   EXPECT_EQ(quiet.str(), "");
 }
 
-}  // namespace
+}  // namespace test_billiards
 }  // namespace proxima

@@ -20,7 +20,7 @@
 #include "json_expect.hpp"
 
 namespace proxima {
-namespace {
+namespace test_cli {
 
 using test::CliRun;
 using test::data_file;
@@ -231,5 +231,5 @@ TEST(CliQuery, MissingFileFails) {
   EXPECT_EQ(run.output, "");
 }
 
-}  // namespace
+}  // namespace test_cli
 }  // namespace proxima

@@ -19,7 +19,7 @@
 #include "cli_run.hpp"
 
 namespace proxima {
-namespace {
+namespace test_mesh_info {
 
 using test::CliRun;
 using test::data_file;
@@ -92,5 +92,5 @@ TEST(CliMeshInfo, MissingFileFails) {
   EXPECT_NE(run_cli("mesh-info 2>/dev/null").status, 0);
 }
 
-}  // namespace
+}  // namespace test_mesh_info
 }  // namespace proxima

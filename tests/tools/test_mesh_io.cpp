@@ -21,7 +21,7 @@
 #include "support/random.hpp"
 
 namespace proxima {
-namespace {
+namespace test_mesh_io {
 
 std::string data_file(const std::string& name) { return std::string(PROXIMA_TOOLS_TEST_DATA) + "/" + name; }
 
@@ -162,5 +162,5 @@ TEST(MeshIo, Errors) {
   EXPECT_NE(tool::mesh_file_extensions().find("gltf"), std::string::npos);
 }
 
-}  // namespace
+}  // namespace test_mesh_io
 }  // namespace proxima

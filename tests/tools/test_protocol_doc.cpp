@@ -14,7 +14,7 @@
 #include "query.hpp"
 
 namespace proxima {
-namespace {
+namespace test_protocol_doc {
 
 struct Example {
   std::string request;
@@ -107,5 +107,5 @@ TEST(ProtocolDoc, ExamplesAreTheProgramsAnswers) {
   std::filesystem::current_path(saved);
 }
 
-}  // namespace
+}  // namespace test_protocol_doc
 }  // namespace proxima

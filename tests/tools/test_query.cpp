@@ -19,7 +19,7 @@
 #include "support/random.hpp"
 
 namespace proxima {
-namespace {
+namespace test_query {
 
 using test::add, test::answer, test::D3, test::d3, test::dot, test::Json, test::js, test::norm, test::Rot, test::scale,
     test::sub;
@@ -439,5 +439,5 @@ TEST(Query, BadJsonAndNonObjects) {
   }
 }
 
-}  // namespace
+}  // namespace test_query
 }  // namespace proxima

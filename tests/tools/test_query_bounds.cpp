@@ -16,7 +16,7 @@
 #include "support/random.hpp"
 
 namespace proxima {
-namespace {
+namespace test_query_bounds {
 
 using test::add, test::answer, test::D3, test::d3, test::dot, test::Json, test::js, test::norm, test::Rot, test::scale,
     test::sub;
@@ -399,5 +399,5 @@ TEST(QueryBounds, FitErrorsNameTheirField) {
   }
 }
 
-}  // namespace
+}  // namespace test_query_bounds
 }  // namespace proxima

@@ -16,7 +16,7 @@
 #include "query.hpp"
 
 namespace proxima {
-namespace {
+namespace test_query_corpus {
 
 std::vector<std::string> lines_of(std::istream& in) {
   std::vector<std::string> lines;
@@ -55,5 +55,5 @@ TEST(QueryCorpus, AnswersAreByteIdenticalToTheRecordedOnes) {
   EXPECT_EQ(mismatches, 0) << "answers that changed";
 }
 
-}  // namespace
+}  // namespace test_query_corpus
 }  // namespace proxima

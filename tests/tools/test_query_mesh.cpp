@@ -14,7 +14,7 @@
 #include "support/random.hpp"
 
 namespace proxima {
-namespace {
+namespace test_query_mesh {
 
 using test::answer;
 using test::d3;
@@ -324,5 +324,5 @@ TEST(QueryMesh, Errors) {
   EXPECT_EQ(answer(Json{{"op", "bound"}, {"target", compound}, {"volume", "sphere"}}, false)["field"], "volume");
 }
 
-}  // namespace
+}  // namespace test_query_mesh
 }  // namespace proxima

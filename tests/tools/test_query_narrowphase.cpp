@@ -19,7 +19,7 @@
 #include "support/random.hpp"
 
 namespace proxima {
-namespace {
+namespace test_query_narrowphase {
 
 using test::add, test::answer, test::D3, test::d3, test::dot, test::Json, test::js, test::norm, test::scale, test::sub;
 
@@ -216,5 +216,5 @@ TEST(QueryNarrowphase, ErrorsNameTheirField) {
   }
 }
 
-}  // namespace
+}  // namespace test_query_narrowphase
 }  // namespace proxima

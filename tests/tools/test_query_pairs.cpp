@@ -15,7 +15,7 @@
 #include "support/random.hpp"
 
 namespace proxima {
-namespace {
+namespace test_query_pairs {
 
 using test::answer, test::Json;
 
@@ -92,5 +92,5 @@ TEST(QueryPairs, HelpListsStructureNames) {
   }
 }
 
-}  // namespace
+}  // namespace test_query_pairs
 }  // namespace proxima

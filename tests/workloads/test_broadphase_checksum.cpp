@@ -9,7 +9,7 @@
 #include "workload_test_util.hpp"
 
 namespace proxima::bench {
-namespace {
+namespace test_broadphase_checksum {
 
 using Pairs = std::vector<std::pair<std::uint32_t, std::uint32_t>>;
 
@@ -131,5 +131,5 @@ TEST(BroadphaseChecksum, Uniform10kMatchesPublishedChecksum) {
   EXPECT_EQ(run, published.checksum);
 }
 
-}  // namespace
+}  // namespace test_broadphase_checksum
 }  // namespace proxima::bench

@@ -12,7 +12,7 @@
 #include "workload_test_util.hpp"
 
 namespace proxima::bench {
-namespace {
+namespace test_make_workload {
 
 namespace fs = std::filesystem;
 using namespace test_util;
@@ -221,5 +221,5 @@ TEST(MakeWorkload, DefaultSeedsReproduceTheSharedFiles) {
   EXPECT_EQ(compared, 12);
 }
 
-}  // namespace
+}  // namespace test_make_workload
 }  // namespace proxima::bench

@@ -9,7 +9,7 @@
 #include "workload_test_util.hpp"
 
 namespace proxima::bench {
-namespace {
+namespace test_malformed {
 
 using test_util::temp_file;
 
@@ -212,5 +212,5 @@ TEST(WorkloadDir, CommandLineThenEnvironmentThenDefault) {
   EXPECT_EQ(workload_path("/a/b/", "c.txt"), "/a/b/c.txt");
 }
 
-}  // namespace
+}  // namespace test_malformed
 }  // namespace proxima::bench

@@ -13,7 +13,7 @@
 #include "workload_test_util.hpp"
 
 namespace proxima::bench {
-namespace {
+namespace test_readers {
 
 using namespace test_util;
 
@@ -396,5 +396,5 @@ TEST(Poses, ConversionToTransformAgreesWithFormula) {
   }
 }
 
-}  // namespace
+}  // namespace test_readers
 }  // namespace proxima::bench

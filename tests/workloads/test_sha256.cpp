@@ -11,7 +11,7 @@
 #include "support/workloads.hpp"
 
 namespace proxima::bench {
-namespace {
+namespace test_sha256 {
 
 TEST(Sha256, FipsExamples) {
   EXPECT_EQ(sha256_hex(""), "e3b0c44298fc1c149afbf4c8996fb92427ae41e4649b934ca495991b7852b855");
@@ -108,5 +108,5 @@ TEST(Sha256, SharedWorkloadsMatchSha256Sums) {
   EXPECT_EQ(*knot, "a7838cbc509c6055ac66205e112c5d7246a9d79536a6b4c8c291f61a0cacba06");
 }
 
-}  // namespace
+}  // namespace test_sha256
 }  // namespace proxima::bench

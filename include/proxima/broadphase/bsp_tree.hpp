@@ -82,8 +82,8 @@ class BspTree {
   /// Returns the query's counters.
   template <OverlapCallback OnOverlap>
   BroadPhaseStats query_aabb(const Aabb& box, OnOverlap&& on_overlap) const {
-    return detail::run_box_query(box, on_overlap,
-                                 [this](const Aabb& b, BroadPhaseStats& st, auto&& visit) { visit_box(b, st, visit); });
+    return detail::run_box_query(
+        box, on_overlap, [this](const Aabb& b, BroadPhaseStats& st, auto&& visit) { this->visit_box(b, st, visit); });
   }
   /// Every proxy whose box contains `point`; returns the query's counters.
   template <OverlapCallback OnOverlap>
