@@ -7,12 +7,13 @@
 /// 2. Otherwise publish a Job (the task, the range, an atomic cursor, a grain of about
 ///    count / (8 threads)) under the mutex with a new generation number and wake the workers.
 /// 3. Every participant (the caller and each worker that joins) takes grains from the cursor
-///    until it passes count; the first exception of a task is kept, the rest of the range
-///    still runs.
+///    until it passes count; the first exception of a task (when built with exceptions) is
+///    kept, the rest of the range still runs.
 /// 4. The caller, its own grains done, waits until no worker is inside the job, withdraws
 ///    the job (late workers see none) and rethrows the kept exception, if any.
 /// Workers sleep on a condition variable between jobs; the destructor stops and joins them.
 
+#include <proxima/core/config.hpp>
 #include <proxima/core/executor.hpp>
 
 #include <algorithm>
@@ -45,12 +46,16 @@ struct Job {
       const std::size_t begin = cursor.fetch_add(grain, std::memory_order_relaxed);
       if (begin >= count) return;
       const std::size_t end = std::min(count, begin + grain);
+#if PROXIMA_EXCEPTIONS
       try {
         task(begin, end);
       } catch (...) {
         const std::lock_guard<std::mutex> lock(error_mutex);
         if (!error) error = std::current_exception();
       }
+#else
+      task(begin, end);  // built without exceptions: a task cannot throw
+#endif
     }
   }
 };
@@ -157,7 +162,9 @@ void ThreadPool::run(std::size_t count, RangeTask task) {
     s.finished.wait(lock, [&] { return s.active == 0; });
     s.job = nullptr;
   }
+#if PROXIMA_EXCEPTIONS
   if (job.error) std::rethrow_exception(job.error);
+#endif
 }
 
 }  // namespace proxima
