@@ -11,8 +11,8 @@
 ///     (branch and bound; the best so far is passed down as a cutoff, so nested parts prune
 ///     against the global best).
 ///  2. Compound against compound (boolean, contacts): simultaneous descent of both BVHs over
-///     node pairs (B's node box mapped into A's frame, Arvo's box of a rotated box), the
-///     larger node split first, fixed stack; leaf pairs recurse on child pairs. Distance
+///     node pairs (spatial/bvh_pair_descent.hpp; B's node box mapped into A's frame, Arvo's
+///     box of a rotated box), the larger node split first; leaf pairs recurse on child pairs. Distance
 ///     descends A's BVH and answers each child against B (which descends B's BVH), sharing
 ///     the cutoff.
 ///  3. The manifold of a composite pair: collide_all, then the deepest contact's normal
@@ -32,53 +32,47 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <span>
 #include <vector>
 
 #include "collector_adapters.hpp"
 #include "dispatch.hpp"
 #include "manifold_reduction.hpp"
 #include "shapes/shape_visit.hpp"
+#include "spatial/bvh_pair_descent.hpp"
 
 namespace proxima::narrow {
 namespace {
 
-/// Calls leaf(i, j) for every pair of children of A and B whose BVH leaves overlap (B's node
-/// boxes mapped into A's frame, A's boxes inflated by `margin`). leaf returns false to stop;
-/// returns false when stopped.
+/// The node test of two compounds' hierarchies for spatial::descend_bvh_pairs: A's node
+/// boxes inflated by the margin against B's mapped into A's frame (Arvo's box of a rotated
+/// box); node size = surface area.
+struct CompoundNodes {
+  std::span<const BvhNode> na;
+  std::span<const BvhNode> nb;
+  Transform rel;  ///< B's frame seen from A's
+
+  Aabb fix_a(std::uint32_t i) const { return na[i].bounds(); }
+  Aabb fix_b(std::uint32_t j) const { return nb[j].bounds().transformed(rel); }
+  bool overlap(std::uint32_t i, const Aabb& b, Real margin) const { return na[i].bounds().inflated(margin).overlaps(b); }
+  bool overlap(const Aabb& a, std::uint32_t j, Real margin) const { return a.inflated(margin).overlaps(fix_b(j)); }
+  Real size_a(std::uint32_t i) const { return na[i].bounds().surface_area(); }
+  Real size_b(std::uint32_t j) const { return nb[j].bounds().surface_area(); }
+};
+
+/// Calls leaf(i, j) for every pair of children of A and B whose BVH leaves overlap (A's boxes
+/// inflated by `margin`). leaf returns false to stop; returns false when stopped.
 template <class Leaf>
 bool pair_descent(const Compound& a, const Transform& pose_a, const Compound& b, const Transform& pose_b, Real margin,
                   Leaf&& leaf) {
-  const auto na = a.bvh().nodes(), nb = b.bvh().nodes();
   const auto pa = a.bvh().primitives(), pb = b.bvh().primitives();
-  if (na.empty() || nb.empty()) return true;
-  const Transform rel = relative(pose_a, pose_b);
-  const auto overlap = [&](std::uint32_t i, std::uint32_t j) {
-    return na[i].bounds().inflated(margin).overlaps(nb[j].bounds().transformed(rel));
-  };
-  struct Pair {
-    std::uint32_t i, j;
-  };
-  Pair stack[2 * Bvh::kMaxDepth + 4];
-  std::uint32_t top = 0;
-  if (!overlap(0, 0)) return true;
-  stack[top++] = {0, 0};
-  while (top != 0) {
-    const Pair p = stack[--top];
-    const BvhNode& x = na[p.i];
-    const BvhNode& y = nb[p.j];
-    if (x.is_leaf() && y.is_leaf()) {
-      for (std::uint32_t s = x.first; s != x.first + x.count; ++s)
-        for (std::uint32_t t = y.first; t != y.first + y.count; ++t)
-          if (!leaf(pa[s], pb[t])) return false;
-      continue;
-    }
-    const bool split_a = !x.is_leaf() && (y.is_leaf() || x.bounds().surface_area() >= y.bounds().surface_area());
-    for (std::uint32_t c = 0; c != 2; ++c) {
-      const Pair q = split_a ? Pair{x.first + 1 - c, p.j} : Pair{p.i, y.first + 1 - c};
-      if (overlap(q.i, q.j)) stack[top++] = q;
-    }
-  }
-  return true;
+  const CompoundNodes nodes{a.bvh().nodes(), b.bvh().nodes(), relative(pose_a, pose_b)};
+  return spatial::descend_bvh_pairs(a.bvh(), b.bvh(), nodes, margin, [&](const BvhNode& x, const BvhNode& y) {
+    for (std::uint32_t s = x.first; s != x.first + x.count; ++s)
+      for (std::uint32_t t = y.first; t != y.first + y.count; ++t)
+        if (!leaf(pa[s], pb[t])) return false;
+    return true;
+  });
 }
 
 std::uint32_t mix_sub_ids(const ContactPoint& c) {
@@ -95,44 +89,58 @@ DistanceResult distance_below(ShapeRef a, const Transform& pose_a, ShapeRef b, c
 }
 
 bool compound_intersect(const Compound& a, const Transform& pa, ShapeRef b, const Transform& pb,
-                        const PairRequest& req) {
+                        const PairRequest& req, PartHint* hint) {
   const auto kids = a.children();
   if (b.type() == ShapeType::Compound) {
-    bool hit = false;
     const auto kb = b.as<Compound>().children();
+    const auto touch = [&](std::uint32_t i, std::uint32_t j) {
+      return intersect(kids[i].shape, pa * kids[i].pose, kb[j].shape, pb * kb[j].pose, req);
+    };
+    if (hint != nullptr && hint->a < kids.size() && hint->b < kb.size() && touch(hint->a, hint->b)) return true;
+    bool hit = false;
     pair_descent(a, pa, b.as<Compound>(), pb, req.contact_distance, [&](std::uint32_t i, std::uint32_t j) {
-      hit = intersect(kids[i].shape, pa * kids[i].pose, kb[j].shape, pb * kb[j].pose, req);
+      hit = touch(i, j);
+      if (hit && hint != nullptr) *hint = {i, j};
       return !hit;
     });
     return hit;
   }
+  const auto touch = [&](std::uint32_t i) { return intersect(kids[i].shape, pa * kids[i].pose, b, pb, req); };
+  if (hint != nullptr && hint->a < kids.size() && touch(hint->a)) return true;
   const Aabb box = world_aabb(b, relative(pa, pb)).inflated(req.contact_distance);
   bool hit = false;
   a.bvh().traverse([&](const BvhNode& n) { return n.bounds().overlaps(box); },
                    [&](std::uint32_t i) {
-                     hit = intersect(kids[i].shape, pa * kids[i].pose, b, pb, req);
+                     hit = touch(i);
+                     if (hit && hint != nullptr) *hint = {i, kNoIndex};
                      return !hit;
                    });
   return hit;
 }
 
 DistanceResult compound_distance(const Compound& a, const Transform& pa, ShapeRef b, const Transform& pb,
-                                 const PairRequest& req, Real cutoff) {
+                                 const PairRequest& req, Real cutoff, PartHint* hint) {
   DistanceResult best;
   best.signed_distance = std::numeric_limits<Real>::infinity();
   Real bound = cutoff;
   const auto kids = a.children();
+  const auto answer = [&](std::uint32_t i) {
+    const DistanceResult d = distance_below(kids[i].shape, pa * kids[i].pose, b, pb, req, bound);
+    if (d.signed_distance < bound || (d.signed_distance == bound && i < best.sub_a.child)) {
+      best = d;
+      best.sub_a.child = i;
+      bound = d.signed_distance;
+    }
+  };
+  const std::uint32_t first = hint != nullptr && hint->a < kids.size() ? hint->a : kNoIndex;
+  if (first != kNoIndex) answer(first);
   const Aabb box = world_aabb(b, relative(pa, pb));
   a.bvh().traverse_nearest([&](const Aabb& node) { return detail::aabb_gap(node, box); }, bound,
                            [&](std::uint32_t i) {
-                             const DistanceResult d =
-                                 distance_below(kids[i].shape, pa * kids[i].pose, b, pb, req, bound);
-                             if (d.signed_distance < bound || (d.signed_distance == bound && i < best.sub_a.child)) {
-                               best = d;
-                               best.sub_a.child = i;
-                               bound = d.signed_distance;
-                             }
+                             if (i != first) answer(i);
                            });
+  if (hint != nullptr)
+    *hint = {best.sub_a.child, b.type() == ShapeType::Compound ? best.sub_b.child : best.sub_b.triangle};
   return best;
 }
 

@@ -14,7 +14,8 @@
 //     overlap). The reference path (MeshMeshNodes::Aabb) tests A's axis-aligned Bvh boxes
 //     against B's as oriented boxes in A's frame.
 //  3. Overlap (boolean, all contacts): boxes within the contact distance plus a rounding
-//     margin; descend the node with the larger size (a leaf never), fixed stack of pairs.
+//     margin; descend the node with the larger size (a leaf never), fixed stack of pairs
+//     (spatial/bvh_pair_descent.hpp, shared with compound against compound).
 //  4. Leaves: B's leaf triangles moved into A's frame once per leaf pair, every triangle pair
 //     tested (geometry::triangles_intersect, or the exact distance with a contact distance).
 //     The boolean stops at the first hit; collide_all runs the narrow phase's triangle pair
@@ -54,11 +55,11 @@
 
 #include "geometry/box_separation.hpp"
 #include "shapes/oriented_tree.hpp"
+#include "spatial/bvh_pair_descent.hpp"
 
 namespace proxima::narrow {
 namespace {
 
-constexpr std::uint32_t kPairStackSize = 2 * Bvh::kMaxDepth + 4;
 constexpr std::uint32_t kMaxLeafTriangles = 255;
 
 /// B's frame seen from A's: x_a = r * x_b + t; rows of r kept row-major for the SAT.
@@ -393,53 +394,15 @@ inline bool triangles_within(const std::array<Vec3, 3>& a, const std::array<Vec3
          contact_distance * contact_distance;
 }
 
-/// Visits every leaf pair whose nodes are within `margin` by the node test `nodes` (A leaf,
-/// B leaf); `visit` returns false to stop. Returns false when stopped.
-template <class Nodes, class Visit>
-bool descend_overlapping(const Bvh& ba, const Bvh& bb, const Nodes& nodes, Real margin, Visit&& visit) {
-  if (ba.empty() || bb.empty()) return true;
-  const auto na = ba.nodes();
-  const auto nb = bb.nodes();
-  std::uint32_t stack[kPairStackSize][2];
-  std::uint32_t top = 0;
-  if (!nodes.overlap(0, nodes.fix_b(0), margin)) return true;
-  stack[top][0] = 0;
-  stack[top][1] = 0;
-  ++top;
-  while (top != 0) {
-    --top;
-    const std::uint32_t ia = stack[top][0];
-    const std::uint32_t ib = stack[top][1];
-    const BvhNode& a = na[ia];
-    const BvhNode& b = nb[ib];
-    if (a.is_leaf() && b.is_leaf()) {
-      if (!visit(a, b)) return false;
-      continue;
-    }
-    const bool split_a = b.is_leaf() || (!a.is_leaf() && nodes.size_a(ia) >= nodes.size_b(ib));
-    if (split_a) {
-      const auto fixed = nodes.fix_b(ib);
-      for (std::uint32_t c = a.first + 1;; --c) {
-        if (nodes.overlap(c, fixed, margin)) {
-          stack[top][0] = c;
-          stack[top][1] = ib;
-          ++top;
-        }
-        if (c == a.first) break;
-      }
-    } else {
-      const auto fixed = nodes.fix_a(ia);
-      for (std::uint32_t c = b.first + 1;; --c) {
-        if (nodes.overlap(fixed, c, margin)) {
-          stack[top][0] = ia;
-          stack[top][1] = c;
-          ++top;
-        }
-        if (c == b.first) break;
-      }
-    }
-  }
-  return true;
+/// True when `hint` names a triangle of A and a triangle of B.
+bool valid_pair(const TriangleMesh& a, const TriangleMesh& b, const PartHint* hint) {
+  return hint != nullptr && hint->a < a.triangle_count() && hint->b < b.triangle_count();
+}
+
+/// Triangle `t` of B in A's frame.
+std::array<Vec3, 3> b_in_a(const TriangleMesh& b, const RelativeFrame& f, std::uint32_t t) {
+  const std::array<Vec3, 3> v = b.triangle(t);
+  return {f.rotation * v[0] + f.t, f.rotation * v[1] + f.t, f.rotation * v[2] + f.t};
 }
 
 /// World-frame unit normal of A's triangle turned towards `towards` (A frame), +z when flat.
@@ -461,7 +424,7 @@ bool find_pair_within(const TriangleMesh& a, const TriangleMesh& b, const Relati
   LeafTriangles leaf_b;
   std::uint32_t loaded = kNoIndex;
   const BvhNode* nodes_b = b.bvh().nodes().data();
-  return !descend_overlapping(a.bvh(), b.bvh(), nodes, margin, [&](const BvhNode& la, const BvhNode& lb) {
+  return !spatial::descend_bvh_pairs(a.bvh(), b.bvh(), nodes, margin, [&](const BvhNode& la, const BvhNode& lb) {
     const auto id_b = static_cast<std::uint32_t>(&lb - nodes_b);
     if (id_b != loaded) {
       load_leaf(b, f, lb, leaf_b);
@@ -487,14 +450,17 @@ bool find_pair_within(const TriangleMesh& a, const TriangleMesh& b, const Relati
 }  // namespace
 
 bool mesh_mesh_intersect(const TriangleMesh& a, const Transform& pose_a, const TriangleMesh& b, const Transform& pose_b,
-                         const PairRequest& request, MeshMeshNodes node_kind) {
+                         const PairRequest& request, MeshMeshNodes node_kind, PartHint* hint) {
   const RelativeFrame f = make_frame(pose_a, pose_b);
   const Real cd = std::max(request.contact_distance, Real(0));
+  if (valid_pair(a, b, hint) && triangles_within(a.triangle(hint->a), b_in_a(b, f, hint->b), cd)) return true;
   const Real margin = node_margin(pair_scale(a, b, f), cd);
   std::uint32_t ta = kNoIndex;
   std::uint32_t tb = kNoIndex;
-  return with_nodes(node_kind, a, b, f,
-                    [&](const auto& nodes) { return find_pair_within(a, b, f, nodes, margin, cd, ta, tb); });
+  const bool hit = with_nodes(node_kind, a, b, f,
+                              [&](const auto& nodes) { return find_pair_within(a, b, f, nodes, margin, cd, ta, tb); });
+  if (hit && hint != nullptr) *hint = {ta, tb};
+  return hit;
 }
 
 void mesh_mesh_collide_all(const TriangleMesh& a, const Transform& pose_a, const TriangleMesh& b,
@@ -564,7 +530,7 @@ void mesh_mesh_collide_all(const TriangleMesh& a, const Transform& pose_a, const
     return true;
   };
   with_nodes(node_kind, a, b, f,
-             [&](const auto& nodes) { return descend_overlapping(a.bvh(), b.bvh(), nodes, margin, visit); });
+             [&](const auto& nodes) { return spatial::descend_bvh_pairs(a.bvh(), b.bvh(), nodes, margin, visit); });
 }
 
 namespace {
@@ -572,7 +538,8 @@ namespace {
 /// The distance descent with node test `nodes` (see mesh_mesh_distance).
 template <class Nodes>
 DistanceResult distance_descent(const TriangleMesh& a, const Transform& pose_a, const TriangleMesh& b,
-                                const PairRequest& request, const RelativeFrame& f, const Nodes& nodes) {
+                                const PairRequest& request, const RelativeFrame& f, const Nodes& nodes,
+                                PartHint* hint) {
   DistanceResult out;
   const Real scale = pair_scale(a, b, f);
   const Bvh& ba = a.bvh();
@@ -597,7 +564,7 @@ DistanceResult distance_descent(const TriangleMesh& a, const Transform& pose_a, 
     std::uint32_t b;
     Real lb2;
   };
-  Entry stack[kPairStackSize];
+  Entry stack[spatial::kBvhPairStackSize];
   std::uint32_t top = 0;
   stack[top++] = {0, 0, nodes.lower_bound2(0, nodes.fix_b(0), std::numeric_limits<Real>::infinity())};
   LeafTriangles leaf_b;
@@ -608,7 +575,13 @@ DistanceResult distance_descent(const TriangleMesh& a, const Transform& pose_a, 
   {
     std::uint32_t hit_a = kNoIndex;
     std::uint32_t hit_b = kNoIndex;
-    if (find_pair_within(a, b, f, nodes, node_margin(scale, Real(0)), Real(0), hit_a, hit_b)) {
+    const bool hinted_touch =
+        valid_pair(a, b, hint) && triangles_within(a.triangle(hint->a), b_in_a(b, f, hint->b), Real(0));
+    if (hinted_touch) {
+      hit_a = hint->a;
+      hit_b = hint->b;
+    }
+    if (hinted_touch || find_pair_within(a, b, f, nodes, node_margin(scale, Real(0)), Real(0), hit_a, hit_b)) {
       const std::array<Vec3, 3> ta = a.triangle(hit_a);
       const std::array<Vec3, 3> tl = b.triangle(hit_b);
       const std::array<Vec3, 3> tb{f.rotation * tl[0] + f.t, f.rotation * tl[1] + f.t, f.rotation * tl[2] + f.t};
@@ -623,6 +596,21 @@ DistanceResult distance_descent(const TriangleMesh& a, const Transform& pose_a, 
   }
   // Apart meshes in the plain coordinate range take the short triangle distance.
   const bool plain_range = geometry::detail::rescale_exponent(scale) == 0;
+  const auto pair_distance = [&](const std::array<Vec3, 3>& ta, const Vec3& na_unit, const std::array<Vec3, 3>& tb,
+                                 const Vec3& nb_unit) {
+    return plain_range ? separated_triangles(ta, na_unit, tb, nb_unit)
+                       : geometry::closest_points_triangle_triangle(ta[0], ta[1], ta[2], tb[0], tb[1], tb[2]);
+  };
+  if (!touching && valid_pair(a, b, hint)) {
+    // The remembered pair's distance, computed as the descent would, is the first bound.
+    best_ta = a.triangle(hint->a);
+    best_tb = b_in_a(b, f, hint->b);
+    best_pair = pair_distance(best_ta, unit_normal(best_ta), best_tb, unit_normal(best_tb));
+    best2 = best_pair.distance_squared;
+    best_a = hint->a;
+    best_b = hint->b;
+    touching = best2 == Real(0);
+  }
   while (top != 0 && !touching) {
     const Entry e = stack[--top];
     if (e.lb2 >= best2) continue;
@@ -652,9 +640,7 @@ DistanceResult distance_descent(const TriangleMesh& a, const Transform& pose_a, 
             // much more tightly than the spheres.
             if (triangle_gap_squared(ta, na_unit, tb, leaf_b.normal[k], dc / std::sqrt(dc2)) >= best2) continue;
           }
-          const geometry::ClosestPair cp =
-              plain_range ? separated_triangles(ta, na_unit, tb, leaf_b.normal[k])
-                          : geometry::closest_points_triangle_triangle(ta[0], ta[1], ta[2], tb[0], tb[1], tb[2]);
+          const geometry::ClosestPair cp = pair_distance(ta, na_unit, tb, leaf_b.normal[k]);
           if (cp.distance_squared < best2) {
             best2 = cp.distance_squared;
             best_pair = cp;
@@ -703,16 +689,18 @@ DistanceResult distance_descent(const TriangleMesh& a, const Transform& pose_a, 
   r.method = PairMethod::Analytic;
   out.sub_a.triangle = best_a;
   out.sub_b.triangle = best_b;
+  if (hint != nullptr) *hint = {best_a, best_b};
   return out;
 }
 
 }  // namespace
 
 DistanceResult mesh_mesh_distance(const TriangleMesh& a, const Transform& pose_a, const TriangleMesh& b,
-                                  const Transform& pose_b, const PairRequest& request, MeshMeshNodes node_kind) {
+                                  const Transform& pose_b, const PairRequest& request, MeshMeshNodes node_kind,
+                                  PartHint* hint) {
   const RelativeFrame f = make_frame(pose_a, pose_b);
   return with_nodes(node_kind, a, b, f,
-                    [&](const auto& nodes) { return distance_descent(a, pose_a, b, request, f, nodes); });
+                    [&](const auto& nodes) { return distance_descent(a, pose_a, b, request, f, nodes, hint); });
 }
 
 }  // namespace proxima::narrow
