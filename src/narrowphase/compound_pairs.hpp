@@ -7,16 +7,21 @@
 #include <proxima/narrowphase/contact_collector.hpp>
 #include <proxima/shapes/shape_ref.hpp>
 
+#include "part_hint.hpp"
+
 namespace proxima::narrow {
 
-/// True when a child of `a` touches B (within request.contact_distance).
+/// True when a child of `a` touches B (within request.contact_distance). `hint` (optional):
+/// the child pair tried first, then the one that touched (part_hint.hpp).
 bool compound_intersect(const Compound& a, const Transform& pose_a, ShapeRef b, const Transform& pose_b,
-                        const PairRequest& request);
+                        const PairRequest& request, PartHint* hint = nullptr);
 
 /// Minimum signed distance over the children of `a` against B, searching only for answers
-/// below `cutoff` (+infinity when none is); sub_a.child names the child.
+/// below `cutoff` (+infinity when none is); sub_a.child names the child. `hint`
+/// (optional): A's child answered first, its distance the first bound; then the answer's
+/// children.
 DistanceResult compound_distance(const Compound& a, const Transform& pose_a, ShapeRef b, const Transform& pose_b,
-                                 const PairRequest& request, Real cutoff);
+                                 const PairRequest& request, Real cutoff, PartHint* hint = nullptr);
 
 /// Every contact of the children of `a` against B, each tagged with its child in sub_a
 /// (and B's child in sub_b when B is a compound too).

@@ -116,24 +116,25 @@ constexpr PairFunctions convex_cell() {
 // convex B; the mirrored cells swap the arguments.
 
 template <class A, class B>
-bool composite_intersect(const A& a, const Transform& pa, const B& b, const Transform& pb, const PairRequest& r) {
+bool composite_intersect(const A& a, const Transform& pa, const B& b, const Transform& pb, const PairRequest& r,
+                         PartHint* hint) {
   if constexpr (std::is_same_v<A, Compound>)
-    return compound_intersect(a, pa, b, pb, r);
+    return compound_intersect(a, pa, b, pb, r, hint);
   else if constexpr (std::is_same_v<B, TriangleMesh>)
-    return mesh_mesh_intersect(a, pa, b, pb, r);
+    return mesh_mesh_intersect(a, pa, b, pb, r, MeshMeshNodes::Oriented, hint);
   else
-    return mesh_convex_intersect(a, pa, b, pb, r);
+    return mesh_convex_intersect(a, pa, b, pb, r, hint);
 }
 
 template <class A, class B>
 DistanceResult composite_distance(const A& a, const Transform& pa, const B& b, const Transform& pb,
-                                  const PairRequest& r, Real cutoff) {
+                                  const PairRequest& r, Real cutoff, PartHint* hint) {
   if constexpr (std::is_same_v<A, Compound>)
-    return compound_distance(a, pa, b, pb, r, cutoff);
+    return compound_distance(a, pa, b, pb, r, cutoff, hint);
   else if constexpr (std::is_same_v<B, TriangleMesh>)
-    return mesh_mesh_distance(a, pa, b, pb, r);
+    return mesh_mesh_distance(a, pa, b, pb, r, MeshMeshNodes::Oriented, hint);
   else
-    return mesh_convex_distance(a, pa, b, pb, r, cutoff);
+    return mesh_convex_distance(a, pa, b, pb, r, cutoff, hint);
 }
 
 template <class A, class B>
@@ -158,21 +159,36 @@ struct CompositeCell {
   static const A& sa(const void* p) { return *static_cast<const A*>(p); }
   static const B& sb(const void* p) { return *static_cast<const B*>(p); }
 
+  /// Runs `query(hint)` with the cache's part hint in the routine's order (none without a
+  /// cache) and stores the hint back.
+  template <class Query>
+  static auto with_hint(PairCache* cache, Query&& query) {
+    constexpr bool swap = !kCompositeDirect<A, B>;
+    if (cache == nullptr) return query(nullptr);
+    PartHint hint = load_hint(*cache, swap);
+    auto answer = query(&hint);
+    store_hint(*cache, hint, swap);
+    return answer;
+  }
   static bool intersect(const void* a, const Transform& pa, const void* b, const Transform& pb, const PairRequest& r,
-                        PairCache* /*cache*/) {
+                        PairCache* cache) {
     if (!finite_poses(pa, pb)) return false;
-    if constexpr (kCompositeDirect<A, B>)
-      return composite_intersect(sa(a), pa, sb(b), pb, r);
-    else
-      return composite_intersect(sb(b), pb, sa(a), pa, r);
+    return with_hint(cache, [&](PartHint* hint) {
+      if constexpr (kCompositeDirect<A, B>)
+        return composite_intersect(sa(a), pa, sb(b), pb, r, hint);
+      else
+        return composite_intersect(sb(b), pb, sa(a), pa, r, hint);
+    });
   }
   static DistanceResult distance(const void* a, const Transform& pa, const void* b, const Transform& pb,
-                                 const PairRequest& r, PairCache* /*cache*/, Real cutoff) {
+                                 const PairRequest& r, PairCache* cache, Real cutoff) {
     if (!finite_poses(pa, pb)) return invalid_distance();
-    if constexpr (kCompositeDirect<A, B>)
-      return composite_distance(sa(a), pa, sb(b), pb, r, cutoff);
-    else
-      return mirrored(composite_distance(sb(b), pb, sa(a), pa, r, cutoff));
+    return with_hint(cache, [&](PartHint* hint) {
+      if constexpr (kCompositeDirect<A, B>)
+        return composite_distance(sa(a), pa, sb(b), pb, r, cutoff, hint);
+      else
+        return mirrored(composite_distance(sb(b), pb, sa(a), pa, r, cutoff, hint));
+    });
   }
   static ContactManifold collide(const void* a, const Transform& pa, const void* b, const Transform& pb,
                                  const PairRequest& r, PairCache* /*cache*/) {

@@ -294,39 +294,51 @@ void halfspace_collide_all(const TriangleMesh& mesh, const Transform& pose_mesh,
 }  // namespace
 
 bool mesh_convex_intersect(const TriangleMesh& mesh, const Transform& pose_mesh, ShapeRef convex,
-                           const Transform& pose_convex, const PairRequest& request) {
+                           const Transform& pose_convex, const PairRequest& request, PartHint* hint) {
   if (convex.type() == ShapeType::HalfSpace)
     return halfspace_intersect(mesh, pose_mesh, convex.as<HalfSpace>(), pose_convex, request);
+  if (hint != nullptr && hint->a < mesh.triangle_count()) {
+    const std::array<Vec3, 3> v = mesh.triangle(hint->a);
+    const Result<Triangle> tri = Triangle::create(v[0], v[1], v[2]);
+    if (tri && intersect(*tri, pose_mesh, convex, pose_convex, request)) return true;
+  }
   const Aabb box = convex_box_in_mesh(convex, pose_mesh, pose_convex).inflated(request.contact_distance);
   bool hit = false;
-  for_each_triangle_near(mesh, box, [&](std::uint32_t, const std::array<Vec3, 3>&, const Triangle& tri) {
+  for_each_triangle_near(mesh, box, [&](std::uint32_t t, const std::array<Vec3, 3>&, const Triangle& tri) {
     hit = intersect(tri, pose_mesh, convex, pose_convex, request);
+    if (hit && hint != nullptr) *hint = {t, kNoIndex};
     return !hit;
   });
   return hit;
 }
 
 DistanceResult mesh_convex_distance(const TriangleMesh& mesh, const Transform& pose_mesh, ShapeRef convex,
-                                    const Transform& pose_convex, const PairRequest& request, Real cutoff) {
+                                    const Transform& pose_convex, const PairRequest& request, Real cutoff,
+                                    PartHint* hint) {
   if (convex.type() == ShapeType::HalfSpace)
     return halfspace_distance(mesh, pose_mesh, convex.as<HalfSpace>(), pose_convex, request, cutoff);
   DistanceResult best;
   best.signed_distance = kInf;
   Real bound = cutoff;
+  const auto answer = [&](std::uint32_t t) {
+    const auto v = mesh.triangle(t);
+    auto tri = Triangle::create(v[0], v[1], v[2]);
+    if (!tri) return;
+    const DistanceResult r = distance(ShapeRef(*tri), pose_mesh, convex, pose_convex, request);
+    if (r.signed_distance < bound || (r.signed_distance == bound && t < best.sub_a.triangle)) {
+      bound = r.signed_distance;
+      best = r;
+      best.sub_a.triangle = t;
+    }
+  };
+  const std::uint32_t first = hint != nullptr && hint->a < mesh.triangle_count() ? hint->a : kNoIndex;
+  if (first != kNoIndex) answer(first);
   const Aabb box = convex_box_in_mesh(convex, pose_mesh, pose_convex);
-  mesh.bvh().traverse_nearest(
-      [&](const Aabb& node) { return detail::aabb_gap(node, box); }, bound,
-      [&](std::uint32_t t) {
-        const auto v = mesh.triangle(t);
-        auto tri = Triangle::create(v[0], v[1], v[2]);
-        if (!tri) return;
-        const DistanceResult r = distance(ShapeRef(*tri), pose_mesh, convex, pose_convex, request);
-        if (r.signed_distance < bound || (r.signed_distance == bound && t < best.sub_a.triangle)) {
-          bound = r.signed_distance;
-          best = r;
-          best.sub_a.triangle = t;
-        }
-      });
+  mesh.bvh().traverse_nearest([&](const Aabb& node) { return detail::aabb_gap(node, box); }, bound,
+                              [&](std::uint32_t t) {
+                                if (t != first) answer(t);
+                              });
+  if (hint != nullptr) *hint = {best.sub_a.triangle, kNoIndex};
   return best;
 }
 

@@ -9,6 +9,8 @@
 #include <proxima/narrowphase/contact_collector.hpp>
 #include <proxima/shapes/shape_ref.hpp>
 
+#include "part_hint.hpp"
+
 #include <cstdint>
 #include <vector>
 
@@ -21,15 +23,19 @@ enum class MeshMeshNodes : std::uint8_t {
 };
 
 /// True when a triangle of A and a triangle of B are within request.contact_distance.
+/// `hint` (optional): the triangle pair tried first, then the pair that touched.
 bool mesh_mesh_intersect(const TriangleMesh& a, const Transform& pose_a, const TriangleMesh& b, const Transform& pose_b,
-                         const PairRequest& request, MeshMeshNodes nodes = MeshMeshNodes::Oriented);
+                         const PairRequest& request, MeshMeshNodes nodes = MeshMeshNodes::Oriented,
+                         PartHint* hint = nullptr);
 
 /// Minimum distance over all triangle pairs with its witnesses (sub.triangle set on both
 /// sides; sub.child left at kNoIndex for the caller to fill); 0 (status Touching) when the
-/// surfaces cross: meshes are surfaces here, no penetration depth is computed.
+/// surfaces cross: meshes are surfaces here, no penetration depth is computed. `hint`
+/// (optional): the triangle pair whose distance is the descent's first bound; then the
+/// answer's pair.
 DistanceResult mesh_mesh_distance(const TriangleMesh& a, const Transform& pose_a, const TriangleMesh& b,
                                   const Transform& pose_b, const PairRequest& request,
-                                  MeshMeshNodes nodes = MeshMeshNodes::Oriented);
+                                  MeshMeshNodes nodes = MeshMeshNodes::Oriented, PartHint* hint = nullptr);
 
 /// Adds the contacts of every triangle pair within request.contact_distance to `collector`
 /// (parts in sub_a / sub_b), stopping when it is done.

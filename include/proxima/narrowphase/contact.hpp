@@ -64,7 +64,11 @@ struct PairCache {
   std::uint32_t support_hint_a{};  ///< last support vertex of A (hill-climbing start)
   std::uint32_t support_hint_b{};  ///< last support vertex of B
   std::uint32_t sat_feature{};     ///< last SAT axis (polytope pairs; pair-specific code)
-  bool valid = false;              ///< false: nothing cached yet
+  /// Pairs with a mesh or compound side: A's part (top-level compound child, mesh triangle)
+  /// that answered last, tried first by the next query (kNoIndex: none).
+  std::uint32_t part_a = kNoIndex;
+  std::uint32_t part_b = kNoIndex;  ///< the same for B
+  bool valid = false;               ///< convex pairs: false means nothing cached yet
 };
 
 /// Answer of `distance`: signed distance with witness points on each surface, and the parts

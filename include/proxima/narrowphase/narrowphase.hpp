@@ -26,7 +26,10 @@
 ///     depth), and a shape wholly inside a closed mesh does not touch it.
 ///   - a compound against anything: its BVH walked (two compounds: both together), each
 ///     child answered at its pose, nested compounds included.
-/// The PairCache warm-starts convex pairs; mesh and compound pairs do not use it yet.
+/// The PairCache warm-starts every pair: convex pairs from the last separating axis and
+/// support vertices; mesh and compound pairs by trying first the parts (compound child,
+/// mesh triangle) that answered last, which makes intersect answer at once and gives
+/// distance its branch-and-bound bound from the start.
 /// The four entry points are not noexcept: mesh and compound pairs keep per-thread scratch
 /// lists that may allocate (and the collector is the caller's code).
 ///
