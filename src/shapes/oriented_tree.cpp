@@ -13,6 +13,7 @@
 // Cost: O(1) per node for steps 2 and the eigen solve, O(corners) per tree level for the
 // projections: O(n log n) in all, built once per mesh on the first mesh-mesh query.
 #include "shapes/oriented_tree.hpp"
+#include "shapes/triangle_mesh_derived.hpp"
 
 #include <algorithm>
 #include <cstdint>
@@ -157,7 +158,8 @@ OrientedTree build_oriented_tree(const Bvh& bvh, std::span<const Vec3> vertices,
 
 const detail::OrientedTree& TriangleMesh::oriented_tree() const {
   const Data& d = *data_;
-  return d.oriented.get([&d] { return detail::build_oriented_tree(d.bvh, d.mesh.vertices, d.mesh.triangles); });
+  return d.derived->oriented.get(
+      [&d] { return detail::build_oriented_tree(d.bvh, d.mesh.vertices, d.mesh.triangles); });
 }
 
 }  // namespace proxima

@@ -36,6 +36,7 @@
 #include <utility>
 
 #include "shapes/ray_bvh.hpp"
+#include "shapes/triangle_mesh_derived.hpp"
 
 namespace proxima {
 namespace {
@@ -67,6 +68,14 @@ void gather_leaf_triangles(const IndexedMesh& m, const Bvh& bvh, std::vector<std
     const TriangleIndices& t = m.triangles[prims[i]];
     out[i] = {m.vertices[t[0]], m.vertices[t[1]], m.vertices[t[2]]};
   }
+}
+
+/// The derived data of a mesh with these triangles and hierarchy.
+std::shared_ptr<detail::MeshDerived> derive(const IndexedMesh& m, const Bvh& bvh) {
+  auto d = std::make_shared<detail::MeshDerived>();
+  gather_leaf_triangles(m, bvh, d->leaf_triangles);
+  d->ray_bvh = detail::RayBvh::build(bvh, d->leaf_triangles);
+  return d;
 }
 
 /// Triangle across each edge (kNoIndex for boundary and non-manifold edges). The 3n edge
@@ -287,8 +296,7 @@ Result<TriangleMesh> TriangleMesh::create(IndexedMesh mesh, const MeshCreateOpti
   std::vector<Vec3> centers;
   triangle_boxes(data->mesh, boxes, &centers);
   data->bvh = Bvh::build(boxes, centers, options.bvh);
-  gather_leaf_triangles(data->mesh, data->bvh, data->leaf_triangles);
-  data->ray_bvh = std::make_shared<const detail::RayBvh>(detail::RayBvh::build(data->bvh, data->leaf_triangles));
+  data->derived = derive(data->mesh, data->bvh);
   compute_neighbors(data->mesh, data->neighbors);
   compute_active_edges(data->mesh, data->neighbors, options.flat_edge_angle, data->active_edges);
   data->flat_edge_angle = options.flat_edge_angle;
@@ -315,8 +323,7 @@ Result<TriangleMesh> TriangleMesh::deformed(std::span<const Vec3> vertices) cons
   std::vector<Aabb> boxes;
   triangle_boxes(data->mesh, boxes, nullptr);
   data->bvh.refit(boxes);
-  gather_leaf_triangles(data->mesh, data->bvh, data->leaf_triangles);
-  data->ray_bvh = std::make_shared<const detail::RayBvh>(detail::RayBvh::build(data->bvh, data->leaf_triangles));
+  data->derived = derive(data->mesh, data->bvh);
   compute_active_edges(data->mesh, data->neighbors, data->flat_edge_angle, data->active_edges);
   // Volume and area follow the vertices (divergence theorem, as in the analysis).
   Real volume = Real(0);
@@ -403,10 +410,17 @@ struct ClosestHit {
   }
 };
 
+/// What the ray casts read of a mesh.
+struct MeshParts {
+  const IndexedMesh& mesh;
+  const Bvh& bvh;
+  const detail::MeshDerived& derived;
+};
+
 /// The 4-wide hierarchy of `d` when `traversal` asks for it and it exists.
-inline const detail::RayBvh* wide_of(const TriangleMesh::Data& d, RayTraversal traversal) {
-  if (traversal != RayTraversal::Wide || !d.ray_bvh || d.ray_bvh->nodes.empty()) return nullptr;
-  return d.ray_bvh.get();
+inline const detail::RayBvh* wide_of(const detail::MeshDerived& d, RayTraversal traversal) {
+  if (traversal != RayTraversal::Wide || d.ray_bvh.nodes.empty()) return nullptr;
+  return &d.ray_bvh;
 }
 
 /// Calls `visit(slot, corners) -> bool` (false stops) for each triangle of the wide leaf starting at
@@ -434,9 +448,9 @@ bool visit_wide_leaf(const detail::RayBvh& wide, std::uint32_t first, std::uint3
 /// whose box the ray meets within [0, max_t], through the chosen hierarchy, in no
 /// particular order. Returns false when stopped.
 template <class Visit>
-bool for_each_candidate(const TriangleMesh::Data& d, const Ray& ray, const MeshRay& r, Real max_t,
+bool for_each_candidate(const MeshParts& d, const Ray& ray, const MeshRay& r, Real max_t,
                         RayTraversal traversal, Visit&& visit) {
-  if (const detail::RayBvh* wide = wide_of(d, traversal)) {
+  if (const detail::RayBvh* wide = wide_of(d.derived, traversal)) {
     const detail::WideRay w = detail::prepare_wide_ray(ray);
     if (w.valid) {
       const std::span<const std::uint32_t> prims = d.bvh.primitives();
@@ -462,7 +476,7 @@ bool for_each_candidate(const TriangleMesh::Data& d, const Ray& ray, const MeshR
 }
 
 /// Closest hit through the binary hierarchy, front to back (the reference traversal).
-void closest_binary(const TriangleMesh::Data& d, const Ray& ray, const MeshRay& r, ClosestHit& closest) {
+void closest_binary(const MeshParts& d, const Ray& ray, const MeshRay& r, ClosestHit& closest) {
   const BoxRay box_ray = prepare_box_ray(ray);
   const std::span<const BvhNode> nodes = d.bvh.nodes();
   const std::span<const std::uint32_t> prims = d.bvh.primitives();
@@ -476,7 +490,7 @@ void closest_binary(const TriangleMesh::Data& d, const Ray& ray, const MeshRay& 
     if (node.is_leaf()) {
       const Real limit = closest.limit();
       for (std::uint32_t i = node.first; i != node.first + node.count; ++i)
-        closest.visit(r, limit, d.leaf_triangles[i], prims[i]);
+        closest.visit(r, limit, d.derived.leaf_triangles[i], prims[i]);
     } else {
       Real t_left = Real(0), t_right = Real(0);
       const bool hit_left = slab(nodes[node.first], box_ray, closest.best_t, t_left);
@@ -518,10 +532,10 @@ void closest_binary(const TriangleMesh::Data& d, const Ray& ray, const MeshRay& 
 
 std::optional<RayHit> TriangleMesh::raycast(const Ray& ray, Real max_t, FaceCulling culling,
                                             RayTraversal traversal) const {
-  const Data& d = *data_;
+  const MeshParts d{data_->mesh, data_->bvh, *data_->derived};
   if (d.bvh.empty() || !(max_t >= Real(0))) return std::nullopt;
   ClosestHit closest(max_t);
-  if (const detail::RayBvh* wide = wide_of(d, traversal)) {
+  if (const detail::RayBvh* wide = wide_of(d.derived, traversal)) {
     const detail::WideRay w = detail::prepare_wide_ray(ray);
     if (w.valid) {  // then the triangle ray is valid too (finite origin, non-zero direction)
       const std::span<const std::uint32_t> prims = d.bvh.primitives();
@@ -551,7 +565,7 @@ std::optional<RayHit> TriangleMesh::raycast(const Ray& ray, Real max_t, FaceCull
 }
 
 bool TriangleMesh::raycast_any(const Ray& ray, Real max_t, FaceCulling culling, RayTraversal traversal) const {
-  const Data& d = *data_;
+  const MeshParts d{data_->mesh, data_->bvh, *data_->derived};
   if (d.bvh.empty() || !(max_t >= Real(0))) return false;
   const MeshRay r = prepare_mesh_ray(ray, culling);
   if (!r.tri.valid) return false;
@@ -563,7 +577,7 @@ bool TriangleMesh::raycast_any(const Ray& ray, Real max_t, FaceCulling culling, 
 
 void TriangleMesh::raycast_all(const Ray& ray, Real max_t, std::vector<RayHit>& hits, FaceCulling culling,
                                RayTraversal traversal) const {
-  const Data& d = *data_;
+  const MeshParts d{data_->mesh, data_->bvh, *data_->derived};
   if (d.bvh.empty() || !(max_t >= Real(0))) return;
   const MeshRay r = prepare_mesh_ray(ray, culling);
   if (!r.tri.valid) return;

@@ -47,6 +47,7 @@
 #include <utility>
 
 #include "mesh_point_queries.hpp"
+#include "shapes/triangle_mesh_derived.hpp"
 
 namespace proxima {
 
@@ -494,7 +495,7 @@ detail::MeshView view_of(const TriangleMesh& mesh) {
 bool TriangleMesh::contains(const Vec3& point) const {
   detail::MeshView v = view_of(*this);
   v.neighbors = data_->neighbors;
-  const detail::MeshPointCacheState& cache = data_->point_cache.get([&] {
+  const detail::MeshPointCacheState& cache = data_->derived->point_cache.get([&] {
     detail::MeshPointCacheState built;
     if (v.closed) {
       Result<BspPolyhedron> bsp = BspPolyhedron::create(data_->mesh);

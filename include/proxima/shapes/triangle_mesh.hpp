@@ -10,7 +10,6 @@
 #include <proxima/geometry/aabb.hpp>
 #include <proxima/geometry/ray.hpp>
 #include <proxima/shapes/indexed_mesh.hpp>
-#include <proxima/shapes/lazy_slot.hpp>
 #include <proxima/shapes/mass_properties.hpp>
 #include <proxima/shapes/surface_point.hpp>
 #include <proxima/spatial/bvh.hpp>
@@ -25,12 +24,8 @@
 namespace proxima {
 
 namespace detail {
-struct RayBvh;               // 4-wide ray hierarchy (src/midphase/ray_bvh.hpp)
-struct MeshPointCacheState;  // containment acceleration (src/midphase/mesh_point_queries.hpp)
-}  // namespace detail
-
-namespace detail {
-struct OrientedTree;  // oriented node bounds for mesh-mesh queries (src/midphase/oriented_tree.hpp)
+struct OrientedTree;  // oriented node bounds for mesh-mesh queries (internal)
+struct MeshDerived;   // leaf-order triangles, ray hierarchy and lazily built caches (internal)
 }  // namespace detail
 
 /// Which triangle sides a ray may hit. The front side is the one the normal
@@ -99,7 +94,7 @@ class TriangleMesh {
   const Bvh& bvh() const { return data_->bvh; }
 
   /// Oriented bounds (OBB) of every bvh() node's subtree for mesh-mesh queries (internal
-  /// type, src/midphase/oriented_tree.hpp): built on the first call, O(n log n), then shared
+  /// type, src/shapes/oriented_tree.hpp): built on the first call, O(n log n), then shared
   /// by the copies of this mesh; thread-safe.
   const detail::OrientedTree& oriented_tree() const;
 
@@ -137,6 +132,7 @@ class TriangleMesh {
   /// mass for a mesh that is not closed.
   MassProperties mass_properties(Real density = Real(1)) const;
 
+ private:
   /// The immutable data shared between copies.
   struct Data {
     IndexedMesh mesh;                                     ///< vertices and triangles after repair
@@ -145,20 +141,8 @@ class TriangleMesh {
     std::vector<std::array<std::uint32_t, 3>> neighbors;  ///< triangle across each edge
     std::vector<std::uint8_t> active_edges;               ///< 3 bits per triangle
     Real flat_edge_angle = Real(0.01);  ///< MeshCreateOptions::flat_edge_angle used (deformed() reuses it)
-    /// Corners of triangle bvh.primitives()[i] at index i (BVH leaf order, so a leaf's
-    /// triangles are contiguous for the ray casts).
-    std::vector<std::array<Vec3, 3>> leaf_triangles;
-    /// Oriented node bounds for mesh-mesh queries, built by oriented_tree() on first use.
-    detail::LazySlot<detail::OrientedTree> oriented;
-    /// 4-wide hierarchy for ray casts over the same leaves (RayTraversal::Wide); null or
-    /// empty when the mesh's bounds do not fit its float layout.
-    std::shared_ptr<const detail::RayBvh> ray_bvh;
-    /// Built by the first contains(): the BSP tree of a closed mesh, the far-field winding
-    /// data of an open one (a copy of Data starts with an empty cache).
-    detail::LazySlot<detail::MeshPointCacheState> point_cache;
+    std::shared_ptr<detail::MeshDerived> derived;  ///< internal derived data and caches (never null)
   };
-
- private:
   explicit TriangleMesh(std::shared_ptr<const Data> data) : data_(std::move(data)) {}
   std::shared_ptr<const Data> data_;
 };
