@@ -11,6 +11,11 @@
 //                                  enable_contact
 //   MeshMesh/Distance/...          narrow::mesh_mesh_distance; fcl::distance with nearest
 //                                  points (meshes that intersect: 0 in both)
+//   MeshMesh/DistancePath/{mesh,capsule}/proxima_{cold,warm}
+//                                  proxima::distance along a coherent path (the first 100
+//                                  poses, 9 interpolated steps between each two), B the
+//                                  torus knot or a capsule (radius 0.3, half length 1), with
+//                                  a PairCache kept across frames (warm) or none (cold)
 // Counters: per_query (time per pose), hits (poses found intersecting), pairs (contacts or
 // contact pairs summed over the poses), sum_distance (sum of the distances).
 // Build the BVHs once, outside the timing (see MeshMesh/Build for Proxima's build time and
@@ -18,6 +23,8 @@
 // mesh-mesh query and here before the timing).
 #include <benchmark/benchmark.h>
 
+#include <proxima/narrowphase/narrowphase.hpp>
+#include <proxima/shapes/capsule.hpp>
 #include <proxima/shapes/triangle_mesh.hpp>
 
 #include "bench_main.hpp"
@@ -32,10 +39,12 @@
 #include <fcl/narrowphase/distance.h>
 #endif
 
+#include <algorithm>
 #include <cstdint>
 #include <memory>
 #include <string>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 namespace {
@@ -184,6 +193,38 @@ void fcl_query(benchmark::State& state) {
 }
 #endif
 
+/// A coherent path for the warm-start rows: each of the first 100 W4 poses followed by 9
+/// steps towards the next (positions interpolated, rotations slerped), 1,000 frames.
+std::vector<proxima::Transform> coherent_path() {
+  std::vector<proxima::Transform> path;
+  for (std::size_t i = 0; i + 1 < std::min<std::size_t>(g_transforms.size(), 101); ++i) {
+    const proxima::Transform& from = g_transforms[i];
+    const proxima::Transform& to = g_transforms[i + 1];
+    for (int k = 0; k < 10; ++k) {
+      const Real s = Real(k) / Real(10);
+      path.push_back({from.position + s * (to.position - from.position), glm::slerp(from.rotation, to.rotation, s)});
+    }
+  }
+  return path;
+}
+
+/// Distance along the coherent path through the public entry point: B = the second W4 mesh
+/// (state.range(0) == 0) or a capsule (1), with a PairCache kept across frames (warm) or not.
+template <bool warm>
+void proxima_path_distance(benchmark::State& state) {
+  static const std::vector<proxima::Transform> path = coherent_path();
+  static const proxima::Capsule capsule = proxima::Capsule::create(Real(0.3), Real(1)).value();
+  const proxima::ShapeRef b = state.range(0) == 0 ? proxima::ShapeRef(*g_mesh_b) : proxima::ShapeRef(capsule);
+  const proxima::Transform identity;
+  proxima::PairCache cache;
+  run_poses(state, path.size(), [&](std::size_t i, Tally& t) {
+    const proxima::DistanceResult d =
+        proxima::distance(*g_mesh_a, identity, b, path[i], proxima::PairRequest{}, warm ? &cache : nullptr);
+    t.sum += static_cast<double>(d.signed_distance);
+    t.hits += d.signed_distance <= Real(0) ? 1u : 0u;
+  });
+}
+
 bool register_all(const std::string& dir) {
   auto poses = pb::read_mesh_poses(dir + "/mesh_poses.txt");
   if (!poses) return pb::report_load_error(poses.error());
@@ -205,6 +246,11 @@ bool register_all(const std::string& dir) {
   g_mesh_b->oriented_tree();
 
   benchmark::RegisterBenchmark("MeshMesh/Build/proxima", proxima_build)->Unit(benchmark::kMillisecond);
+  for (const auto& [name, shape] : {std::pair{"mesh", 0}, std::pair{"capsule", 1}}) {
+    const std::string base = std::string("MeshMesh/DistancePath/") + name + "/proxima_";
+    benchmark::RegisterBenchmark((base + "cold").c_str(), proxima_path_distance<false>)->Arg(shape)->Unit(benchmark::kMillisecond);
+    benchmark::RegisterBenchmark((base + "warm").c_str(), proxima_path_distance<true>)->Arg(shape)->Unit(benchmark::kMillisecond);
+  }
   benchmark::RegisterBenchmark("MeshMesh/BuildOriented/proxima", proxima_build_oriented)->Unit(benchmark::kMillisecond);
   const auto oriented = static_cast<std::int64_t>(MeshMeshNodes::Oriented);
   const auto aabb = static_cast<std::int64_t>(MeshMeshNodes::Aabb);
