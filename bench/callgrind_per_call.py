@@ -30,6 +30,7 @@ from pathlib import Path
 def short_name(function: str) -> str:
     """The function's name without its arguments and the library's namespaces (the layers
     moved between namespaces in the redesign), e.g. `TriangleMesh::raycast`."""
+    function = function.replace("(anonymous namespace)::", "")
     return re.sub(r"^proxima::((midphase|narrow)::)?", "", function.split("(")[0])
 
 
