@@ -35,6 +35,7 @@
 /// Queries may run concurrently with each other, not with changes.
 
 #include <proxima/broadphase/broadphase.hpp>
+#include <proxima/broadphase/broadphase_queries.hpp>
 #include <proxima/broadphase/pair_tracker.hpp>
 #include <proxima/broadphase/parallel_pairs.hpp>
 #include <proxima/broadphase/query_support.hpp>
@@ -67,7 +68,7 @@ struct DynamicAabbTreeConfig {
 };
 
 /// Incremental AABB tree broad phase (see the file comment). Satisfies BroadPhaseStructure.
-class DynamicAabbTree {
+class DynamicAabbTree : public BroadPhaseQueries<DynamicAabbTree> {
  public:
   /// Creates an empty tree.
   explicit DynamicAabbTree(const DynamicAabbTreeConfig& config = {});
@@ -82,20 +83,12 @@ class DynamicAabbTree {
   BroadPhaseStatus update(std::span<const ProxyUpdate> updates);
   /// Rebuilds both trees with binned SAH (fat boxes kept). O(n log n).
   void rebuild();
-  /// Every pair (see broadphase.hpp), sorted; `out` is cleared first. On the calling thread.
-  void find_pairs(std::vector<ProxyPair>& out) { find_pairs(out, serial_executor()); }
-  /// As above with the descent split into tasks run by `executor`; identical output.
+  /// find_pairs(out): the serial form of the one below (BroadPhaseQueries).
+  using BroadPhaseQueries::find_pairs;
+  /// Every pair (see broadphase.hpp), sorted; `out` is cleared first. The tree-against-tree
+  /// descent is split into tasks run by `executor` (same output for every executor).
   void find_pairs(std::vector<ProxyPair>& out, Executor& executor);
 
-  /// Calls `on_overlap` for every proxy whose box overlaps `box` (closed); stops when it
-  /// returns false. A non-finite or inverted box reports nothing. Returns the counters.
-  template <OverlapCallback OnOverlap>
-  BroadPhaseStats query_aabb(const Aabb& box, OnOverlap&& on_overlap) const;
-  /// Calls `on_overlap` for every proxy whose box contains `point` (boundary included).
-  template <OverlapCallback OnOverlap>
-  BroadPhaseStats query_point(const Vec3& point, OnOverlap&& on_overlap) const {
-    return detail::run_point_query(point, [&](const Aabb& b) { return query_aabb(b, on_overlap); });
-  }
   /// Calls `on_ray` for every proxy whose box the ray enters within [0, max_t] (see
   /// RayCallback); the callback's answer clips the ray for the rest of the search.
   template <RayCallback OnRay>
@@ -104,8 +97,6 @@ class DynamicAabbTree {
   /// Checks every invariant: parent links, children inside parents, fat boxes containing the
   /// real boxes, heights, leaf counts, free list, proxy table. O(n).
   bool validate() const;
-  /// Counters of the last find_pairs.
-  BroadPhaseStats stats() const { return stats_; }
   /// Number of proxies.
   std::size_t size() const { return count_; }
 
@@ -120,6 +111,7 @@ class DynamicAabbTree {
   Aabb fat_box(ProxyId id) const;
 
  private:
+  friend class BroadPhaseQueries<DynamicAabbTree>;
   static constexpr std::uint32_t kNull = 0xffffffffu;
 
   /// A pool node. Leaves have child1 == kNull and hold the proxy id in child2.
@@ -168,6 +160,10 @@ class DynamicAabbTree {
   bool validate_tree(const Tree& tree, ProxyKind kind) const;
   static Real refit_all(Tree& tree);
   static Real tree_cost(const Tree& tree);
+  /// The box walk of query_aabb (BroadPhaseQueries): both trees, pruned by the fat boxes,
+  /// leaves tested on their real boxes.
+  template <class Visit>
+  void visit_box(const Aabb& box, BroadPhaseStats& st, Visit&& visit) const;
 
   struct PairTask {
     std::uint32_t a;
@@ -191,10 +187,8 @@ static_assert(BroadPhaseStructure<DynamicAabbTree>);
 
 // ---- queries (templates on the callback) ------------------------------------------------
 
-template <OverlapCallback OnOverlap>
-BroadPhaseStats DynamicAabbTree::query_aabb(const Aabb& box, OnOverlap&& on_overlap) const {
-  BroadPhaseStats st;
-  if (!detail::query_box_ok(box)) return st;
+template <class Visit>
+void DynamicAabbTree::visit_box(const Aabb& box, BroadPhaseStats& st, Visit&& visit) const {
   for (const Tree* tree : {&moving_, &static_}) {
     if (tree->root == kNull) continue;
     detail::TraversalStack<std::uint32_t, 256> stack;
@@ -210,12 +204,9 @@ BroadPhaseStats DynamicAabbTree::query_aabb(const Aabb& box, OnOverlap&& on_over
         continue;
       }
       ++st.pairs_tested;
-      if (!tree->real[index].overlaps(box)) continue;
-      ++st.pairs_found;
-      if (!on_overlap(n.child2)) return st;
+      if (tree->real[index].overlaps(box) && !visit(n.child2)) return;
     }
   }
-  return st;
 }
 
 template <RayCallback OnRay>
