@@ -28,6 +28,7 @@
 #include <cmath>
 #include <limits>
 
+#include "shapes/far_point.hpp"
 #include "shapes/radial.hpp"
 
 namespace proxima {
@@ -86,13 +87,7 @@ bool Cone::contains(const Vec3& point) const {
 }
 
 SurfacePoint Cone::closest_point(const Vec3& point) const {
-  if (!is_finite(point)) {
-    // A non-finite query: the top point, infinitely far.
-    SurfacePoint far;
-    far.point = Vec3(Real(0), Real(0), half_length_);
-    far.signed_distance = std::numeric_limits<Real>::infinity();
-    return far;
-  }
+  if (!is_finite(point)) return detail::far_top_point(half_length_);
   const Real r = radius_;
   const Real h = half_length_;
   // The half-plane through the axis and the point: radial unit (ux, uy) (any one on the axis).

@@ -23,6 +23,7 @@
 #include <cmath>
 #include <limits>
 
+#include "shapes/far_point.hpp"
 #include "shapes/radial.hpp"
 
 namespace proxima {
@@ -70,13 +71,7 @@ bool Cylinder::contains(const Vec3& point) const {
 }
 
 SurfacePoint Cylinder::closest_point(const Vec3& point) const {
-  if (!is_finite(point)) {
-    // A non-finite query: the top point, infinitely far.
-    SurfacePoint far;
-    far.point = Vec3(Real(0), Real(0), half_length_);
-    far.signed_distance = std::numeric_limits<Real>::infinity();
-    return far;
-  }
+  if (!is_finite(point)) return detail::far_top_point(half_length_);
   const Real r = radius_;
   const Real h = half_length_;
   // Radial unit vector of the half-plane holding the point (any one on the axis).
