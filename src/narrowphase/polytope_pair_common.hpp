@@ -59,9 +59,8 @@ DistanceResult sat_distance_result(const SmallSat& s, const Transform& pose_a, R
     r.signed_distance = std::max(dist, s.separation);
   } else {
     r.signed_distance = s.separation;
-    penetration_witness(r, [&](const Vec3& shift, Vec3& on_a, Vec3& on_b) {
-      static_cast<void>(closest(&shift, on_a, on_b));
-    });
+    penetration_witness(
+        r, [&](const Vec3& shift, Vec3& on_a, Vec3& on_b) { static_cast<void>(closest(&shift, on_a, on_b)); });
   }
   r.status = status_from_distance(r.signed_distance, tol);
   return r;

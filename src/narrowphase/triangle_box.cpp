@@ -88,8 +88,7 @@ DistanceResult pair_distance(const Triangle& a, const Transform& pose_a, const B
     }
     std::array<Vec3, 8> moved;
     for (std::size_t k = 0; k < 8; ++k) moved[k] = corners[k] + *shift;
-    return closest_triangle_box(moved, pa.vertices.data(), pose_b.position + *shift, m, b.half_extents(), on_a,
-                                on_b);
+    return closest_triangle_box(moved, pa.vertices.data(), pose_b.position + *shift, m, b.half_extents(), on_a, on_b);
   });
 }
 
