@@ -27,6 +27,8 @@
 
 #include <algorithm>
 
+#include "broadphase/batch_update_check.hpp"
+
 namespace proxima {
 
 namespace {
@@ -331,11 +333,9 @@ BroadPhaseStatus DynamicAabbTree::update(ProxyId id, const Aabb& box) {
 }
 
 BroadPhaseStatus DynamicAabbTree::update(std::span<const ProxyUpdate> updates) {
-  for (const ProxyUpdate& u : updates) {
-    if (u.id >= proxies_.size() || proxies_[u.id].leaf == kNull) return BroadPhaseStatus::UnknownId;
-    const BroadPhaseStatus s = check_box(u.box);
-    if (s != BroadPhaseStatus::Ok) return s;
-  }
+  const BroadPhaseStatus s =
+      detail::check_batch(updates, [&](ProxyId id) { return id < proxies_.size() && proxies_[id].leaf != kNull; });
+  if (s != BroadPhaseStatus::Ok) return s;
   // Apply the boxes; count the moving leaves that leave their fat boxes.
   std::size_t moving_out = 0;
   for (const ProxyUpdate& u : updates) {
