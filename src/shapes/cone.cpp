@@ -20,7 +20,6 @@
 //  - raycast: geometry::ray_cone.
 //  - mass_properties: the standard solid-cone formulas (centroid at a quarter of the height
 //    above the base, inertia about the centroid).
-#include <proxima/core/validate.hpp>
 #include <proxima/geometry/raycast.hpp>
 #include <proxima/shapes/cone.hpp>
 
@@ -37,8 +36,7 @@ using detail::radial_direction;
 using detail::robust_hypot;
 
 Result<Cone> Cone::create(Real radius, Real half_length) {
-  if (auto e = validate::positive(radius, "radius")) return *e;
-  if (auto e = validate::positive(half_length, "half_length")) return *e;
+  if (auto e = detail::check_radius_half_length(radius, half_length)) return *e;
   return Cone(radius, half_length);
 }
 

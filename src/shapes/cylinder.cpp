@@ -15,7 +15,6 @@
 //    face; the sign is taken from contains() so that the two queries always agree.
 //  - raycast: geometry::ray_cylinder on the axis segment.
 //  - mass_properties: the standard solid-cylinder formulas.
-#include <proxima/core/validate.hpp>
 #include <proxima/geometry/raycast.hpp>
 #include <proxima/shapes/cylinder.hpp>
 
@@ -32,8 +31,7 @@ using detail::radial_direction;
 using detail::robust_hypot;
 
 Result<Cylinder> Cylinder::create(Real radius, Real half_length) {
-  if (auto e = validate::positive(radius, "radius")) return *e;
-  if (auto e = validate::positive(half_length, "half_length")) return *e;
+  if (auto e = detail::check_radius_half_length(radius, half_length)) return *e;
   return Cylinder(radius, half_length);
 }
 
