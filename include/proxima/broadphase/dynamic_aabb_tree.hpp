@@ -160,6 +160,11 @@ class DynamicAabbTree : public BroadPhaseQueries<DynamicAabbTree> {
   bool validate_tree(const Tree& tree, ProxyKind kind) const;
   static Real refit_all(Tree& tree);
   static Real tree_cost(const Tree& tree);
+  /// Depth-first walk of both trees (moving first) counting nodes_visited and pairs_tested:
+  /// descends into the nodes whose fat box `enter(fat)` accepts and calls `leaf(id, real)`
+  /// at each leaf so reached, with the proxy's real box; stops when it returns false.
+  template <class Enter, class Leaf>
+  void walk(BroadPhaseStats& st, Enter&& enter, Leaf&& leaf) const;
   /// The box walk of query_aabb (BroadPhaseQueries): both trees, pruned by the fat boxes,
   /// leaves tested on their real boxes.
   template <class Visit>
@@ -187,8 +192,8 @@ static_assert(BroadPhaseStructure<DynamicAabbTree>);
 
 // ---- queries (templates on the callback) ------------------------------------------------
 
-template <class Visit>
-void DynamicAabbTree::visit_box(const Aabb& box, BroadPhaseStats& st, Visit&& visit) const {
+template <class Enter, class Leaf>
+void DynamicAabbTree::walk(BroadPhaseStats& st, Enter&& enter, Leaf&& leaf) const {
   for (const Tree* tree : {&moving_, &static_}) {
     if (tree->root == kNull) continue;
     detail::TraversalStack<std::uint32_t, 256> stack;
@@ -197,16 +202,23 @@ void DynamicAabbTree::visit_box(const Aabb& box, BroadPhaseStats& st, Visit&& vi
       const std::uint32_t index = stack.pop();
       const Node& n = tree->nodes[index];
       ++st.nodes_visited;
-      if (!n.box.overlaps(box)) continue;
+      if (!enter(n.box)) continue;
       if (!n.is_leaf()) {
         stack.push(n.child1);
         stack.push(n.child2);
         continue;
       }
       ++st.pairs_tested;
-      if (tree->real[index].overlaps(box) && !visit(n.child2)) return;
+      if (!leaf(n.child2, tree->real[index])) return;
     }
   }
+}
+
+template <class Visit>
+void DynamicAabbTree::visit_box(const Aabb& box, BroadPhaseStats& st, Visit&& visit) const {
+  walk(
+      st, [&](const Aabb& fat) { return fat.overlaps(box); },
+      [&](ProxyId id, const Aabb& real) { return !real.overlaps(box) || visit(id); });
 }
 
 template <RayCallback OnRay>
@@ -215,28 +227,18 @@ BroadPhaseStats DynamicAabbTree::query_ray(const Ray& ray, Real max_t, OnRay&& o
   if (!detail::ray_input_ok(ray, max_t)) return st;
   const detail::SlabRay slab(ray);
   Real limit = max_t;
-  for (const Tree* tree : {&moving_, &static_}) {
-    if (tree->root == kNull) continue;
-    detail::TraversalStack<std::uint32_t, 256> stack;
-    stack.push(tree->root);
-    while (!stack.empty()) {
-      const std::uint32_t index = stack.pop();
-      const Node& n = tree->nodes[index];
-      ++st.nodes_visited;
-      Real t;
-      if (!slab.enter(n.box, limit, t)) continue;
-      if (!n.is_leaf()) {
-        stack.push(n.child1);
-        stack.push(n.child2);
-        continue;
-      }
-      ++st.pairs_tested;
-      const auto hit = geometry::ray_aabb(ray, limit, tree->real[index]);
-      if (!hit) continue;
-      ++st.pairs_found;
-      if (!detail::apply_ray_result(on_ray(n.child2, hit->t), limit)) return st;
-    }
-  }
+  walk(
+      st,
+      [&](const Aabb& fat) {
+        Real t;
+        return slab.enter(fat, limit, t);
+      },
+      [&](ProxyId id, const Aabb& real) {
+        const auto hit = geometry::ray_aabb(ray, limit, real);
+        if (!hit) return true;
+        ++st.pairs_found;
+        return detail::apply_ray_result(on_ray(id, hit->t), limit);
+      });
   return st;
 }
 
