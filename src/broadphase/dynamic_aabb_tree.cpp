@@ -19,9 +19,9 @@
 /// search); A. Kopta et al. 2012 (rotations); I. Wald 2007 (binned SAH); C. Ericson,
 /// Real-Time Collision Detection, 6.2 and 6.5.
 
+#include <proxima/broadphase/detail/query_support.hpp>
 #include <proxima/broadphase/dynamic_aabb_tree.hpp>
 #include <proxima/broadphase/pair_tracker.hpp>
-#include <proxima/broadphase/query_support.hpp>
 #include <proxima/core/tolerance.hpp>
 #include <proxima/geometry/raycast.hpp>
 

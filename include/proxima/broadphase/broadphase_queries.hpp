@@ -6,7 +6,7 @@
 /// Everything is resolved at compile time: no virtual call, no type erasure.
 
 #include <proxima/broadphase/broadphase.hpp>
-#include <proxima/broadphase/query_support.hpp>
+#include <proxima/broadphase/detail/query_support.hpp>
 #include <proxima/core/executor.hpp>
 
 #include <vector>

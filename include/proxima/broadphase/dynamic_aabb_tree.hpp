@@ -36,9 +36,9 @@
 
 #include <proxima/broadphase/broadphase.hpp>
 #include <proxima/broadphase/broadphase_queries.hpp>
+#include <proxima/broadphase/detail/query_support.hpp>
 #include <proxima/broadphase/pair_tracker.hpp>
 #include <proxima/broadphase/parallel_pairs.hpp>
-#include <proxima/broadphase/query_support.hpp>
 #include <proxima/core/executor.hpp>
 #include <proxima/geometry/raycast.hpp>
 

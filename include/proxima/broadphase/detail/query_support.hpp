@@ -1,5 +1,5 @@
 #pragma once
-/// @file query_support.hpp
+/// @file detail/query_support.hpp
 /// Helpers (namespace detail) of the structures' templated queries, which live in their
 /// headers because they are templates on the callback: a traversal stack with fixed inline
 /// storage, the ray-box slab test with the conventions of broadphase.hpp, the ray input
