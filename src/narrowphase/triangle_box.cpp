@@ -80,14 +80,12 @@ DistanceResult pair_distance(const Triangle& a, const Transform& pose_a, const B
   for (int i = 0; i < 3; ++i) scale = std::max(scale, max_abs_component(pa.vertices[i]));
   const Real tol = resolve_tolerance(request, scale);
   const Mat3 m = pose_b.rotation_matrix();
-  std::array<Vec3, 8> corners;
-  for (int k = 0; k < 8; ++k) corners[static_cast<std::size_t>(k)] = pb.vertices[static_cast<std::size_t>(k)];
   return sat_distance_result(s, pose_a, tol, cache, [&](const Vec3* shift, Vec3& on_a, Vec3& on_b) {
     if (shift == nullptr) {
-      return closest_triangle_box(corners, pa.vertices.data(), pose_b.position, m, b.half_extents(), on_a, on_b);
+      return closest_triangle_box(pb.vertices, pa.vertices.data(), pose_b.position, m, b.half_extents(), on_a, on_b);
     }
     std::array<Vec3, 8> moved;
-    for (std::size_t k = 0; k < 8; ++k) moved[k] = corners[k] + *shift;
+    for (std::size_t k = 0; k < 8; ++k) moved[k] = pb.vertices[k] + *shift;
     return closest_triangle_box(moved, pa.vertices.data(), pose_b.position + *shift, m, b.half_extents(), on_a, on_b);
   });
 }
