@@ -59,15 +59,8 @@ Result<Obb> fit_obb_dito(std::span<const Vec3> points, int k) {
   for (const glm::dvec3& e : extremal) scale2 = std::max(scale2, glm::dot(e, e));
   const double tiny2 = 1e-24 * scale2;
 
-  glm::dmat3 best_frame(1.0);
-  double best_area = detail::frame_extent(extremal, best_frame).area;
-  auto consider = [&](const glm::dmat3& frame) {
-    const double area = detail::frame_extent(extremal, frame).area;
-    if (area < best_area) {
-      best_area = area;
-      best_frame = frame;
-    }
-  };
+  detail::LeastFrame best{glm::dmat3(1.0), detail::frame_extent(extremal, glm::dmat3(1.0)).area};
+  auto consider = [&](const glm::dmat3& frame) { best.offer(frame, detail::frame_extent(extremal, frame).area); };
 
   // 2. Base triangle.
   std::size_t pair = 0;
@@ -145,7 +138,7 @@ Result<Obb> fit_obb_dito(std::span<const Vec3> points, int k) {
     }
   }
   // 5. Fit all points.
-  return detail::fit_obb_to_frame(points, best_frame);
+  return detail::fit_obb_to_frame(points, best.frame);
 }
 
 }  // namespace proxima

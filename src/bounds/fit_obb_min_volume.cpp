@@ -138,27 +138,17 @@ Result<Obb> fit_obb_min_volume(std::span<const Vec3> points) {
   v.reserve(hv.size());
   for (const Vec3& p : hv) v.push_back(glm::dvec3(p) - origin);
 
-  glm::dmat3 best = glm::dmat3(1.0);
-  double best_volume = detail::frame_extent(v, best).volume;
-  auto consider_frame = [&](const glm::dmat3& f) {
-    const double volume = detail::frame_extent(v, f).volume;
-    if (volume < best_volume) {
-      best_volume = volume;
-      best = f;
-    }
-  };
+  detail::LeastFrame best{glm::dmat3(1.0), detail::frame_extent(v, glm::dmat3(1.0)).volume};
   auto consider_axis = [&](const glm::dvec3& axis) {
     double volume = 0.0;
     const glm::dmat3 f = detail::min_area_frame_for_axis(v, axis, volume);
-    if (volume < best_volume) {
-      best_volume = volume;
-      best = f;
-    }
+    best.offer(f, volume);
   };
-  consider_frame(detail::pca_frame_of_hull(*hull));
+  const glm::dmat3 pca = detail::pca_frame_of_hull(*hull);
+  best.offer(pca, detail::frame_extent(v, pca).volume);
   for (const HullFace& f : hull->faces()) consider_axis(glm::dvec3(f.normal));
   for (const HullEdge& e : hull->edges()) consider_axis(v[e.v1] - v[e.v0]);
-  return detail::fit_obb_to_frame(points, best);
+  return detail::fit_obb_to_frame(points, best.frame);
 }
 
 }  // namespace proxima

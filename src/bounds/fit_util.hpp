@@ -34,6 +34,19 @@ struct FrameExtent {
 /// Extents of the points (any representation with operator[] -> dvec3) in `frame`.
 FrameExtent frame_extent(std::span<const glm::dvec3> points, const glm::dmat3& frame);
 
+/// The frame of least cost among those offered to a search (the first of equal ones).
+struct LeastFrame {
+  glm::dmat3 frame;  ///< orthonormal columns
+  double cost;       ///< its cost (area, volume, ...)
+  /// Keeps `f` when its cost `c` is below the best so far.
+  void offer(const glm::dmat3& f, double c) {
+    if (c < cost) {
+      cost = c;
+      frame = f;
+    }
+  }
+};
+
 /// Sphere centred at `center` whose radius is the smallest Real for which every point
 /// passes BoundingSphere::contains.
 BoundingSphere finish_sphere(std::span<const Vec3> points, const Vec3& center);

@@ -33,6 +33,7 @@
 #include <cmath>
 #include <limits>
 
+#include "broadphase/batch_update_check.hpp"
 #include "broadphase/tree_pair_descent.hpp"
 
 namespace proxima {
@@ -283,11 +284,9 @@ BroadPhaseStatus BspTree::update(ProxyId id, const Aabb& box) {
 }
 
 BroadPhaseStatus BspTree::update(std::span<const ProxyUpdate> updates) {
-  for (const ProxyUpdate& u : updates) {
-    if (u.id >= proxies_.size() || proxies_[u.id].node == kNull) return BroadPhaseStatus::UnknownId;
-    const BroadPhaseStatus s = check_box(u.box);
-    if (s != BroadPhaseStatus::Ok) return s;
-  }
+  const BroadPhaseStatus s =
+      detail::check_batch(updates, [&](ProxyId id) { return id < proxies_.size() && proxies_[id].node != kNull; });
+  if (s != BroadPhaseStatus::Ok) return s;
   for (const ProxyUpdate& u : updates) update(u.id, u.box);
   return BroadPhaseStatus::Ok;
 }
@@ -312,11 +311,7 @@ struct BspTree::DescentView {
   void items(std::uint32_t n, F f) const {
     for (const ProxyId id : t.nodes_[n].items) f(t.proxies_[id].box, id);
   }
-  bool accept(ProxyId a, ProxyId b) const {
-    const Proxy& p = t.proxies_[a];
-    const Proxy& q = t.proxies_[b];
-    return (p.kind == ProxyKind::Moving || q.kind == ProxyKind::Moving) && can_pair(p.filter, q.filter);
-  }
+  bool accept(ProxyId a, ProxyId b) const { return detail::kinds_and_filters_pair(t.proxies_[a], t.proxies_[b]); }
 };
 
 void BspTree::find_pairs(std::vector<ProxyPair>& out, Executor& executor) {

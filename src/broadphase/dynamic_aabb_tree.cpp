@@ -19,13 +19,15 @@
 /// search); A. Kopta et al. 2012 (rotations); I. Wald 2007 (binned SAH); C. Ericson,
 /// Real-Time Collision Detection, 6.2 and 6.5.
 
+#include <proxima/broadphase/detail/query_support.hpp>
 #include <proxima/broadphase/dynamic_aabb_tree.hpp>
 #include <proxima/broadphase/pair_tracker.hpp>
-#include <proxima/broadphase/query_support.hpp>
 #include <proxima/core/tolerance.hpp>
 #include <proxima/geometry/raycast.hpp>
 
 #include <algorithm>
+
+#include "broadphase/batch_update_check.hpp"
 
 namespace proxima {
 
@@ -331,11 +333,9 @@ BroadPhaseStatus DynamicAabbTree::update(ProxyId id, const Aabb& box) {
 }
 
 BroadPhaseStatus DynamicAabbTree::update(std::span<const ProxyUpdate> updates) {
-  for (const ProxyUpdate& u : updates) {
-    if (u.id >= proxies_.size() || proxies_[u.id].leaf == kNull) return BroadPhaseStatus::UnknownId;
-    const BroadPhaseStatus s = check_box(u.box);
-    if (s != BroadPhaseStatus::Ok) return s;
-  }
+  const BroadPhaseStatus s =
+      detail::check_batch(updates, [&](ProxyId id) { return id < proxies_.size() && proxies_[id].leaf != kNull; });
+  if (s != BroadPhaseStatus::Ok) return s;
   // Apply the boxes; count the moving leaves that leave their fat boxes.
   std::size_t moving_out = 0;
   for (const ProxyUpdate& u : updates) {

@@ -24,6 +24,7 @@
 
 #include <algorithm>
 
+#include "broadphase/batch_update_check.hpp"
 #include "broadphase/tree_pair_descent.hpp"
 
 namespace proxima {
@@ -187,11 +188,9 @@ BroadPhaseStatus KdTree::update(ProxyId id, const Aabb& box) {
 }
 
 BroadPhaseStatus KdTree::update(std::span<const ProxyUpdate> updates) {
-  for (const ProxyUpdate& u : updates) {
-    if (u.id >= proxies_.size() || proxies_[u.id].place == Place::None) return BroadPhaseStatus::UnknownId;
-    const BroadPhaseStatus s = check_box(u.box);
-    if (s != BroadPhaseStatus::Ok) return s;
-  }
+  const BroadPhaseStatus s = detail::check_batch(
+      updates, [&](ProxyId id) { return id < proxies_.size() && proxies_[id].place != Place::None; });
+  if (s != BroadPhaseStatus::Ok) return s;
   for (const ProxyUpdate& u : updates) update(u.id, u.box);
   return BroadPhaseStatus::Ok;
 }
@@ -246,11 +245,7 @@ struct KdTree::DescentView {
       if (t.records_[i].id != kDead) f(t.records_[i].box, t.records_[i].id);
     }
   }
-  bool accept(ProxyId a, ProxyId b) const {
-    const Proxy& p = t.proxies_[a];
-    const Proxy& q = t.proxies_[b];
-    return (p.kind == ProxyKind::Moving || q.kind == ProxyKind::Moving) && can_pair(p.filter, q.filter);
-  }
+  bool accept(ProxyId a, ProxyId b) const { return detail::kinds_and_filters_pair(t.proxies_[a], t.proxies_[b]); }
 };
 
 void KdTree::find_pairs(std::vector<ProxyPair>& out, Executor& executor) {

@@ -29,6 +29,13 @@
 
 namespace proxima::detail {
 
+/// True when two proxy records (members `kind` and `filter`) form a pair: one of them is
+/// Moving and their filters accept each other (broadphase.hpp). The adapters' accept.
+template <class Proxy>
+bool kinds_and_filters_pair(const Proxy& p, const Proxy& q) {
+  return (p.kind == ProxyKind::Moving || q.kind == ProxyKind::Moving) && can_pair(p.filter, q.filter);
+}
+
 /// One unit of the descent: self(a) when b == a, cross(a, b) otherwise.
 struct DescentTask {
   std::uint32_t a;

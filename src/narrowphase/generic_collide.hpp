@@ -16,9 +16,8 @@
 /// A cylinder resting on a box, or two hulls face to face, thus get up to four points.
 /// pair_distance (the closed-form or generic one) must be declared before this header.
 
-#include "face_clipping.hpp"
 #include "pair_support.hpp"
-#include "supporting_face.hpp"
+#include "supporting_face_manifold.hpp"
 
 namespace proxima::narrow {
 
@@ -29,16 +28,7 @@ template <class A, class B>
 ContactManifold pair_collide(const A& a, const Transform& pose_a, const B& b, const Transform& pose_b,
                              const PairRequest& request, PairCache* cache) {
   if (!finite_poses(pose_a, pose_b)) return invalid_manifold();
-  const DistanceResult d = pair_distance(a, pose_a, b, pose_b, request, cache);
-  ContactManifold m = manifold_from_distance(d, request);
-  if (m.count == 0 || request.max_contacts < 2) return m;
-  const SupportingFace fa = supporting_face(a, pose_a, d.normal);
-  const SupportingFace fb = supporting_face(b, pose_b, -d.normal);
-  if (fa.count < 2 || fb.count < 2) return m;
-  ContactManifold clipped = m;
-  const ContactPoint witness = m.points[0];
-  if (clipped_manifold(fa, fb, d.normal, request, clipped, &witness)) return clipped;
-  return m;
+  return manifold_of(a, pose_a, b, pose_b, pair_distance(a, pose_a, b, pose_b, request, cache), request);
 }
 
 }  // namespace proxima::narrow

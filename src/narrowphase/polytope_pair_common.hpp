@@ -1,7 +1,8 @@
 #pragma once
 /// @file polytope_pair_common.hpp
-/// Steps shared by the triangle pair routines: the witness points of a penetration found by
-/// the SAT, and the manifold of a distance result (clipped supporting faces, else one point).
+/// Steps shared by the triangle pair routines: the distance result of the SAT with the
+/// witness points of a penetration, and their pair_intersect and pair_collide from the
+/// distance (the manifold: clipped supporting faces, else one point).
 ///
 /// Witnesses of a penetration: moving B by the exact depth along the SAT normal leaves the
 /// two shapes touching (the origin then lies on the boundary of the Minkowski difference),
@@ -9,9 +10,13 @@
 /// witness of the penetration for any axis kind (face, edge-edge, in-plane edge normal of a
 /// flat shape). Taking the deepest clipped point instead is only right for face axes.
 
-#include "face_clipping.hpp"
+#include <algorithm>
+#include <cmath>
+
 #include "pair_support.hpp"
-#include "supporting_face.hpp"
+#include "pairs_polyhedral.hpp"
+#include "small_polytope_sat.hpp"
+#include "supporting_face_manifold.hpp"
 
 namespace proxima::narrow {
 
@@ -30,18 +35,56 @@ void penetration_witness(DistanceResult& r, ClosestFn closest) {
   r.point_b = mid + r.signed_distance * r.normal;
 }
 
-/// Manifold from a distance result: clipped supporting faces when aligned, else one point.
+/// Distance result of a SAT pair (world frame, normal A to B) from its small-polytope SAT
+/// `s` and tolerance `tol`: overlapping, the SAT depth and normal with the witnesses of
+/// penetration_witness; separated, the exact closest points, their distance (at least the
+/// SAT's separation) and, above 1e-3 tol, their direction as the normal. `closest(shift,
+/// on_a, on_b)` fills the closest points of A and of B translated by `*shift` (nullptr: not
+/// translated) and returns their squared distance. The SAT axis is cached in A's frame.
+template <class ClosestFn>
+DistanceResult sat_distance_result(const SmallSat& s, const Transform& pose_a, Real tol, PairCache* cache,
+                                   ClosestFn closest) {
+  DistanceResult r;
+  r.method = PairMethod::Sat;
+  r.normal = s.normal;
+  if (cache != nullptr) {
+    cache->axis = pose_a.inverse_apply_vector(s.normal);
+    cache->valid = true;
+  }
+  if (s.separation > Real(0)) {
+    const Real dist = std::sqrt(closest(nullptr, r.point_a, r.point_b));
+    Vec3 unit;
+    Real len = Real(0);
+    if (dist > tol * Real(1e-3) && unit_and_length(r.point_b - r.point_a, unit, len)) r.normal = unit;
+    r.signed_distance = std::max(dist, s.separation);
+  } else {
+    r.signed_distance = s.separation;
+    penetration_witness(
+        r, [&](const Vec3& shift, Vec3& on_a, Vec3& on_b) { static_cast<void>(closest(&shift, on_a, on_b)); });
+  }
+  r.status = status_from_distance(r.signed_distance, tol);
+  return r;
+}
+
+/// pair_intersect of a SAT pair (contract in pair_support.hpp): its pair_distance within
+/// max(request.contact_distance, 0).
 template <class A, class B>
-ContactManifold manifold_of(const A& a, const Transform& pose_a, const B& b, const Transform& pose_b,
-                            const DistanceResult& d, const PairRequest& request) {
-  ContactManifold m = manifold_from_distance(d, request);
-  if (m.count == 0 || request.max_contacts < 2) return m;
-  const SupportingFace fa = supporting_face(a, pose_a, d.normal);
-  const SupportingFace fb = supporting_face(b, pose_b, -d.normal);
-  if (fa.count < 2 || fb.count < 2) return m;
-  ContactManifold clipped = m;
-  const ContactPoint witness = m.points[0];
-  if (clipped_manifold(fa, fb, d.normal, request, clipped, &witness)) return clipped;
+bool sat_pair_intersect(const A& a, const Transform& pose_a, const B& b, const Transform& pose_b,
+                        const PairRequest& request, PairCache* cache) {
+  if (!finite_poses(pose_a, pose_b)) return false;
+  return pair_distance(a, pose_a, b, pose_b, request, cache).signed_distance <=
+         std::max(request.contact_distance, Real(0));
+}
+
+/// pair_collide of a SAT pair (contract in pair_support.hpp): manifold_of its pair_distance,
+/// tagged PairMethod::Sat.
+template <class A, class B>
+ContactManifold sat_pair_collide(const A& a, const Transform& pose_a, const B& b, const Transform& pose_b,
+                                 const PairRequest& request, PairCache* cache) {
+  if (!finite_poses(pose_a, pose_b)) return invalid_manifold();
+  const DistanceResult d = pair_distance(a, pose_a, b, pose_b, request, cache);
+  ContactManifold m = manifold_of(a, pose_a, b, pose_b, d, request);
+  m.method = PairMethod::Sat;
   return m;
 }
 

@@ -21,6 +21,7 @@
 #include <proxima/narrowphase/contact.hpp>
 
 #include <array>
+#include <initializer_list>
 
 #include "narrowphase/generic_halfspace.hpp"
 #include "narrowphase/manifold_reduction.hpp"
@@ -119,26 +120,26 @@ ContactManifold candidate_manifold(const PlaneQuery& q, std::span<const Vec3> po
   return m;
 }
 
-ContactManifold plane_contacts(const Segment& a, const Transform& pose_a, const PlaneQuery& q, const PairRequest& r) {
+// Contacts of the listed vertices (local frame, ids 0, 1, ... in order) placed by `pose`,
+// each rounded by `radius`.
+ContactManifold vertex_contacts(std::initializer_list<Vec3> vertices, const Transform& pose, Real radius,
+                                const PlaneQuery& q, const PairRequest& r) {
   Candidates c;
-  c.add(pose_a.apply(a.a()), 0);
-  c.add(pose_a.apply(a.b()), 1);
-  return c.manifold(q, Real(0), r);
+  std::uint32_t id = 0;
+  for (const Vec3& v : vertices) c.add(pose.apply(v), id++);
+  return c.manifold(q, radius, r);
+}
+
+ContactManifold plane_contacts(const Segment& a, const Transform& pose_a, const PlaneQuery& q, const PairRequest& r) {
+  return vertex_contacts({a.a(), a.b()}, pose_a, Real(0), q, r);
 }
 
 ContactManifold plane_contacts(const Triangle& a, const Transform& pose_a, const PlaneQuery& q, const PairRequest& r) {
-  Candidates c;
-  c.add(pose_a.apply(a.a()), 0);
-  c.add(pose_a.apply(a.b()), 1);
-  c.add(pose_a.apply(a.c()), 2);
-  return c.manifold(q, Real(0), r);
+  return vertex_contacts({a.a(), a.b(), a.c()}, pose_a, Real(0), q, r);
 }
 
 ContactManifold plane_contacts(const Capsule& a, const Transform& pose_a, const PlaneQuery& q, const PairRequest& r) {
-  Candidates c;
-  c.add(pose_a.apply(a.bottom()), 0);
-  c.add(pose_a.apply(a.top()), 1);
-  return c.manifold(q, a.radius(), r);
+  return vertex_contacts({a.bottom(), a.top()}, pose_a, a.radius(), q, r);
 }
 
 ContactManifold plane_contacts(const Box& a, const Transform& pose_a, const PlaneQuery& q, const PairRequest& r) {

@@ -8,6 +8,8 @@
 
 #include <proxima/core/math.hpp>
 #include <proxima/core/tolerance.hpp>
+#include <proxima/core/transform.hpp>
+#include <proxima/shapes/triangle.hpp>
 
 #include <array>
 #include <cmath>
@@ -83,6 +85,25 @@ inline SmallSat small_polytope_sat(const SmallPolytope& a, const SmallPolytope& 
     }
   }
   return s;
+}
+
+/// Smallest sine between two edges whose cross product is a candidate axis of the triangle
+/// pairs (nearly parallel edges give no axis).
+inline const Real kParallelSine = Real(4) * kSqrtEpsilon;
+
+/// The SAT polytope of triangle `t` placed by `pose` (world frame): its 3 vertices, its
+/// normal and its 3 in-plane edge normals (which separate coplanar flat shapes), its edges.
+inline void triangle_polytope(const Triangle& t, const Transform& pose, SmallPolytope& p) {
+  p.vertex_count = 3;
+  for (int i = 0; i < 3; ++i) p.vertices[i] = pose.apply(t.vertex(i));
+  const Vec3 n = pose.apply_vector(t.normal());
+  p.face_count = 4;
+  p.faces[0] = n;
+  p.edge_count = 3;
+  for (int i = 0; i < 3; ++i) {
+    p.edges[i] = p.vertices[(i + 1) % 3] - p.vertices[i];
+    p.faces[1 + i] = glm::cross(n, p.edges[i]);
+  }
 }
 
 }  // namespace proxima::narrow

@@ -32,6 +32,22 @@ SupportingFace single_point(const Vec3& world_point, const Vec3& world_normal, R
   return f;
 }
 
+// The segment world_p0 -> world_p1 (ids 0 and 1) as the feature `index` with its normal
+// and radius.
+SupportingFace two_points(const Vec3& world_p0, const Vec3& world_p1, const Vec3& world_normal, std::uint32_t index,
+                          Real radius) {
+  SupportingFace f;
+  f.count = 2;
+  f.points[0] = world_p0;
+  f.points[1] = world_p1;
+  f.ids[0] = 0;
+  f.ids[1] = 1;
+  f.index = index;
+  f.normal = world_normal;
+  f.radius = radius;
+  return f;
+}
+
 Vec3 world_unit(const Transform& pose, const Vec3& local) { return pose.apply_vector(local); }
 
 // Regular polygon of kRimPoints points on the circle of radius r at height z, CCW seen
@@ -53,14 +69,8 @@ SupportingFace supporting_face(const Point& /*shape*/, const Transform& pose, co
 }
 
 SupportingFace supporting_face(const Segment& shape, const Transform& pose, const Vec3& direction) {
-  SupportingFace f;
-  f.count = 2;
-  f.points[0] = pose.apply(shape.a());
-  f.points[1] = pose.apply(shape.b());
-  f.ids[0] = 0;
-  f.ids[1] = 1;
-  f.normal = world_unit(pose, local_unit(pose, direction));
-  return f;
+  return two_points(pose.apply(shape.a()), pose.apply(shape.b()), world_unit(pose, local_unit(pose, direction)), 0,
+                    Real(0));
 }
 
 SupportingFace supporting_face(const Triangle& shape, const Transform& pose, const Vec3& direction) {
@@ -85,21 +95,9 @@ SupportingFace supporting_face(const Sphere& shape, const Transform& pose, const
 }
 
 SupportingFace supporting_face(const Capsule& shape, const Transform& pose, const Vec3& direction) {
-  SupportingFace f;
-  f.normal = world_unit(pose, local_unit(pose, direction));
-  f.radius = shape.radius();
-  if (!(shape.half_length() > Real(0))) {
-    f.count = 1;
-    f.points[0] = pose.position;
-    f.ids[0] = 0;
-    return f;
-  }
-  f.count = 2;
-  f.points[0] = pose.apply(shape.bottom());
-  f.points[1] = pose.apply(shape.top());
-  f.ids[0] = 0;
-  f.ids[1] = 1;
-  return f;
+  const Vec3 normal = world_unit(pose, local_unit(pose, direction));
+  if (!(shape.half_length() > Real(0))) return single_point(pose.position, normal, shape.radius());
+  return two_points(pose.apply(shape.bottom()), pose.apply(shape.top()), normal, 0, shape.radius());
 }
 
 SupportingFace supporting_face(const Box& shape, const Transform& pose, const Vec3& direction) {
@@ -148,14 +146,8 @@ SupportingFace supporting_face(const Cylinder& shape, const Transform& pose, con
   const Real radial = std::sqrt(d.x * d.x + d.y * d.y);
   if (radial >= kCurvedFaceCosine) {
     const Vec3 u(d.x / radial, d.y / radial, Real(0));
-    f.count = 2;
-    f.points[0] = pose.apply(Vec3(r * u.x, r * u.y, -h));
-    f.points[1] = pose.apply(Vec3(r * u.x, r * u.y, h));
-    f.ids[0] = 0;
-    f.ids[1] = 1;
-    f.index = 2;
-    f.normal = world_unit(pose, u);
-    return f;
+    return two_points(pose.apply(Vec3(r * u.x, r * u.y, -h)), pose.apply(Vec3(r * u.x, r * u.y, h)),
+                      world_unit(pose, u), 2, Real(0));
   }
   return single_point(pose.apply(shape.support(d)), world_unit(pose, d), Real(0));
 }
@@ -180,14 +172,8 @@ SupportingFace supporting_face(const Cone& shape, const Transform& pose, const V
       const Vec3 u(d.x / radial, d.y / radial, Real(0));
       const Vec3 n(unit.x * u.x, unit.x * u.y, unit.y);
       if (glm::dot(n, d) >= kCurvedFaceCosine) {
-        f.count = 2;
-        f.points[0] = pose.apply(Vec3(r * u.x, r * u.y, -h));
-        f.points[1] = pose.apply(Vec3(Real(0), Real(0), h));
-        f.ids[0] = 0;
-        f.ids[1] = 1;
-        f.index = 1;
-        f.normal = world_unit(pose, n);
-        return f;
+        return two_points(pose.apply(Vec3(r * u.x, r * u.y, -h)), pose.apply(Vec3(Real(0), Real(0), h)),
+                          world_unit(pose, n), 1, Real(0));
       }
     }
   }

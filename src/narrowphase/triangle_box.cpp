@@ -18,27 +18,10 @@
 #include <cmath>
 #include <limits>
 
-#include "pairs_polyhedral.hpp"
 #include "polytope_pair_common.hpp"
-#include "small_polytope_sat.hpp"
 
 namespace proxima::narrow {
 namespace {
-
-const Real kParallelSine = Real(4) * kSqrtEpsilon;
-
-void triangle_polytope(const Triangle& t, const Transform& pose, SmallPolytope& p) {
-  p.vertex_count = 3;
-  for (int i = 0; i < 3; ++i) p.vertices[i] = pose.apply(t.vertex(i));
-  const Vec3 n = pose.apply_vector(t.normal());
-  p.face_count = 4;
-  p.faces[0] = n;
-  p.edge_count = 3;
-  for (int i = 0; i < 3; ++i) {
-    p.edges[i] = p.vertices[(i + 1) % 3] - p.vertices[i];
-    p.faces[1 + i] = glm::cross(n, p.edges[i]);  // in-plane edge normals (flat shape)
-  }
-}
 
 void box_polytope(const Box& b, const Transform& pose, SmallPolytope& p) {
   const Vec3 h = b.half_extents();
@@ -96,51 +79,25 @@ DistanceResult pair_distance(const Triangle& a, const Transform& pose_a, const B
   for (int i = 0; i < 8; ++i) scale = std::max(scale, max_abs_component(pb.vertices[i]));
   for (int i = 0; i < 3; ++i) scale = std::max(scale, max_abs_component(pa.vertices[i]));
   const Real tol = resolve_tolerance(request, scale);
-  DistanceResult r;
-  r.method = PairMethod::Sat;
-  r.normal = s.normal;
-  if (cache != nullptr) {
-    cache->axis = pose_a.inverse_apply_vector(s.normal);
-    cache->valid = true;
-  }
   const Mat3 m = pose_b.rotation_matrix();
-  std::array<Vec3, 8> corners;
-  for (int k = 0; k < 8; ++k) corners[static_cast<std::size_t>(k)] = pb.vertices[static_cast<std::size_t>(k)];
-  if (s.separation > Real(0)) {
-    const Real best =
-        closest_triangle_box(corners, pa.vertices.data(), pose_b.position, m, b.half_extents(), r.point_a, r.point_b);
-    const Real dist = std::sqrt(best);
-    Vec3 unit;
-    Real len = Real(0);
-    if (dist > tol * Real(1e-3) && unit_and_length(r.point_b - r.point_a, unit, len)) r.normal = unit;
-    r.signed_distance = std::max(dist, s.separation);
-  } else {
-    r.signed_distance = s.separation;
-    penetration_witness(r, [&](const Vec3& shift, Vec3& on_a, Vec3& on_b) {
-      std::array<Vec3, 8> moved;
-      for (std::size_t k = 0; k < 8; ++k) moved[k] = corners[k] + shift;
-      static_cast<void>(
-          closest_triangle_box(moved, pa.vertices.data(), pose_b.position + shift, m, b.half_extents(), on_a, on_b));
-    });
-  }
-  r.status = status_from_distance(r.signed_distance, tol);
-  return r;
+  return sat_distance_result(s, pose_a, tol, cache, [&](const Vec3* shift, Vec3& on_a, Vec3& on_b) {
+    if (shift == nullptr) {
+      return closest_triangle_box(pb.vertices, pa.vertices.data(), pose_b.position, m, b.half_extents(), on_a, on_b);
+    }
+    std::array<Vec3, 8> moved;
+    for (std::size_t k = 0; k < 8; ++k) moved[k] = pb.vertices[k] + *shift;
+    return closest_triangle_box(moved, pa.vertices.data(), pose_b.position + *shift, m, b.half_extents(), on_a, on_b);
+  });
 }
 
 bool pair_intersect(const Triangle& a, const Transform& pose_a, const Box& b, const Transform& pose_b,
                     const PairRequest& request, PairCache* cache) {
-  if (!finite_poses(pose_a, pose_b)) return false;
-  return pair_distance(a, pose_a, b, pose_b, request, cache).signed_distance <=
-         std::max(request.contact_distance, Real(0));
+  return sat_pair_intersect(a, pose_a, b, pose_b, request, cache);
 }
 
 ContactManifold pair_collide(const Triangle& a, const Transform& pose_a, const Box& b, const Transform& pose_b,
                              const PairRequest& request, PairCache* cache) {
-  if (!finite_poses(pose_a, pose_b)) return invalid_manifold();
-  const DistanceResult d = pair_distance(a, pose_a, b, pose_b, request, cache);
-  ContactManifold m = manifold_of(a, pose_a, b, pose_b, d, request);
-  m.method = PairMethod::Sat;
-  return m;
+  return sat_pair_collide(a, pose_a, b, pose_b, request, cache);
 }
 
 }  // namespace proxima::narrow

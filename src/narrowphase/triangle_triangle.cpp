@@ -13,31 +13,12 @@
 //     points.
 #include <proxima/geometry/closest_points.hpp>
 
+#include <array>
 #include <cmath>
 
-#include "pairs_polyhedral.hpp"
 #include "polytope_pair_common.hpp"
-#include "small_polytope_sat.hpp"
 
 namespace proxima::narrow {
-namespace {
-
-const Real kParallelSine = Real(4) * kSqrtEpsilon;
-
-void triangle_polytope(const Triangle& t, const Transform& pose, SmallPolytope& p) {
-  p.vertex_count = 3;
-  for (int i = 0; i < 3; ++i) p.vertices[i] = pose.apply(t.vertex(i));
-  const Vec3 n = pose.apply_vector(t.normal());
-  p.face_count = 4;
-  p.faces[0] = n;
-  p.edge_count = 3;
-  for (int i = 0; i < 3; ++i) {
-    p.edges[i] = p.vertices[(i + 1) % 3] - p.vertices[i];
-    p.faces[1 + i] = glm::cross(n, p.edges[i]);
-  }
-}
-
-}  // namespace
 
 DistanceResult pair_distance(const Triangle& a, const Transform& pose_a, const Triangle& b, const Transform& pose_b,
                              const PairRequest& request, PairCache* cache) {
@@ -52,51 +33,27 @@ DistanceResult pair_distance(const Triangle& a, const Transform& pose_a, const T
     scale = std::max({scale, max_abs_component(pa.vertices[i]), max_abs_component(pb.vertices[i])});
   }
   const Real tol = resolve_tolerance(request, scale);
-  DistanceResult r;
-  r.method = PairMethod::Sat;
-  r.normal = s.normal;
-  if (cache != nullptr) {
-    cache->axis = pose_a.inverse_apply_vector(s.normal);
-    cache->valid = true;
-  }
-  if (s.separation > Real(0)) {
-    const geometry::ClosestPair cp = geometry::closest_points_triangle_triangle(
-        pa.vertices[0], pa.vertices[1], pa.vertices[2], pb.vertices[0], pb.vertices[1], pb.vertices[2]);
-    r.point_a = cp.on_a;
-    r.point_b = cp.on_b;
-    const Real dist = std::sqrt(cp.distance_squared);
-    Vec3 unit;
-    Real len = Real(0);
-    if (dist > tol * Real(1e-3) && unit_and_length(r.point_b - r.point_a, unit, len)) r.normal = unit;
-    r.signed_distance = std::max(dist, s.separation);
-  } else {
-    r.signed_distance = s.separation;
-    penetration_witness(r, [&](const Vec3& shift, Vec3& on_a, Vec3& on_b) {
-      const geometry::ClosestPair cp = geometry::closest_points_triangle_triangle(
-          pa.vertices[0], pa.vertices[1], pa.vertices[2], pb.vertices[0] + shift, pb.vertices[1] + shift,
-          pb.vertices[2] + shift);
-      on_a = cp.on_a;
-      on_b = cp.on_b;
-    });
-  }
-  r.status = status_from_distance(r.signed_distance, tol);
-  return r;
+  return sat_distance_result(s, pose_a, tol, cache, [&](const Vec3* shift, Vec3& on_a, Vec3& on_b) {
+    std::array<Vec3, 3> q{pb.vertices[0], pb.vertices[1], pb.vertices[2]};
+    if (shift != nullptr) {
+      for (Vec3& v : q) v += *shift;
+    }
+    const geometry::ClosestPair cp =
+        geometry::closest_points_triangle_triangle(pa.vertices[0], pa.vertices[1], pa.vertices[2], q[0], q[1], q[2]);
+    on_a = cp.on_a;
+    on_b = cp.on_b;
+    return cp.distance_squared;
+  });
 }
 
 bool pair_intersect(const Triangle& a, const Transform& pose_a, const Triangle& b, const Transform& pose_b,
                     const PairRequest& request, PairCache* cache) {
-  if (!finite_poses(pose_a, pose_b)) return false;
-  return pair_distance(a, pose_a, b, pose_b, request, cache).signed_distance <=
-         std::max(request.contact_distance, Real(0));
+  return sat_pair_intersect(a, pose_a, b, pose_b, request, cache);
 }
 
 ContactManifold pair_collide(const Triangle& a, const Transform& pose_a, const Triangle& b, const Transform& pose_b,
                              const PairRequest& request, PairCache* cache) {
-  if (!finite_poses(pose_a, pose_b)) return invalid_manifold();
-  const DistanceResult d = pair_distance(a, pose_a, b, pose_b, request, cache);
-  ContactManifold m = manifold_of(a, pose_a, b, pose_b, d, request);
-  m.method = PairMethod::Sat;
-  return m;
+  return sat_pair_collide(a, pose_a, b, pose_b, request, cache);
 }
 
 }  // namespace proxima::narrow

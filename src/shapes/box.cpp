@@ -17,6 +17,8 @@
 #include <cmath>
 #include <limits>
 
+#include "shapes/far_point.hpp"
+
 namespace proxima {
 Result<Box> Box::create(const Vec3& half_extents) {
   if (auto e = validate::positive(half_extents.x, "half_extents.x")) return *e;
@@ -47,13 +49,8 @@ bool Box::contains(const Vec3& point) const {
 }
 
 SurfacePoint Box::closest_point(const Vec3& point) const {
+  if (!is_finite(point)) return detail::far_top_point(half_extents_.z);
   SurfacePoint r;
-  if (!is_finite(point)) {
-    r.point = Vec3(Real(0), Real(0), half_extents_.z);
-    r.normal = Vec3(Real(0), Real(0), Real(1));
-    r.signed_distance = std::numeric_limits<Real>::infinity();
-    return r;
-  }
   if (!contains(point)) {
     r.point = geometry::closest_point_aabb(point, local_aabb());
     Vec3 unit;

@@ -20,7 +20,6 @@
 //  - raycast: geometry::ray_cone.
 //  - mass_properties: the standard solid-cone formulas (centroid at a quarter of the height
 //    above the base, inertia about the centroid).
-#include <proxima/core/validate.hpp>
 #include <proxima/geometry/raycast.hpp>
 #include <proxima/shapes/cone.hpp>
 
@@ -28,6 +27,7 @@
 #include <cmath>
 #include <limits>
 
+#include "shapes/far_point.hpp"
 #include "shapes/radial.hpp"
 
 namespace proxima {
@@ -36,8 +36,7 @@ using detail::radial_direction;
 using detail::robust_hypot;
 
 Result<Cone> Cone::create(Real radius, Real half_length) {
-  if (auto e = validate::positive(radius, "radius")) return *e;
-  if (auto e = validate::positive(half_length, "half_length")) return *e;
+  if (auto e = detail::check_radius_half_length(radius, half_length)) return *e;
   return Cone(radius, half_length);
 }
 
@@ -86,13 +85,7 @@ bool Cone::contains(const Vec3& point) const {
 }
 
 SurfacePoint Cone::closest_point(const Vec3& point) const {
-  if (!is_finite(point)) {
-    // A non-finite query: the top point, infinitely far.
-    SurfacePoint far;
-    far.point = Vec3(Real(0), Real(0), half_length_);
-    far.signed_distance = std::numeric_limits<Real>::infinity();
-    return far;
-  }
+  if (!is_finite(point)) return detail::far_top_point(half_length_);
   const Real r = radius_;
   const Real h = half_length_;
   // The half-plane through the axis and the point: radial unit (ux, uy) (any one on the axis).

@@ -15,7 +15,6 @@
 //    face; the sign is taken from contains() so that the two queries always agree.
 //  - raycast: geometry::ray_cylinder on the axis segment.
 //  - mass_properties: the standard solid-cylinder formulas.
-#include <proxima/core/validate.hpp>
 #include <proxima/geometry/raycast.hpp>
 #include <proxima/shapes/cylinder.hpp>
 
@@ -23,6 +22,7 @@
 #include <cmath>
 #include <limits>
 
+#include "shapes/far_point.hpp"
 #include "shapes/radial.hpp"
 
 namespace proxima {
@@ -31,8 +31,7 @@ using detail::radial_direction;
 using detail::robust_hypot;
 
 Result<Cylinder> Cylinder::create(Real radius, Real half_length) {
-  if (auto e = validate::positive(radius, "radius")) return *e;
-  if (auto e = validate::positive(half_length, "half_length")) return *e;
+  if (auto e = detail::check_radius_half_length(radius, half_length)) return *e;
   return Cylinder(radius, half_length);
 }
 
@@ -70,13 +69,7 @@ bool Cylinder::contains(const Vec3& point) const {
 }
 
 SurfacePoint Cylinder::closest_point(const Vec3& point) const {
-  if (!is_finite(point)) {
-    // A non-finite query: the top point, infinitely far.
-    SurfacePoint far;
-    far.point = Vec3(Real(0), Real(0), half_length_);
-    far.signed_distance = std::numeric_limits<Real>::infinity();
-    return far;
-  }
+  if (!is_finite(point)) return detail::far_top_point(half_length_);
   const Real r = radius_;
   const Real h = half_length_;
   // Radial unit vector of the half-plane holding the point (any one on the axis).

@@ -37,6 +37,8 @@
 #include <cmath>
 #include <limits>
 
+#include "shapes/far_point.hpp"
+
 namespace proxima {
 
 namespace {
@@ -188,13 +190,7 @@ bool Ellipsoid::contains(const Vec3& point) const {
 }
 
 SurfacePoint Ellipsoid::closest_point(const Vec3& point) const {
-  if (!is_finite(point)) {
-    // A non-finite query: the top point, infinitely far.
-    SurfacePoint far;
-    far.point = Vec3(Real(0), Real(0), radii_.z);
-    far.signed_distance = std::numeric_limits<Real>::infinity();
-    return far;
-  }
+  if (!is_finite(point)) return detail::far_top_point(radii_.z);
   const bool inside = contains(point);
 
   // Sort the axes by decreasing radius: axis[0] is the largest, axis[2] the smallest.

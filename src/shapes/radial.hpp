@@ -4,9 +4,11 @@
 // huge coordinates neither underflow nor overflow. Internal, not installed.
 
 #include <proxima/core/math.hpp>
+#include <proxima/core/validate.hpp>
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 namespace proxima::detail {
 
@@ -34,6 +36,13 @@ inline Real radial_direction(Real x, Real y, Real& ux, Real& uy) {
   ux = sx / len;
   uy = sy / len;
   return m * len;
+}
+
+// The error of a solid of revolution's validated construction (cylinder, cone): radius and
+// half_length (length units) must be finite and > 0 (error fields "radius", "half_length").
+inline std::optional<Error> check_radius_half_length(Real radius, Real half_length) {
+  if (auto e = validate::positive(radius, "radius")) return e;
+  return validate::positive(half_length, "half_length");
 }
 
 }  // namespace proxima::detail

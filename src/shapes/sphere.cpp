@@ -19,6 +19,8 @@
 #include <cmath>
 #include <limits>
 
+#include "shapes/far_point.hpp"
+
 namespace proxima {
 Result<Sphere> Sphere::create(Real radius) {
   if (auto e = validate::positive(radius, "radius")) return *e;
@@ -51,13 +53,8 @@ bool Sphere::contains(const Vec3& point) const {
 }
 
 SurfacePoint Sphere::closest_point(const Vec3& point) const {
+  if (!is_finite(point)) return detail::far_top_point(radius_);
   SurfacePoint r;
-  if (!is_finite(point)) {
-    r.point = Vec3(Real(0), Real(0), radius_);
-    r.normal = Vec3(Real(0), Real(0), Real(1));
-    r.signed_distance = std::numeric_limits<Real>::infinity();
-    return r;
-  }
   Vec3 unit(Real(0), Real(0), Real(1));
   Real dist = Real(0);
   unit_and_length(point, unit, dist);  // the centre keeps +z

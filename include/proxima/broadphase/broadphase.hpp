@@ -23,7 +23,7 @@
 ///   satisfy ParallelBroadPhase (any_broadphase.hpp), and parallel_pairs.hpp has a helper
 ///   (parallel_pair_chunks: per-chunk outputs concatenated, then sort_pairs).
 /// Shared pieces: pair_tracker.hpp (sort_pairs radix sort, begun/ended deltas), brute_force.hpp
-/// (the reference), query_support.hpp (traversal helpers of the templated queries),
+/// (the reference), broadphase_queries.hpp (members stated once), detail/ (query helpers),
 /// any_broadphase.hpp (type erasure: the one place where callbacks are type-erased;
 /// make_broadphase by name).
 

@@ -30,8 +30,9 @@
 /// concurrently with each other, not with changes.
 
 #include <proxima/broadphase/broadphase.hpp>
+#include <proxima/broadphase/broadphase_queries.hpp>
+#include <proxima/broadphase/detail/query_support.hpp>
 #include <proxima/broadphase/pair_tracker.hpp>
-#include <proxima/broadphase/query_support.hpp>
 #include <proxima/core/executor.hpp>
 #include <proxima/core/tolerance.hpp>
 #include <proxima/geometry/raycast.hpp>
@@ -58,7 +59,7 @@ struct BspTreeConfig {
 };
 
 /// BSP-tree broad phase (see the file comment). Satisfies BroadPhaseStructure.
-class BspTree {
+class BspTree : public BroadPhaseQueries<BspTree> {
  public:
   /// Creates an empty tree.
   explicit BspTree(const BspTreeConfig& config = {});
@@ -73,23 +74,12 @@ class BspTree {
   BroadPhaseStatus update(std::span<const ProxyUpdate> updates);
   /// Rebuilds the planes over the current boxes. O(n log n).
   void rebuild();
-  /// Every pair (see broadphase.hpp), sorted. May rebuild first.
-  void find_pairs(std::vector<ProxyPair>& out) { find_pairs(out, serial_executor()); }
-  /// As above with the tree descent split into tasks run by `executor`; identical output.
+  /// find_pairs(out): the serial form of the one below (BroadPhaseQueries).
+  using BroadPhaseQueries::find_pairs;
+  /// Every pair (see broadphase.hpp), sorted, with the tree descent split into tasks run by
+  /// `executor` (same output for every executor). May rebuild first.
   void find_pairs(std::vector<ProxyPair>& out, Executor& executor);
 
-  /// Every proxy whose box overlaps `box` (closed); stops when the callback returns false.
-  /// Returns the query's counters.
-  template <OverlapCallback OnOverlap>
-  BroadPhaseStats query_aabb(const Aabb& box, OnOverlap&& on_overlap) const {
-    return detail::run_box_query(
-        box, on_overlap, [this](const Aabb& b, BroadPhaseStats& st, auto&& visit) { this->visit_box(b, st, visit); });
-  }
-  /// Every proxy whose box contains `point`; returns the query's counters.
-  template <OverlapCallback OnOverlap>
-  BroadPhaseStats query_point(const Vec3& point, OnOverlap&& on_overlap) const {
-    return detail::run_point_query(point, [&](const Aabb& b) { return query_aabb(b, on_overlap); });
-  }
   /// Every proxy whose box the ray enters within [0, max_t]; the callback clips the ray.
   /// Returns the query's counters.
   template <RayCallback OnRay>
@@ -98,8 +88,6 @@ class BspTree {
   /// Checks the invariants: each proxy at one node, each box on the proper side of every
   /// ancestor plane and within the ancestors' side bounds and subtree boxes, parent links.
   bool validate() const;
-  /// Counters of the last find_pairs.
-  BroadPhaseStats stats() const { return stats_; }
   /// Number of proxies.
   std::size_t size() const { return count_; }
   /// Number of nodes.
@@ -110,6 +98,7 @@ class BspTree {
   std::size_t rebuild_count() const { return rebuilds_; }
 
  private:
+  friend class BroadPhaseQueries<BspTree>;
   static constexpr std::uint32_t kNull = 0xffffffffu;
 
   struct Node {

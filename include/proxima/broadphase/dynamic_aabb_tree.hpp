@@ -35,9 +35,10 @@
 /// Queries may run concurrently with each other, not with changes.
 
 #include <proxima/broadphase/broadphase.hpp>
+#include <proxima/broadphase/broadphase_queries.hpp>
+#include <proxima/broadphase/detail/query_support.hpp>
 #include <proxima/broadphase/pair_tracker.hpp>
 #include <proxima/broadphase/parallel_pairs.hpp>
-#include <proxima/broadphase/query_support.hpp>
 #include <proxima/core/executor.hpp>
 #include <proxima/geometry/raycast.hpp>
 
@@ -67,7 +68,7 @@ struct DynamicAabbTreeConfig {
 };
 
 /// Incremental AABB tree broad phase (see the file comment). Satisfies BroadPhaseStructure.
-class DynamicAabbTree {
+class DynamicAabbTree : public BroadPhaseQueries<DynamicAabbTree> {
  public:
   /// Creates an empty tree.
   explicit DynamicAabbTree(const DynamicAabbTreeConfig& config = {});
@@ -82,20 +83,12 @@ class DynamicAabbTree {
   BroadPhaseStatus update(std::span<const ProxyUpdate> updates);
   /// Rebuilds both trees with binned SAH (fat boxes kept). O(n log n).
   void rebuild();
-  /// Every pair (see broadphase.hpp), sorted; `out` is cleared first. On the calling thread.
-  void find_pairs(std::vector<ProxyPair>& out) { find_pairs(out, serial_executor()); }
-  /// As above with the descent split into tasks run by `executor`; identical output.
+  /// find_pairs(out): the serial form of the one below (BroadPhaseQueries).
+  using BroadPhaseQueries::find_pairs;
+  /// Every pair (see broadphase.hpp), sorted; `out` is cleared first. The tree-against-tree
+  /// descent is split into tasks run by `executor` (same output for every executor).
   void find_pairs(std::vector<ProxyPair>& out, Executor& executor);
 
-  /// Calls `on_overlap` for every proxy whose box overlaps `box` (closed); stops when it
-  /// returns false. A non-finite or inverted box reports nothing. Returns the counters.
-  template <OverlapCallback OnOverlap>
-  BroadPhaseStats query_aabb(const Aabb& box, OnOverlap&& on_overlap) const;
-  /// Calls `on_overlap` for every proxy whose box contains `point` (boundary included).
-  template <OverlapCallback OnOverlap>
-  BroadPhaseStats query_point(const Vec3& point, OnOverlap&& on_overlap) const {
-    return detail::run_point_query(point, [&](const Aabb& b) { return query_aabb(b, on_overlap); });
-  }
   /// Calls `on_ray` for every proxy whose box the ray enters within [0, max_t] (see
   /// RayCallback); the callback's answer clips the ray for the rest of the search.
   template <RayCallback OnRay>
@@ -104,8 +97,6 @@ class DynamicAabbTree {
   /// Checks every invariant: parent links, children inside parents, fat boxes containing the
   /// real boxes, heights, leaf counts, free list, proxy table. O(n).
   bool validate() const;
-  /// Counters of the last find_pairs.
-  BroadPhaseStats stats() const { return stats_; }
   /// Number of proxies.
   std::size_t size() const { return count_; }
 
@@ -120,6 +111,7 @@ class DynamicAabbTree {
   Aabb fat_box(ProxyId id) const;
 
  private:
+  friend class BroadPhaseQueries<DynamicAabbTree>;
   static constexpr std::uint32_t kNull = 0xffffffffu;
 
   /// A pool node. Leaves have child1 == kNull and hold the proxy id in child2.
@@ -168,6 +160,15 @@ class DynamicAabbTree {
   bool validate_tree(const Tree& tree, ProxyKind kind) const;
   static Real refit_all(Tree& tree);
   static Real tree_cost(const Tree& tree);
+  /// Depth-first walk of both trees (moving first) counting nodes_visited and pairs_tested:
+  /// descends into the nodes whose fat box `enter(fat)` accepts and calls `leaf(id, real)`
+  /// at each leaf so reached, with the proxy's real box; stops when it returns false.
+  template <class Enter, class Leaf>
+  void walk(BroadPhaseStats& st, Enter&& enter, Leaf&& leaf) const;
+  /// The box walk of query_aabb (BroadPhaseQueries): both trees, pruned by the fat boxes,
+  /// leaves tested on their real boxes.
+  template <class Visit>
+  void visit_box(const Aabb& box, BroadPhaseStats& st, Visit&& visit) const;
 
   struct PairTask {
     std::uint32_t a;
@@ -191,10 +192,8 @@ static_assert(BroadPhaseStructure<DynamicAabbTree>);
 
 // ---- queries (templates on the callback) ------------------------------------------------
 
-template <OverlapCallback OnOverlap>
-BroadPhaseStats DynamicAabbTree::query_aabb(const Aabb& box, OnOverlap&& on_overlap) const {
-  BroadPhaseStats st;
-  if (!detail::query_box_ok(box)) return st;
+template <class Enter, class Leaf>
+void DynamicAabbTree::walk(BroadPhaseStats& st, Enter&& enter, Leaf&& leaf) const {
   for (const Tree* tree : {&moving_, &static_}) {
     if (tree->root == kNull) continue;
     detail::TraversalStack<std::uint32_t, 256> stack;
@@ -203,19 +202,23 @@ BroadPhaseStats DynamicAabbTree::query_aabb(const Aabb& box, OnOverlap&& on_over
       const std::uint32_t index = stack.pop();
       const Node& n = tree->nodes[index];
       ++st.nodes_visited;
-      if (!n.box.overlaps(box)) continue;
+      if (!enter(n.box)) continue;
       if (!n.is_leaf()) {
         stack.push(n.child1);
         stack.push(n.child2);
         continue;
       }
       ++st.pairs_tested;
-      if (!tree->real[index].overlaps(box)) continue;
-      ++st.pairs_found;
-      if (!on_overlap(n.child2)) return st;
+      if (!leaf(n.child2, tree->real[index])) return;
     }
   }
-  return st;
+}
+
+template <class Visit>
+void DynamicAabbTree::visit_box(const Aabb& box, BroadPhaseStats& st, Visit&& visit) const {
+  walk(
+      st, [&](const Aabb& fat) { return fat.overlaps(box); },
+      [&](ProxyId id, const Aabb& real) { return !real.overlaps(box) || visit(id); });
 }
 
 template <RayCallback OnRay>
@@ -224,28 +227,18 @@ BroadPhaseStats DynamicAabbTree::query_ray(const Ray& ray, Real max_t, OnRay&& o
   if (!detail::ray_input_ok(ray, max_t)) return st;
   const detail::SlabRay slab(ray);
   Real limit = max_t;
-  for (const Tree* tree : {&moving_, &static_}) {
-    if (tree->root == kNull) continue;
-    detail::TraversalStack<std::uint32_t, 256> stack;
-    stack.push(tree->root);
-    while (!stack.empty()) {
-      const std::uint32_t index = stack.pop();
-      const Node& n = tree->nodes[index];
-      ++st.nodes_visited;
-      Real t;
-      if (!slab.enter(n.box, limit, t)) continue;
-      if (!n.is_leaf()) {
-        stack.push(n.child1);
-        stack.push(n.child2);
-        continue;
-      }
-      ++st.pairs_tested;
-      const auto hit = geometry::ray_aabb(ray, limit, tree->real[index]);
-      if (!hit) continue;
-      ++st.pairs_found;
-      if (!detail::apply_ray_result(on_ray(n.child2, hit->t), limit)) return st;
-    }
-  }
+  walk(
+      st,
+      [&](const Aabb& fat) {
+        Real t;
+        return slab.enter(fat, limit, t);
+      },
+      [&](ProxyId id, const Aabb& real) {
+        const auto hit = geometry::ray_aabb(ray, limit, real);
+        if (!hit) return true;
+        ++st.pairs_found;
+        return detail::apply_ray_result(on_ray(id, hit->t), limit);
+      });
   return st;
 }
 

@@ -26,8 +26,9 @@
 /// other, not with changes.
 
 #include <proxima/broadphase/broadphase.hpp>
+#include <proxima/broadphase/broadphase_queries.hpp>
+#include <proxima/broadphase/detail/query_support.hpp>
 #include <proxima/broadphase/pair_tracker.hpp>
-#include <proxima/broadphase/query_support.hpp>
 #include <proxima/core/executor.hpp>
 #include <proxima/geometry/raycast.hpp>
 
@@ -47,7 +48,7 @@ struct KdTreeConfig {
 };
 
 /// kd-tree broad phase (see the file comment). Satisfies BroadPhaseStructure.
-class KdTree {
+class KdTree : public BroadPhaseQueries<KdTree> {
  public:
   /// Creates an empty tree.
   explicit KdTree(const KdTreeConfig& config = {});
@@ -62,23 +63,12 @@ class KdTree {
   BroadPhaseStatus update(std::span<const ProxyUpdate> updates);
   /// Rebuilds the tree from scratch over every proxy (median splits). O(n log n).
   void rebuild();
-  /// Every pair (see broadphase.hpp), sorted. May refit or rebuild first.
-  void find_pairs(std::vector<ProxyPair>& out) { find_pairs(out, serial_executor()); }
-  /// As above with the tree descent split into tasks run by `executor`; identical output.
+  /// find_pairs(out): the serial form of the one below (BroadPhaseQueries).
+  using BroadPhaseQueries::find_pairs;
+  /// Every pair (see broadphase.hpp), sorted, with the tree descent split into tasks run by
+  /// `executor` (same output for every executor). May refit or rebuild first.
   void find_pairs(std::vector<ProxyPair>& out, Executor& executor);
 
-  /// Every proxy whose box overlaps `box` (closed); stops when the callback returns false.
-  /// Returns the query's counters.
-  template <OverlapCallback OnOverlap>
-  BroadPhaseStats query_aabb(const Aabb& box, OnOverlap&& on_overlap) const {
-    return detail::run_box_query(
-        box, on_overlap, [this](const Aabb& b, BroadPhaseStats& st, auto&& visit) { this->visit_box(b, st, visit); });
-  }
-  /// Every proxy whose box contains `point`; returns the query's counters.
-  template <OverlapCallback OnOverlap>
-  BroadPhaseStats query_point(const Vec3& point, OnOverlap&& on_overlap) const {
-    return detail::run_point_query(point, [&](const Aabb& b) { return query_aabb(b, on_overlap); });
-  }
   /// Every proxy whose box the ray enters within [0, max_t]; the callback clips the ray.
   /// Returns the query's counters.
   template <RayCallback OnRay>
@@ -87,8 +77,6 @@ class KdTree {
   /// Checks the invariants: each proxy in exactly one place, leaf records equal to the proxy
   /// table, every box within the clip planes of all its ancestors, parent links. O(n log n).
   bool validate() const;
-  /// Counters of the last find_pairs.
-  BroadPhaseStats stats() const { return stats_; }
   /// Number of proxies.
   std::size_t size() const { return count_; }
   /// Number of rebuilds done so far (explicit and automatic).
@@ -97,6 +85,7 @@ class KdTree {
   int depth() const;
 
  private:
+  friend class BroadPhaseQueries<KdTree>;
   static constexpr std::uint32_t kNull = 0xffffffffu;
 
   struct Node {

@@ -24,6 +24,7 @@
 /// Queries walk the nodes whose loose bounds the box, point or ray meets.
 
 #include <proxima/broadphase/broadphase.hpp>
+#include <proxima/broadphase/broadphase_queries.hpp>
 #include <proxima/broadphase/pair_tracker.hpp>
 #include <proxima/broadphase/proxy_table.hpp>
 #include <proxima/core/executor.hpp>
@@ -37,7 +38,7 @@ namespace proxima {
 
 /// Loose 2^Dim-tree over x, y (and z when Dim = 3). See the file comment.
 template <int Dim>
-class LooseTree {
+class LooseTree : public BroadPhaseQueries<LooseTree<Dim>> {
   static_assert(Dim == 2 || Dim == 3, "LooseTree partitions 2 or 3 axes");
 
  public:
@@ -54,26 +55,22 @@ class LooseTree {
   BroadPhaseStatus update(std::span<const ProxyUpdate> updates);
   /// Rebuilds the tree around the current boxes (fits the root, resets the depth limit).
   void rebuild();
-  /// Every pair, sorted (broadphase.hpp), on the calling thread.
-  void find_pairs(std::vector<ProxyPair>& out) { find_pairs(out, serial_executor()); }
-  /// Every pair, sorted, with the top tasks run by `executor` (same output as serial).
+  /// find_pairs(out): the serial form of the one below (BroadPhaseQueries).
+  using BroadPhaseQueries<LooseTree>::find_pairs;
+  /// Every pair, sorted (broadphase.hpp), with the top tasks run by `executor` (same output
+  /// for every executor).
   void find_pairs(std::vector<ProxyPair>& out, Executor& executor);
-  /// Proxies whose box overlaps `box` (closed), each once; returns the query's counters.
+  /// Proxies whose box overlaps `box` (closed), each once, by a walk of the nodes whose loose
+  /// bounds meet it (pairs_found is not counted); an inverted or NaN box reports nothing.
+  /// Returns the query's counters. query_point is this query on the point's box.
   template <OverlapCallback OnOverlap>
   BroadPhaseStats query_aabb(const Aabb& box, OnOverlap&& on_overlap) const;
-  /// Proxies whose box contains `point`, each once; returns the query's counters.
-  template <OverlapCallback OnOverlap>
-  BroadPhaseStats query_point(const Vec3& point, OnOverlap&& on_overlap) const {
-    return query_aabb(Aabb::from_point(point), on_overlap);
-  }
   /// Proxies whose box the ray enters at t <= the current max fraction (t of
   /// geometry::ray_aabb), nodes pruned by their loose bounds against the clipped ray.
   template <RayCallback OnRay>
   BroadPhaseStats query_ray(const Ray& ray, Real max_t, OnRay&& on_ray) const;
   /// Checks the links, counts and that every box lies in its node's loose bounds. O(n + nodes).
   bool validate() const;
-  /// Counters of the last find_pairs.
-  BroadPhaseStats stats() const { return stats_; }
   /// Number of proxies.
   std::size_t size() const { return proxies_.size(); }
   /// Number of live nodes.
@@ -84,6 +81,7 @@ class LooseTree {
   std::size_t memory_bytes() const;
 
  private:
+  friend class BroadPhaseQueries<LooseTree>;
   static constexpr std::int32_t kNil = -1;
   static constexpr std::uint32_t kNone = 0xffffffffu;
   struct Node {

@@ -26,6 +26,7 @@
 /// steady state (buffers keep their capacity).
 
 #include <proxima/broadphase/broadphase.hpp>
+#include <proxima/broadphase/broadphase_queries.hpp>
 #include <proxima/broadphase/parallel_pairs.hpp>
 #include <proxima/broadphase/proxy_table.hpp>
 #include <proxima/core/executor.hpp>
@@ -49,7 +50,7 @@ enum class CellMode : std::uint8_t {
 };
 
 /// The engine behind UniformGrid, SpatialHash and HierarchicalGrid (see the file comment).
-class CellEngine {
+class CellEngine : public BroadPhaseQueries<CellEngine> {
  public:
   /// `cell_size` <= 0 chooses it from the boxes at each build.
   CellEngine(CellMode mode, Real cell_size);
@@ -59,17 +60,14 @@ class CellEngine {
   BroadPhaseStatus update(ProxyId id, const Aabb& box);
   BroadPhaseStatus update(std::span<const ProxyUpdate> updates);
   void rebuild();
+  using BroadPhaseQueries::find_pairs;
   void find_pairs(std::vector<ProxyPair>& out, Executor& executor);
+  // Cells (or a scan when unbuilt or too many cells); pairs_found is not counted.
   template <OverlapCallback OnOverlap>
   BroadPhaseStats query_aabb(const Aabb& box, OnOverlap&& on_overlap) const;
-  template <OverlapCallback OnOverlap>
-  BroadPhaseStats query_point(const Vec3& point, OnOverlap&& on_overlap) const {
-    return query_aabb(Aabb::from_point(point), on_overlap);
-  }
   template <RayCallback OnRay>
   BroadPhaseStats query_ray(const Ray& ray, Real max_t, OnRay&& on_ray) const;
   bool validate() const;
-  BroadPhaseStats stats() const { return stats_; }
   std::size_t size() const { return proxies_.size(); }
   Real cell_size() const { return cell_; }
   std::size_t cell_count() const { return cell_start_.empty() ? 0 : cell_start_.size() - 1; }
@@ -86,6 +84,7 @@ class CellEngine {
   };
 
  private:
+  friend class BroadPhaseQueries<CellEngine>;
   struct Range {
     std::int32_t lo[3];
     std::int32_t hi[3];
@@ -199,7 +198,7 @@ class CellBroadPhase {
   /// Re-chooses the cell size (and the dense grid's world bounds) and bins every proxy.
   void rebuild() { engine_.rebuild(); }
   /// Every pair, sorted (broadphase.hpp), on the calling thread.
-  void find_pairs(std::vector<ProxyPair>& out) { engine_.find_pairs(out, serial_executor()); }
+  void find_pairs(std::vector<ProxyPair>& out) { engine_.find_pairs(out); }
   /// Every pair, sorted, with the cells split into parts run by `executor` (same output as
   /// serial).
   void find_pairs(std::vector<ProxyPair>& out, Executor& executor) { engine_.find_pairs(out, executor); }

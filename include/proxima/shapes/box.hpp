@@ -3,23 +3,14 @@
 /// Box: a solid rectangular box centred on its local origin, aligned with the local axes
 /// (an oriented box once placed).
 
-#include <proxima/core/math.hpp>
-#include <proxima/core/result.hpp>
-#include <proxima/core/transform.hpp>
-#include <proxima/geometry/aabb.hpp>
-#include <proxima/geometry/ray.hpp>
-#include <proxima/shapes/mass_properties.hpp>
-#include <proxima/shapes/shape_type.hpp>
-#include <proxima/shapes/surface_point.hpp>
-
-#include <optional>
+#include <proxima/shapes/unrounded_core.hpp>
 
 namespace proxima {
 
 /// Solid box [-h, h] (h = half extents) in its local frame.
 ///
 /// Members as every shape (see Sphere), all in the local frame unless the name says world.
-class Box {
+class Box : public UnroundedCore<Box> {
  public:
   /// Dispatch tag.
   static constexpr ShapeType kType = ShapeType::Box;
@@ -34,10 +25,6 @@ class Box {
   /// Farthest corner in `direction` (the + side on axes where the direction component is
   /// zero; the corner h for a zero direction, -h for a NaN one).
   Vec3 support(const Vec3& direction) const;
-  /// Farthest point of the core (the box itself): support(direction).
-  Vec3 core_support(const Vec3& direction) const { return support(direction); }
-  /// Radius added around the core: 0.
-  Real core_radius() const { return Real(0); }
 
   /// Tight box in the local frame: [-h, h].
   Aabb local_aabb() const;

@@ -3,16 +3,8 @@
 /// Capsule: a segment core along local z plus a radius (a cylinder capped by two
 /// hemispheres).
 
-#include <proxima/core/math.hpp>
 #include <proxima/core/result.hpp>
-#include <proxima/core/transform.hpp>
-#include <proxima/geometry/aabb.hpp>
-#include <proxima/geometry/ray.hpp>
-#include <proxima/shapes/mass_properties.hpp>
-#include <proxima/shapes/shape_type.hpp>
-#include <proxima/shapes/surface_point.hpp>
-
-#include <optional>
+#include <proxima/shapes/convex_shape.hpp>
 
 namespace proxima {
 

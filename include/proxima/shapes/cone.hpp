@@ -2,16 +2,7 @@
 /// @file cone.hpp
 /// Cone: a solid right circular cone about the local z axis.
 
-#include <proxima/core/math.hpp>
-#include <proxima/core/result.hpp>
-#include <proxima/core/transform.hpp>
-#include <proxima/geometry/aabb.hpp>
-#include <proxima/geometry/ray.hpp>
-#include <proxima/shapes/mass_properties.hpp>
-#include <proxima/shapes/shape_type.hpp>
-#include <proxima/shapes/surface_point.hpp>
-
-#include <optional>
+#include <proxima/shapes/unrounded_core.hpp>
 
 namespace proxima {
 
@@ -21,7 +12,7 @@ namespace proxima {
 ///
 /// Same members as Sphere (see sphere.hpp), all in the local frame unless the name says
 /// world. The core is the whole cone and the core radius is 0.
-class Cone {
+class Cone : public UnroundedCore<Cone> {
  public:
   /// Dispatch tag.
   static constexpr ShapeType kType = ShapeType::Cone;
@@ -40,10 +31,6 @@ class Cone {
   /// base rim (the base centre for a direction along -z, the apex for a zero or
   /// non-finite direction). O(1).
   Vec3 support(const Vec3& direction) const;
-  /// Farthest point of the core (the whole cone) in `direction`: equals support().
-  Vec3 core_support(const Vec3& direction) const { return support(direction); }
-  /// Radius added around the core: 0.
-  Real core_radius() const { return Real(0); }
 
   /// Tight box in the local frame: [-r, -r, -h] .. [r, r, h].
   Aabb local_aabb() const;

@@ -4,18 +4,10 @@
 /// polygonal boundary (merged coplanar faces, not triangulated) with vertex adjacency for
 /// hill-climbing support queries.
 
-#include <proxima/core/math.hpp>
-#include <proxima/core/result.hpp>
-#include <proxima/core/transform.hpp>
-#include <proxima/geometry/aabb.hpp>
-#include <proxima/geometry/ray.hpp>
-#include <proxima/shapes/mass_properties.hpp>
-#include <proxima/shapes/shape_type.hpp>
-#include <proxima/shapes/surface_point.hpp>
+#include <proxima/shapes/unrounded_core.hpp>
 
 #include <cstdint>
 #include <memory>
-#include <optional>
 #include <span>
 #include <utility>
 #include <vector>
@@ -55,7 +47,7 @@ struct HullEdge {
 /// Members as every shape (see Sphere): support, core_support + core_radius (the core is
 /// the hull itself, core_radius is 0), local_aabb, world_aabb, raycast, contains,
 /// closest_point, mass_properties — all in the local frame unless the name says world.
-class ConvexHull {
+class ConvexHull : public UnroundedCore<ConvexHull> {
  public:
   /// Dispatch tag.
   static constexpr ShapeType kType = ShapeType::ConvexHull;
@@ -127,10 +119,6 @@ class ConvexHull {
   /// taken relative to the centre of the box, so ties are resolved at the hull's own
   /// resolution even far from the local origin.
   Vec3 support(const Vec3& direction) const { return data_->vertices[support_index(direction)]; }
-  /// Farthest point of the core in `direction`: the hull is its own core.
-  Vec3 core_support(const Vec3& direction) const { return support(direction); }
-  /// Radius added around the core: 0.
-  Real core_radius() const { return Real(0); }
 
   /// Tight box of the vertices in the local frame.
   Aabb local_aabb() const { return data_->local_box; }

@@ -1,7 +1,7 @@
 #pragma once
 /// @file convex_shape.hpp
-/// The ConvexShape concept: the member set every convex shape shares (no base class, no
-/// virtual call). Templates over shapes (placed.hpp's world-frame helpers, the narrow
+/// The ConvexShape concept: the member set every convex shape shares (no virtual call;
+/// UnroundedCore in unrounded_core.hpp). Templates over shapes (placed.hpp's world-frame helpers, the narrow
 /// phase's generic GJK / EPA path) are constrained by it, so a type without these members
 /// is rejected at the call site rather than deep inside the template.
 ///

@@ -2,16 +2,7 @@
 /// @file ellipsoid.hpp
 /// Ellipsoid: a solid axis-aligned ellipsoid in its local frame.
 
-#include <proxima/core/math.hpp>
-#include <proxima/core/result.hpp>
-#include <proxima/core/transform.hpp>
-#include <proxima/geometry/aabb.hpp>
-#include <proxima/geometry/ray.hpp>
-#include <proxima/shapes/mass_properties.hpp>
-#include <proxima/shapes/shape_type.hpp>
-#include <proxima/shapes/surface_point.hpp>
-
-#include <optional>
+#include <proxima/shapes/unrounded_core.hpp>
 
 namespace proxima {
 
@@ -20,7 +11,7 @@ namespace proxima {
 ///
 /// Same members as Sphere (see sphere.hpp), all in the local frame unless the name says
 /// world. The core is the whole ellipsoid and the core radius is 0.
-class Ellipsoid {
+class Ellipsoid : public UnroundedCore<Ellipsoid> {
  public:
   /// Dispatch tag.
   static constexpr ShapeType kType = ShapeType::Ellipsoid;
@@ -35,10 +26,6 @@ class Ellipsoid {
   /// Farthest point of the ellipsoid in `direction`: R^2 d / |R d| with R = diag(radii)
   /// (any non-zero vector; zero or non-finite gives the surface point (0, 0, rz)). O(1).
   Vec3 support(const Vec3& direction) const;
-  /// Farthest point of the core (the whole ellipsoid) in `direction`: equals support().
-  Vec3 core_support(const Vec3& direction) const { return support(direction); }
-  /// Radius added around the core: 0.
-  Real core_radius() const { return Real(0); }
 
   /// Tight box in the local frame: [-radii, radii].
   Aabb local_aabb() const;

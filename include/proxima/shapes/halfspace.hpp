@@ -2,15 +2,7 @@
 /// @file halfspace.hpp
 /// HalfSpace: the unbounded solid n . x <= d (floors, walls, clipping planes).
 
-#include <proxima/core/math.hpp>
-#include <proxima/core/result.hpp>
-#include <proxima/core/transform.hpp>
-#include <proxima/geometry/aabb.hpp>
-#include <proxima/geometry/ray.hpp>
-#include <proxima/shapes/shape_type.hpp>
-#include <proxima/shapes/surface_point.hpp>
-
-#include <optional>
+#include <proxima/shapes/unrounded_core.hpp>
 
 namespace proxima {
 
@@ -19,7 +11,7 @@ namespace proxima {
 ///
 /// Members as every shape (see Sphere), all in the local frame unless the name says world,
 /// except mass_properties: a half-space has infinite volume and no mass properties.
-class HalfSpace {
+class HalfSpace : public UnroundedCore<HalfSpace> {
  public:
   /// Dispatch tag.
   static constexpr ShapeType kType = ShapeType::HalfSpace;
@@ -50,10 +42,6 @@ class HalfSpace {
   /// cost the least progress in `direction`). A zero or non-finite direction gives a valid
   /// point.
   Vec3 support(const Vec3& direction) const;
-  /// Farthest point of the core (the clipped half-space itself): support(direction).
-  Vec3 core_support(const Vec3& direction) const { return support(direction); }
-  /// Radius added around the core: 0.
-  Real core_radius() const { return Real(0); }
 
   /// Box in the local frame: -kRealMax / +kRealMax on unbounded sides; bounded only on the
   /// axis that the normal matches exactly (normal = +e_i: max_i = offset; -e_i: min_i =

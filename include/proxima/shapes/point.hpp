@@ -3,16 +3,7 @@
 /// Point: a shape reduced to its local origin (a sphere of radius zero), the simplest
 /// core for "core + radius" queries and a probe for distance tests.
 
-#include <proxima/core/math.hpp>
-#include <proxima/core/result.hpp>
-#include <proxima/core/transform.hpp>
-#include <proxima/geometry/aabb.hpp>
-#include <proxima/geometry/ray.hpp>
-#include <proxima/shapes/mass_properties.hpp>
-#include <proxima/shapes/shape_type.hpp>
-#include <proxima/shapes/surface_point.hpp>
-
-#include <optional>
+#include <proxima/shapes/unrounded_core.hpp>
 
 namespace proxima {
 
@@ -21,7 +12,7 @@ namespace proxima {
 /// `linear_tolerance(0)` (= kRelativeTolerance) of the origin.
 ///
 /// Members as every shape (see Sphere), all in the local frame unless the name says world.
-class Point {
+class Point : public UnroundedCore<Point> {
  public:
   /// Dispatch tag.
   static constexpr ShapeType kType = ShapeType::Point;
@@ -31,10 +22,6 @@ class Point {
 
   /// Farthest point in `direction`: the origin, for every direction.
   Vec3 support(const Vec3& /*direction*/) const { return Vec3(Real(0)); }
-  /// Farthest point of the core (the point itself): the origin.
-  Vec3 core_support(const Vec3& /*direction*/) const { return Vec3(Real(0)); }
-  /// Radius added around the core: 0.
-  Real core_radius() const { return Real(0); }
 
   /// The degenerate box [0, 0] in the local frame.
   Aabb local_aabb() const;

@@ -3,16 +3,7 @@
 /// Segment: the line segment between two local points, a shape without interior and the
 /// core of the capsule.
 
-#include <proxima/core/math.hpp>
-#include <proxima/core/result.hpp>
-#include <proxima/core/transform.hpp>
-#include <proxima/geometry/aabb.hpp>
-#include <proxima/geometry/ray.hpp>
-#include <proxima/shapes/mass_properties.hpp>
-#include <proxima/shapes/shape_type.hpp>
-#include <proxima/shapes/surface_point.hpp>
-
-#include <optional>
+#include <proxima/shapes/unrounded_core.hpp>
 
 namespace proxima {
 
@@ -20,7 +11,7 @@ namespace proxima {
 /// are never negative and `contains` accepts points within `tolerance()` of the segment.
 ///
 /// Members as every shape (see Sphere), all in the local frame unless the name says world.
-class Segment {
+class Segment : public UnroundedCore<Segment> {
  public:
   /// Dispatch tag.
   static constexpr ShapeType kType = ShapeType::Segment;
@@ -42,10 +33,6 @@ class Segment {
 
   /// Farthest end point in `direction` (a for a zero or non-finite direction or a tie).
   Vec3 support(const Vec3& direction) const;
-  /// Farthest point of the core (the segment itself) in `direction`: support(direction).
-  Vec3 core_support(const Vec3& direction) const { return support(direction); }
-  /// Radius added around the core: 0.
-  Real core_radius() const { return Real(0); }
 
   /// Box of the two end points in the local frame.
   Aabb local_aabb() const;

@@ -2,16 +2,8 @@
 /// @file sphere.hpp
 /// Sphere: a point core (the local origin) plus a radius.
 
-#include <proxima/core/math.hpp>
 #include <proxima/core/result.hpp>
-#include <proxima/core/transform.hpp>
-#include <proxima/geometry/aabb.hpp>
-#include <proxima/geometry/ray.hpp>
-#include <proxima/shapes/mass_properties.hpp>
-#include <proxima/shapes/shape_type.hpp>
-#include <proxima/shapes/surface_point.hpp>
-
-#include <optional>
+#include <proxima/shapes/convex_shape.hpp>
 
 namespace proxima {
 

@@ -3,17 +3,9 @@
 /// Triangle: a two-sided flat triangle, a shape without interior (the element of meshes
 /// and height fields).
 
-#include <proxima/core/math.hpp>
-#include <proxima/core/result.hpp>
-#include <proxima/core/transform.hpp>
-#include <proxima/geometry/aabb.hpp>
-#include <proxima/geometry/ray.hpp>
-#include <proxima/shapes/mass_properties.hpp>
-#include <proxima/shapes/shape_type.hpp>
-#include <proxima/shapes/surface_point.hpp>
+#include <proxima/shapes/unrounded_core.hpp>
 
 #include <array>
-#include <optional>
 
 namespace proxima {
 
@@ -22,7 +14,7 @@ namespace proxima {
 /// the triangle.
 ///
 /// Members as every shape (see Sphere), all in the local frame unless the name says world.
-class Triangle {
+class Triangle : public UnroundedCore<Triangle> {
  public:
   /// Dispatch tag.
   static constexpr ShapeType kType = ShapeType::Triangle;
@@ -52,10 +44,6 @@ class Triangle {
   /// Farthest vertex in `direction` (the first of equal ones; a for a zero or non-finite
   /// direction).
   Vec3 support(const Vec3& direction) const;
-  /// Farthest point of the core (the triangle itself): support(direction).
-  Vec3 core_support(const Vec3& direction) const { return support(direction); }
-  /// Radius added around the core: 0.
-  Real core_radius() const { return Real(0); }
 
   /// Box of the three vertices in the local frame.
   Aabb local_aabb() const;

@@ -1,10 +1,10 @@
 #pragma once
-/// @file query_support.hpp
+/// @file detail/query_support.hpp
 /// Helpers (namespace detail) of the structures' templated queries, which live in their
 /// headers because they are templates on the callback: a traversal stack with fixed inline
-/// storage, the ray-box slab test with the conventions of broadphase.hpp, the input checks,
-/// the box and point query wrappers over a structure's box walk, and the ray-callback
-/// protocol. Not meant for use outside the broad phase.
+/// storage, the ray-box slab test with the conventions of broadphase.hpp, the ray input
+/// check and the ray-callback protocol (the box and point queries are stated once in
+/// broadphase_queries.hpp). Not meant for use outside the broad phase.
 
 #include <proxima/broadphase/broadphase.hpp>
 
@@ -92,34 +92,6 @@ inline bool ray_input_ok(const Ray& ray, Real max_t) {
     if (!std::isfinite(ray.origin[a]) || !std::isfinite(ray.direction[a])) return false;
   }
   return max_t >= Real(0);
-}
-
-/// True when the point is finite on every axis.
-inline bool point_ok(const Vec3& p) { return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z); }
-
-/// True when the box has finite, ordered coordinates (queries with other boxes report nothing).
-inline bool query_box_ok(const Aabb& box) { return check_box(box) == BroadPhaseStatus::Ok; }
-
-/// Box query of a tree over its `visit_box(box, stats, visit)` walk: counts the reports,
-/// reports nothing for an invalid box, and returns the counters.
-template <class OnOverlap, class VisitBox>
-BroadPhaseStats run_box_query(const Aabb& box, OnOverlap& on_overlap, VisitBox&& visit_box) {
-  BroadPhaseStats st;
-  if (query_box_ok(box)) {
-    visit_box(box, st, [&](ProxyId id) {
-      ++st.pairs_found;
-      return on_overlap(id);
-    });
-  }
-  return st;
-}
-
-/// Point query as the box query of the point: returns `query_aabb(point_box)`'s counters; a
-/// non-finite point reports nothing and returns zero counters.
-template <class QueryAabb>
-BroadPhaseStats run_point_query(const Vec3& point, QueryAabb&& query_aabb) {
-  if (!point_ok(point)) return {};
-  return query_aabb(Aabb::from_point(point));
 }
 
 /// Applies the ray-callback protocol: returns false when the query must stop; updates max_t.
