@@ -24,6 +24,14 @@ using test::LVec;
 
 Sphere sphere(Real r) { return *Sphere::create(r); }
 Capsule capsule(Real r, Real h) { return *Capsule::create(r, h); }
+
+// A random capsule: radius in [0.1, 1), half length in [0, 1.5); the half length is drawn
+// first.
+Capsule random_capsule(test::Random& rng) {
+  const Real h = rng.uniform(Real(0), Real(1.5));
+  const Real r = rng.uniform(Real(0.1), Real(1.0));
+  return capsule(r, h);
+}
 Box box(const Vec3& h) { return *Box::create(h); }
 Transform at(const Vec3& p, const Quat& q = kIdentityQuat) { return Transform{p, q}; }
 Quat about(const Vec3& axis, Real angle) { return glm::angleAxis(angle, glm::normalize(axis)); }
@@ -67,7 +75,7 @@ TEST(PairsRounded, SphereCapsuleSweep) {
   for (int i = 0; i < kSweep; ++i) {
     const Vec3 c = kCentres[i % 2];
     const Sphere a = sphere(rng.uniform(Real(0.1), Real(1.2)));
-    const Capsule b = capsule(rng.uniform(Real(0.1), Real(1.0)), rng.uniform(Real(0), Real(1.5)));
+    const Capsule b = random_capsule(rng);
     const Transform pa = random_pose(rng, c, Real(1.5));
     const Transform pb = random_pose(rng, c, Real(1.5));
     LVec q0, q1;
@@ -85,8 +93,8 @@ TEST(PairsRounded, CapsuleCapsuleSweep) {
   test::Random rng(103);
   for (int i = 0; i < kSweep; ++i) {
     const Vec3 c = kCentres[i % 2];
-    const Capsule a = capsule(rng.uniform(Real(0.1), Real(1.0)), rng.uniform(Real(0), Real(1.5)));
-    const Capsule b = capsule(rng.uniform(Real(0.1), Real(1.0)), rng.uniform(Real(0), Real(1.5)));
+    const Capsule a = random_capsule(rng);
+    const Capsule b = random_capsule(rng);
     Transform pa = random_pose(rng, c, Real(1.5));
     Transform pb = random_pose(rng, c, Real(1.5));
     if (i % 5 == 0) pb.rotation = pa.rotation;  // parallel axes
@@ -124,7 +132,7 @@ TEST(PairsRounded, CapsuleBoxSweep) {
   test::Random rng(105);
   for (int i = 0; i < kSweep; ++i) {
     const Vec3 c = kCentres[i % 2];
-    const Capsule a = capsule(rng.uniform(Real(0.1), Real(1.0)), rng.uniform(Real(0), Real(1.5)));
+    const Capsule a = random_capsule(rng);
     const Box b = box(rng.vec3(Real(0.1), Real(1.5)));
     Transform pa = random_pose(rng, c, Real(1.8));
     const Transform pb = random_pose(rng, c, Real(1.8));
@@ -147,8 +155,9 @@ TEST(PairsRounded, CapsuleBoxSweep) {
 
 Triangle random_triangle(test::Random& rng) {
   for (;;) {
-    auto t = Triangle::create(rng.vec3(Real(-1.5), Real(1.5)), rng.vec3(Real(-1.5), Real(1.5)),
-                              rng.vec3(Real(-1.5), Real(1.5)));
+    const Vec3 c = rng.vec3(Real(-1.5), Real(1.5));
+    const Vec3 b = rng.vec3(Real(-1.5), Real(1.5));
+    auto t = Triangle::create(rng.vec3(Real(-1.5), Real(1.5)), b, c);
     if (t && t->area() > Real(0.05)) return *t;
   }
 }
@@ -177,7 +186,7 @@ TEST(PairsRounded, TriangleCapsuleSweep) {
   for (int i = 0; i < kSweep; ++i) {
     const Vec3 c = kCentres[i % 2];
     const Triangle a = random_triangle(rng);
-    const Capsule b = capsule(rng.uniform(Real(0.1), Real(1.0)), rng.uniform(Real(0), Real(1.5)));
+    const Capsule b = random_capsule(rng);
     const Transform pa = random_pose(rng, c, Real(1.0));
     const Transform pb = random_pose(rng, c, Real(1.5));
     const test::LPose la(pa);

@@ -282,7 +282,7 @@ void check_closest_point_solid(const S& shape, const std::vector<Vec3>& samples,
   const Vec3 lo = region.min;
   const Vec3 hi = region.max;
   for (int i = 0; i < count; ++i) {
-    const Vec3 q(rng.uniform(lo.x, hi.x), rng.uniform(lo.y, hi.y), rng.uniform(lo.z, hi.z));
+    const Vec3 q = rng.in_box(lo, hi);
     const SurfacePoint sp = shape.closest_point(q);
     ASSERT_TRUE(all_finite(sp.point) && all_finite(sp.normal) && std::isfinite(sp.signed_distance));
     const Real brute = nearest_sample_distance(samples, q);
@@ -347,12 +347,11 @@ void check_raycast_solid(const S& shape, Inside inside, const Aabb& region, Real
   int hits = 0;
   int misses = 0;
   for (int i = 0; i < count; ++i) {
-    const Vec3 o(rng.uniform(lo.x, hi.x), rng.uniform(lo.y, hi.y), rng.uniform(lo.z, hi.z));
+    const Vec3 o = rng.in_box(lo, hi);
     // Aim at a random point near the shape half the time, else a random direction.
     Vec3 dir = rng.unit_vector();
     if (i % 2 == 0) {
-      const Vec3 target(rng.uniform(lo.x, hi.x) * Real(0.4), rng.uniform(lo.y, hi.y) * Real(0.4),
-                        rng.uniform(lo.z, hi.z) * Real(0.4));
+      const Vec3 target = rng.in_box(lo, hi) * Real(0.4);
       if (glm::length(target - o) > Real(0)) dir = glm::normalize(target - o);
     }
     const Real speed = rng.uniform(Real(0.5), Real(2));

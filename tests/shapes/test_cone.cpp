@@ -78,7 +78,7 @@ Vec3 random_query(test::Random& rng, const RefSurface& ref, Real r, Real h, int 
   const Real s = std::max(r, h);
   switch (i % 6) {
     case 0:
-    case 1: return Vec3(rng.uniform(-e.x, e.x), rng.uniform(-e.y, e.y), rng.uniform(-e.z, e.z));
+    case 1: return rng.in_box(-e, e);
     case 2: return Vec3(0, 0, rng.uniform(-e.z, e.z));
     case 3: return Vec3(0, 0, h) + rng.vec3(Real(-0.01) * s, Real(0.01) * s);
     case 4: {
@@ -232,11 +232,11 @@ TEST(Cone, ContainsMatchesImplicitFunction) {
   for (const Dims& dm : sweep_dims()) {
     const Cone c = make(dm.r, dm.h);
     const Real tol = tol_at(std::max(dm.r, dm.h));
+    const Vec3 half(Real(1.3) * dm.r, Real(1.3) * dm.r, Real(1.3) * dm.h);
     int in = 0;
     int out = 0;
     for (int i = 0; i < 5000; ++i) {
-      const Vec3 p(rng.uniform(-Real(1.3) * dm.r, Real(1.3) * dm.r), rng.uniform(-Real(1.3) * dm.r, Real(1.3) * dm.r),
-                   rng.uniform(-Real(1.3) * dm.h, Real(1.3) * dm.h));
+      const Vec3 p = rng.in_box(-half, half);
       const double f = implicit(dm.r, dm.h, to_d(p));
       if (std::abs(f) <= tol) continue;
       EXPECT_EQ(c.contains(p), f < 0) << p.x << " " << p.y << " " << p.z;
@@ -358,8 +358,8 @@ TEST(Cone, RaycastMatchesMarching) {
     const auto inside = [&c](const Vec3& p) { return c.contains(p); };
     for (int i = 0; i < 300; ++i) {
       const Vec3 e(Real(2) * dm.r, Real(2) * dm.r, Real(2) * dm.h);
-      const Vec3 o(rng.uniform(-e.x, e.x), rng.uniform(-e.y, e.y), rng.uniform(-e.z, e.z));
-      const Vec3 target = Vec3(rng.uniform(-e.x, e.x), rng.uniform(-e.y, e.y), rng.uniform(-e.z, e.z)) * Real(0.5);
+      const Vec3 o = rng.in_box(-e, e);
+      const Vec3 target = rng.in_box(-e, e) * Real(0.5);
       Vec3 dir = target - o;
       if (i % 7 == 0) dir = Vec3(0, 0, o.z > 0 ? -1 : 1) * static_cast<Real>(size);  // along the axis
       if (i % 7 == 1) dir.z = 0;                                                     // across the axis
@@ -478,7 +478,7 @@ TEST(Cone, RaycastExactlyThroughTheApex) {
     for (int i = 0; i < 100; ++i) {
       // Origins above the apex half of the time, so that many rays enter through it.
       const Vec3 e(Real(2) * dm.r, Real(2) * dm.r, Real(2) * dm.h);
-      Vec3 o(rng.uniform(-e.x, e.x), rng.uniform(-e.y, e.y), rng.uniform(-e.z, e.z));
+      Vec3 o = rng.in_box(-e, e);
       if (i % 2 == 0) o = Vec3(o.x * Real(0.1), o.y * Real(0.1), dm.h + std::abs(o.z));
       if (implicit(dm.r, dm.h, to_d(o)) <= tol) continue;
       const Vec3 dir = apex - o;

@@ -243,7 +243,7 @@ TEST(HalfSpace, RaycastMatchesMarching) {
   test::Random rng(605);
   for (const Real s : test::scales()) {
     for (int k = 0; k < 10; ++k) {
-      const Vec3 n = rng.unit_vector() * rng.uniform(Real(0.5), Real(2));
+      const Vec3 n = rng.vector_of_length(Real(0.5), Real(2));
       const Real d = rng.uniform(Real(-0.5), Real(0.5)) * s;
       const Aabb region{Vec3(Real(-2) * s), Vec3(Real(2) * s)};
       test::check_raycast_solid(make(n, d), implicit_inside(n, d), region, precision_tolerance(Real(16) * s, Real(256)),
