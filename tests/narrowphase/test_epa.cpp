@@ -154,7 +154,8 @@ TEST(Epa, RefinedDepthOfCurvedShapesMatchesClosedForm) {
     const Real az = rng.uniform(Real(0.2), Real(1.5));
     const Real ay = rng.uniform(Real(0.2), Real(1.5));
     const Real ax = rng.uniform(Real(0.2), Real(1.5));
-    const Ellipsoid ell = Ellipsoid::create(Vec3(ax, ay, az)).value();
+    const Vec3 axes(ax, ay, az);
+    const Ellipsoid ell = Ellipsoid::create(axes).value();
     const Real cyl_h = rng.uniform(Real(0.2), Real(1.5));
     const Real cyl_r = rng.uniform(Real(0.2), Real(1.5));
     const Cylinder cyl = Cylinder::create(cyl_r, cyl_h).value();
