@@ -89,6 +89,19 @@ TEST(PairsRounded, SphereCapsuleSweep) {
   }
 }
 
+// Reference for two capsules: the long double core distance less the radii, where the cores
+// are apart (else the depth is checked against the sampled minimum overlap).
+test::Reference capsule_pair_reference(const Capsule& a, const Transform& pa, const Capsule& b, const Transform& pb) {
+  LVec p0, p1, q0, q1;
+  test::capsule_core(a, pa, p0, p1);
+  test::capsule_core(b, pb, q0, q1);
+  const LD core = std::sqrt(test::ref_dist2_segment_segment(p0, p1, q0, q1));
+  test::Reference ref;
+  ref.has_distance = core > 1e-3L;
+  ref.distance = core - a.radius() - b.radius();
+  return ref;
+}
+
 TEST(PairsRounded, CapsuleCapsuleSweep) {
   test::Random rng(103);
   for (int i = 0; i < kSweep; ++i) {
@@ -98,16 +111,27 @@ TEST(PairsRounded, CapsuleCapsuleSweep) {
     Transform pa = random_pose(rng, c, Real(1.5));
     Transform pb = random_pose(rng, c, Real(1.5));
     if (i % 5 == 0) pb.rotation = pa.rotation;  // parallel axes
-    LVec p0, p1, q0, q1;
-    test::capsule_core(a, pa, p0, p1);
-    test::capsule_core(b, pb, q0, q1);
-    const LD core = std::sqrt(test::ref_dist2_segment_segment(p0, p1, q0, q1));
-    test::Reference ref;
-    ref.has_distance = core > 1e-3L;
-    ref.distance = core - a.radius() - b.radius();
     const Real tol = test::pair_tol(scale_of(pa, pb, Real(6)));
-    test::check_pair(a, pa, b, pb, ref, tol, rng.uniform(Real(0), Real(0.3)), "capsule-capsule " + std::to_string(i));
+    test::check_pair(a, pa, b, pb, capsule_pair_reference(a, pa, b, pb), tol, rng.uniform(Real(0), Real(0.3)),
+                     "capsule-capsule " + std::to_string(i));
   }
+}
+
+// Case 1014 of the sweep above as the sanitizer build (clang) drew it while its draws were
+// arguments of one call (evaluated left to right there): a deep overlap (depth 0.64) of two
+// capsules whose cores pass 2.0e-4 apart, inside both. The normal taken from the difference
+// of the two closest points carried their rounding (1e-7 on a length of 2e-4), and along it
+// the capsules overlapped by 2.8e-4 more than the reported depth.
+TEST(PairsRounded, CapsuleCapsuleDeepCrossing) {
+  const Capsule a = capsule(Real(0.188083768), Real(0.835361838));
+  const Capsule b = capsule(Real(0.450000465), Real(1.49526405));
+  const Transform pa{Vec3(Real(-0.755729795), Real(-0.447105736), Real(1.42397392)),
+                     Quat(Real(0.54143858), Real(-0.443786114), Real(-0.696358442), Real(0.158060491))};
+  const Transform pb{Vec3(Real(-0.162981138), Real(0.343179345), Real(1.26895154)),
+                     Quat(Real(-0.179657131), Real(-0.329601675), Real(-0.50355196), Real(0.778152585))};
+  const Real tol = test::pair_tol(scale_of(pa, pb, Real(6)));
+  test::check_pair(a, pa, b, pb, capsule_pair_reference(a, pa, b, pb), tol, Real(0.0568147711),
+                   "capsule-capsule deep crossing");
 }
 
 TEST(PairsRounded, SphereBoxSweep) {
