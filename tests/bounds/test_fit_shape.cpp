@@ -157,6 +157,23 @@ TEST(FitShape, EveryShapeTypeIsBounded) {
               cases, stats.worst_sphere_ratio);
 }
 
+// Case 9 of the sweep above as the sanitizer build (clang) drew it while its draws were
+// arguments of one call: a half-space placed 1.7e4 from the origin whose support point in the
+// direction below lies near 1.1e5, while the slab of the edge diagonal (1, 0, 1) that should
+// hold it projects it to -2.2e4 (the coordinates cancel). The 26-DOP must contain it.
+TEST(FitShape, KdopOfAFarHalfSpaceHoldsItsSupportPoints) {
+  const HalfSpace h =
+      *HalfSpace::create(Vec3(Real(-0.715107024), Real(-0.665610731), Real(0.213504583)), Real(0.776233137));
+  const Transform pose{Vec3(Real(9990.71875), Real(-9996.43262), Real(10006.8262)),
+                       Quat(Real(-0.870532155), Real(-0.369591236), Real(0.224783346), Real(0.234624282))};
+  const Vec3 p = support(h, pose, Vec3(Real(-0.654624104), Real(-0.253752172), Real(-0.712093532)));
+  const Kdop26 k26 = fit_shape_kdop<26>(h, pose);
+  EXPECT_TRUE(k26.contains(p)) << p.x << " " << p.y << " " << p.z;
+  EXPECT_TRUE(fit_shape_kdop<14>(h, pose).contains(p));
+  EXPECT_TRUE(fit_shape_aabb(h, pose).contains(p));
+  EXPECT_TRUE(fit_shape_obb(h, pose).contains(p));
+}
+
 TEST(FitShape, CapsulesOfRoundShapesAreExact) {
   const Transform pose{Vec3(1, -2, 3), glm::angleAxis(Real(0.7), glm::normalize(Vec3(1, 2, 3)))};
   const BoundingCapsule c = fit_shape_capsule(*Capsule::create(Real(0.5), Real(2)), pose);
