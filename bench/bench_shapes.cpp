@@ -42,20 +42,30 @@ Inputs make_inputs() {
   std::uniform_real_distribution<double> uniform(-10.0, 10.0);
   Inputs in;
   while (in.directions.size() < kSamples) {
-    const glm::dvec3 v(normal(engine), normal(engine), normal(engine));
+    // One draw per statement (the order of evaluation of arguments is unspecified); the
+    // last coordinate first, as GCC evaluated the former argument form.
+    const double vz = normal(engine);
+    const double vy = normal(engine);
+    const double vx = normal(engine);
+    const glm::dvec3 v(vx, vy, vz);
     const double n = glm::length(v);
     if (n < 1e-6) continue;
     in.directions.push_back(Vec3(v / n));
   }
   while (in.poses.size() < kSamples) {
-    const glm::dvec4 q(normal(engine), normal(engine), normal(engine), normal(engine));
+    const double qw = normal(engine);
+    const double qz = normal(engine);
+    const double qy = normal(engine);
+    const double qx = normal(engine);
+    const glm::dvec4 q(qx, qy, qz, qw);
     const double n = glm::length(q);
     if (n < 1e-6) continue;
     const proxima::Quat rotation(static_cast<Real>(q.x / n), static_cast<Real>(q.y / n), static_cast<Real>(q.z / n),
                                  static_cast<Real>(q.w / n));
-    in.poses.push_back(Transform{Vec3(static_cast<Real>(uniform(engine)), static_cast<Real>(uniform(engine)),
-                                      static_cast<Real>(uniform(engine))),
-                                 glm::normalize(rotation)});
+    const auto pz = static_cast<Real>(uniform(engine));
+    const auto py = static_cast<Real>(uniform(engine));
+    const auto px = static_cast<Real>(uniform(engine));
+    in.poses.push_back(Transform{Vec3(px, py, pz), glm::normalize(rotation)});
   }
   return in;
 }

@@ -46,8 +46,16 @@ int main() {
   std::uniform_real_distribution<float> where(-100, 100), size(0.2f, 2.5f);
   DynamicAabbTree tree;
   for (ProxyId id = 0; id < 20000; ++id) {
-    const Vec3 c(where(rng), where(rng), where(rng));
-    const Vec3 h(size(rng), size(rng), size(rng));
+    // One draw per statement, so that the boxes do not depend on the compiler's order of
+    // evaluation of arguments.
+    const float cz = where(rng);
+    const float cy = where(rng);
+    const float cx = where(rng);
+    const Vec3 c(cx, cy, cz);
+    const float hz = size(rng);
+    const float hy = size(rng);
+    const float hx = size(rng);
+    const Vec3 h(hx, hy, hz);
     tree.insert(id, {c - h, c + h}, id % 4 == 0 ? ProxyKind::Static : ProxyKind::Moving);
   }
   std::vector<ProxyPair> serial_pairs, tbb_pairs;
@@ -70,7 +78,11 @@ int main() {
   const TriangleMesh mesh = TriangleMesh::create(grid).value();
   std::uniform_real_distribution<float> over(0, float(n));
   std::vector<BatchRay> rays(10000);
-  for (BatchRay& r : rays) r.ray = {Vec3(over(rng), over(rng), Real(10)), Vec3(0, 0, -1)};
+  for (BatchRay& r : rays) {
+    const float y = over(rng);
+    const float x = over(rng);
+    r.ray = {Vec3(x, y, Real(10)), Vec3(0, 0, -1)};
+  }
   std::vector<RayHit> serial_hits(rays.size()), tbb_hits(rays.size());
   const std::size_t serial_count = raycast_batch(mesh, rays, serial_hits).value();
   const std::size_t tbb_count = raycast_batch(mesh, rays, tbb_hits, tbb_executor).value();

@@ -11,6 +11,18 @@ int Random::integer(int lo, int hi) { return std::uniform_int_distribution<int>(
 
 Vec3 Random::vec3(Real lo, Real hi) { return {uniform(lo, hi), uniform(lo, hi), uniform(lo, hi)}; }
 
+Vec3 Random::in_box(const Vec3& lo, const Vec3& hi) {
+  const Real z = uniform(lo.z, hi.z);
+  const Real y = uniform(lo.y, hi.y);
+  const Real x = uniform(lo.x, hi.x);
+  return {x, y, z};
+}
+
+Vec3 Random::vector_of_length(Real lo, Real hi) {
+  const Real length = uniform(lo, hi);
+  return unit_vector() * length;
+}
+
 Vec3 Random::in_ball(Real r) {
   for (;;) {
     const Vec3 v = vec3(Real(-1), Real(1));

@@ -42,7 +42,10 @@ inline constexpr CloudKind kAllCloudKinds[] = {CloudKind::Uniform, CloudKind::Ga
 inline std::vector<Vec3> make_cloud(Random& rng, CloudKind kind, int n, Real scale, const Vec3& offset) {
   std::vector<Vec3> pts;
   const Quat q = rng.rotation();
-  const Vec3 stretch(rng.uniform(Real(0.2), Real(1)), rng.uniform(Real(0.2), Real(1)), rng.uniform(Real(0.2), Real(1)));
+  const Real stretch_z = rng.uniform(Real(0.2), Real(1));
+  const Real stretch_y = rng.uniform(Real(0.2), Real(1));
+  const Real stretch_x = rng.uniform(Real(0.2), Real(1));
+  const Vec3 stretch(stretch_x, stretch_y, stretch_z);
   std::normal_distribution<double> gauss(0.0, 1.0);
   const Vec3 dir = rng.unit_vector();
   const Vec3 base = rng.vec3(Real(-1), Real(1));
@@ -57,14 +60,21 @@ inline std::vector<Vec3> make_cloud(Random& rng, CloudKind kind, int n, Real sca
     Vec3 p(Real(0));
     switch (kind) {
       case CloudKind::Uniform: p = q * (rng.vec3(Real(-1), Real(1)) * stretch); break;
-      case CloudKind::Gaussian:
-        p = q * (Vec3(Real(gauss(rng.engine())), Real(gauss(rng.engine())), Real(gauss(rng.engine()))) * stretch);
+      case CloudKind::Gaussian: {
+        const Real gz = Real(gauss(rng.engine()));
+        const Real gy = Real(gauss(rng.engine()));
+        const Real gx = Real(gauss(rng.engine()));
+        p = q * (Vec3(gx, gy, gz) * stretch);
         break;
+      }
       case CloudKind::Sphere: p = rng.unit_vector(); break;
       case CloudKind::Line: p = base + rng.uniform(Real(-1), Real(1)) * dir; break;
-      case CloudKind::Plane:
-        p = base + rng.uniform(Real(-1), Real(1)) * t1 + rng.uniform(Real(-1), Real(1)) * t2;
+      case CloudKind::Plane: {
+        const Real v = rng.uniform(Real(-1), Real(1));
+        const Real u = rng.uniform(Real(-1), Real(1));
+        p = base + u * t1 + v * t2;
         break;
+      }
       case CloudKind::Equal: p = base; break;
       case CloudKind::One:
       case CloudKind::Two: p = rng.vec3(Real(-1), Real(1)); break;

@@ -140,9 +140,10 @@ double monte_carlo_volume(const Aabb& box, Pred&& inside, int samples, std::uint
   test::Random rng(seed);
   int hits = 0;
   for (int i = 0; i < samples; ++i) {
-    const Vec3 p(rng.uniform(box.min.x, box.max.x), rng.uniform(box.min.y, box.max.y),
-                 rng.uniform(box.min.z, box.max.z));
-    if (inside(p)) ++hits;
+    const Real z = rng.uniform(box.min.z, box.max.z);
+    const Real y = rng.uniform(box.min.y, box.max.y);
+    const Real x = rng.uniform(box.min.x, box.max.x);
+    if (inside(Vec3(x, y, z))) ++hits;
   }
   return double(box.volume()) * hits / samples;
 }

@@ -52,7 +52,9 @@ TEST(FitObb, BetterMethodsAgainstPca) {
   int total = 0, minvol_le = 0, dito14_le = 0, dito26_le = 0;
   double sum_minvol = 0, sum_dito14 = 0, sum_dito26 = 0;
   for (int i = 0; i < 800; ++i) {
-    const auto pts = test::make_cloud(rng, kinds[i % 4], rng.integer(8, 80), Real(1), rng.vec3(Real(-3), Real(3)));
+    const Vec3 offset = rng.vec3(Real(-3), Real(3));
+    const int n = rng.integer(8, 80);
+    const auto pts = test::make_cloud(rng, kinds[i % 4], n, Real(1), offset);
     const double pca = double(fit_obb_pca(pts)->volume());
     if (!(pca > 1e-6)) continue;
     const double mv = double(fit_obb_min_volume(pts)->volume());
@@ -85,7 +87,10 @@ TEST(FitObb, MinVolumeRecoversSampledBoxes) {
   test::Random rng(403);
   for (int i = 0; i < 300; ++i) {
     const Quat q = rng.rotation();
-    const Vec3 h(rng.uniform(Real(0.5), Real(3)), rng.uniform(Real(0.5), Real(3)), rng.uniform(Real(0.5), Real(3)));
+    const Real hz = rng.uniform(Real(0.5), Real(3));
+    const Real hy = rng.uniform(Real(0.5), Real(3));
+    const Real hx = rng.uniform(Real(0.5), Real(3));
+    const Vec3 h(hx, hy, hz);
     const Vec3 c = rng.vec3(Real(-10), Real(10));
     std::vector<Vec3> pts;
     for (int k = 0; k < 8; ++k) pts.push_back(c + q * Vec3(k & 1 ? h.x : -h.x, k & 2 ? h.y : -h.y, k & 4 ? h.z : -h.z));
@@ -160,7 +165,9 @@ TEST(FitObb, FlatCloudsGiveTheMinimumAreaRectangle) {
     std::vector<Vec3> pts;
     const int n = rng.integer(3, 30);
     for (int k = 0; k < n; ++k) {
-      const Vec3 l(rng.uniform(Real(-2), Real(2)), rng.uniform(Real(-1), Real(1)), Real(0));
+      const Real ly = rng.uniform(Real(-1), Real(1));
+      const Real lx = rng.uniform(Real(-2), Real(2));
+      const Vec3 l(lx, ly, Real(0));
       pts.push_back(c + q * l);
       flat.emplace_back(double(l.x), double(l.y));
     }

@@ -15,6 +15,7 @@
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "bounds/test_bounds_support.hpp"
@@ -36,8 +37,10 @@ std::vector<Vec3> sample_world(const S& shape, const Transform& pose, test::Rand
     const Aabb box = shape.local_aabb();
     int kept = 0;
     for (int i = 0; i < 4000 && kept < 300; ++i) {
-      const Vec3 l(rng.uniform(box.min.x, box.max.x), rng.uniform(box.min.y, box.max.y),
-                   rng.uniform(box.min.z, box.max.z));
+      const Real lz = rng.uniform(box.min.z, box.max.z);
+      const Real ly = rng.uniform(box.min.y, box.max.y);
+      const Real lx = rng.uniform(box.min.x, box.max.x);
+      const Vec3 l(lx, ly, lz);
       if (shape.contains(l)) {
         pts.push_back(pose.apply(l));
         ++kept;
@@ -115,24 +118,60 @@ TEST(FitShape, EveryShapeTypeIsBounded) {
     auto r = [&] { return rng.uniform(Real(0.2), Real(3)) * scale; };
     const std::string tag = " case " + std::to_string(i);
     check_shape(*Point::create(), pose, rng, false, false, "point" + tag, stats);
-    check_shape(*Segment::create(rng.vec3(-1, 1) * scale, rng.vec3(-1, 1) * scale), pose, rng, false, false,
-                "segment" + tag, stats);
-    check_shape(*Triangle::create(rng.vec3(-1, 1) * scale, rng.vec3(-1, 1) * scale, rng.vec3(-1, 1) * scale), pose, rng,
-                false, false, "triangle" + tag, stats);
+    // One draw per statement (the order of evaluation of arguments is unspecified).
+    auto r2 = [&] {
+      const Real second = r();
+      const Real first = r();
+      return std::pair{first, second};
+    };
+    auto r3 = [&] {
+      const Real z = r();
+      const Real y = r();
+      const Real x = r();
+      return Vec3(x, y, z);
+    };
+    const Vec3 s1 = rng.vec3(-1, 1) * scale;
+    const Vec3 s0 = rng.vec3(-1, 1) * scale;
+    check_shape(*Segment::create(s0, s1), pose, rng, false, false, "segment" + tag, stats);
+    const Vec3 t2 = rng.vec3(-1, 1) * scale;
+    const Vec3 t1 = rng.vec3(-1, 1) * scale;
+    const Vec3 t0 = rng.vec3(-1, 1) * scale;
+    check_shape(*Triangle::create(t0, t1, t2), pose, rng, false, false, "triangle" + tag, stats);
     check_shape(*Sphere::create(r()), pose, rng, true, true, "sphere" + tag, stats);
-    check_shape(*Capsule::create(r(), r()), pose, rng, true, true, "capsule" + tag, stats);
-    check_shape(*Box::create(Vec3(r(), r(), r())), pose, rng, true, true, "box" + tag, stats);
-    check_shape(*Cylinder::create(r(), r()), pose, rng, true, true, "cylinder" + tag, stats);
-    check_shape(*Cone::create(r(), r()), pose, rng, true, true, "cone" + tag, stats);
-    check_shape(*Ellipsoid::create(Vec3(r(), r(), r())), pose, rng, true, true, "ellipsoid" + tag, stats);
+    const auto [cap_r, cap_h] = r2();
+    check_shape(*Capsule::create(cap_r, cap_h), pose, rng, true, true, "capsule" + tag, stats);
+    check_shape(*Box::create(r3()), pose, rng, true, true, "box" + tag, stats);
+    const auto [cyl_r, cyl_h] = r2();
+    check_shape(*Cylinder::create(cyl_r, cyl_h), pose, rng, true, true, "cylinder" + tag, stats);
+    const auto [cone_r, cone_h] = r2();
+    check_shape(*Cone::create(cone_r, cone_h), pose, rng, true, true, "cone" + tag, stats);
+    check_shape(*Ellipsoid::create(r3()), pose, rng, true, true, "ellipsoid" + tag, stats);
     std::vector<Vec3> cloud;
     for (int k = 0; k < 20; ++k) cloud.push_back(rng.vec3(-1, 1) * scale);
     check_shape(*ConvexHull::create(cloud), pose, rng, true, true, "hull" + tag, stats);
-    check_shape(*HalfSpace::create(rng.unit_vector(), r()), pose, rng, false, false, "halfspace" + tag, stats);
+    const Real offset = r();
+    check_shape(*HalfSpace::create(rng.unit_vector(), offset), pose, rng, false, false, "halfspace" + tag, stats);
     cases += 11;
   }
   std::printf("placed shapes: %d cases, worst sphere / minimal-of-samples ratio %.4f (where rounding is negligible)\n",
               cases, stats.worst_sphere_ratio);
+}
+
+// Case 9 of the sweep above as the sanitizer build (clang) drew it while its draws were
+// arguments of one call: a half-space placed 1.7e4 from the origin whose support point in the
+// direction below lies near 1.1e5, while the slab of the edge diagonal (1, 0, 1) that should
+// hold it projects it to -2.2e4 (the coordinates cancel). The 26-DOP must contain it.
+TEST(FitShape, KdopOfAFarHalfSpaceHoldsItsSupportPoints) {
+  const HalfSpace h =
+      *HalfSpace::create(Vec3(Real(-0.715107024), Real(-0.665610731), Real(0.213504583)), Real(0.776233137));
+  const Transform pose{Vec3(Real(9990.71875), Real(-9996.43262), Real(10006.8262)),
+                       Quat(Real(-0.870532155), Real(-0.369591236), Real(0.224783346), Real(0.234624282))};
+  const Vec3 p = support(h, pose, Vec3(Real(-0.654624104), Real(-0.253752172), Real(-0.712093532)));
+  const Kdop26 k26 = fit_shape_kdop<26>(h, pose);
+  EXPECT_TRUE(k26.contains(p)) << p.x << " " << p.y << " " << p.z;
+  EXPECT_TRUE(fit_shape_kdop<14>(h, pose).contains(p));
+  EXPECT_TRUE(fit_shape_aabb(h, pose).contains(p));
+  EXPECT_TRUE(fit_shape_obb(h, pose).contains(p));
 }
 
 TEST(FitShape, CapsulesOfRoundShapesAreExact) {

@@ -44,8 +44,10 @@ Truth reference_truth(const test::VolumeRef& a, const test::VolumeRef& b, double
     const D3 lo = glm::max(a.lo, b.lo), hi = glm::min(a.hi, b.hi);
     if (lo.x <= hi.x && lo.y <= hi.y && lo.z <= hi.z) {
       for (int i = 0; i < 2000 && !overlap; ++i) {
-        const D3 p(lo.x + (hi.x - lo.x) * double(rng.uniform(0, 1)), lo.y + (hi.y - lo.y) * double(rng.uniform(0, 1)),
-                   lo.z + (hi.z - lo.z) * double(rng.uniform(0, 1)));
+        const double uz = double(rng.uniform(0, 1));
+        const double uy = double(rng.uniform(0, 1));
+        const double ux = double(rng.uniform(0, 1));
+        const D3 p(lo.x + (hi.x - lo.x) * ux, lo.y + (hi.y - lo.y) * uy, lo.z + (hi.z - lo.z) * uz);
         overlap = test::ref_contains(a, p, -delta) && test::ref_contains(b, p, -delta);
       }
     }

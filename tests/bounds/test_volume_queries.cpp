@@ -164,7 +164,8 @@ void check_planes(std::uint64_t seed) {
     const auto type = static_cast<VolumeType>(a);
     for (int i = 0; i < 500; ++i) {
       const auto v = test::make_volume<K>(rng, type, Real(1), Vec3(0), Real(0.5));
-      Vec3 n = rng.unit_vector() * rng.uniform(Real(0.2), Real(3));
+      const Real n_length = rng.uniform(Real(0.2), Real(3));
+      Vec3 n = rng.unit_vector() * n_length;
       if (i % 50 == 0) n = Vec3(0);
       const Real d = rng.uniform(Real(-4), Real(4));
       const PlaneSide side = std::visit([&](const auto& x) { return classify_plane(x, n, d); }, v.volume);

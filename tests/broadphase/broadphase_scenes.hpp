@@ -216,10 +216,11 @@ class SceneGenerator {
     const Scene& s = scene_;
     Vec3 c;
     switch (s.layout) {
-      case SceneLayout::Clustered:
-        c = centres_[static_cast<std::size_t>(rng_.integer(0, static_cast<int>(centres_.size()) - 1))] +
-            rng_.in_ball(s.cluster_radius);
+      case SceneLayout::Clustered: {
+        const Vec3 offset = rng_.in_ball(s.cluster_radius);
+        c = centres_[static_cast<std::size_t>(rng_.integer(0, static_cast<int>(centres_.size()) - 1))] + offset;
         break;
+      }
       case SceneLayout::LineX: c = Vec3(rng_.uniform(-s.extent, s.extent), Real(0), Real(0)); break;
       case SceneLayout::LineY: c = Vec3(Real(0), rng_.uniform(-s.extent, s.extent), Real(0)); break;
       default: c = rng_.vec3(-s.extent, s.extent); break;

@@ -58,7 +58,10 @@ inline Aabb random_box(Random& rng, SceneKind kind, Real world) {
   switch (kind) {
     case SceneKind::Similar: {
       const Vec3 c = rng.vec3(0, world);
-      const Vec3 h(rng.uniform(Real(0.3), Real(1)), rng.uniform(Real(0.3), Real(1)), rng.uniform(Real(0.3), Real(1)));
+      const Real hz = rng.uniform(Real(0.3), Real(1));
+      const Real hy = rng.uniform(Real(0.3), Real(1));
+      const Real hx = rng.uniform(Real(0.3), Real(1));
+      const Vec3 h(hx, hy, hz);
       return Aabb::from_center_half_extents(c, h);
     }
     case SceneKind::Varying: {
@@ -68,12 +71,21 @@ inline Aabb random_box(Random& rng, SceneKind kind, Real world) {
       return Aabb::from_center_half_extents(c, h);
     }
     case SceneKind::Touching: {
-      const Vec3 lo(Real(rng.integer(0, 12)), Real(rng.integer(0, 12)), Real(rng.integer(0, 12)));
-      const Vec3 size(Real(rng.integer(0, 3)), Real(rng.integer(0, 3)), Real(rng.integer(0, 3)));
+      const int lz = rng.integer(0, 12);
+      const int ly = rng.integer(0, 12);
+      const int lx = rng.integer(0, 12);
+      const Vec3 lo = Vec3(Real(lx), Real(ly), Real(lz));
+      const int sz = rng.integer(0, 3);
+      const int sy = rng.integer(0, 3);
+      const int sx = rng.integer(0, 3);
+      const Vec3 size = Vec3(Real(sx), Real(sy), Real(sz));
       return {lo, lo + size};
     }
     case SceneKind::Points: {
-      const Vec3 p(Real(rng.integer(0, 6)), Real(rng.integer(0, 6)), Real(rng.integer(0, 6)));
+      const int pz = rng.integer(0, 6);
+      const int py = rng.integer(0, 6);
+      const int px = rng.integer(0, 6);
+      const Vec3 p = Vec3(Real(px), Real(py), Real(pz));
       return rng.integer(0, 3) == 0 ? Aabb{p, p + Vec3(1)} : Aabb::from_point(p);
     }
     case SceneKind::Huge: {
@@ -84,7 +96,8 @@ inline Aabb random_box(Random& rng, SceneKind kind, Real world) {
       return random_box(rng, SceneKind::Similar, world);
     }
     case SceneKind::Clustered: {
-      const Vec3 c = Vec3(Real(rng.integer(0, 3)) * world) + rng.vec3(0, 3);
+      const Vec3 offset = rng.vec3(0, 3);
+      const Vec3 c = Vec3(Real(rng.integer(0, 3)) * world) + offset;
       return Aabb::from_center_half_extents(c, rng.vec3(Real(0.05), Real(0.5)));
     }
   }

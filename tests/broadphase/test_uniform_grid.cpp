@@ -210,7 +210,8 @@ TEST(UniformGrid, RayMarchMatchesEveryBoxItEnters) {
     std::uint64_t tested = 0;
     for (int q = 0; q < 300; ++q) {
       Vec3 origin = rng.vec3(Real(-20), Real(100));
-      Vec3 direction = rng.unit_vector() * Real(rng.integer(0, 1) == 0 ? 30 : 200);
+      const Real speed = Real(rng.integer(0, 1) == 0 ? 30 : 200);
+      Vec3 direction = rng.unit_vector() * speed;
       if (q % 5 == 1) {  // along an axis
         direction = Vec3(0);
         direction[q % 3] = Real(q % 2 == 0 ? 150 : -150);

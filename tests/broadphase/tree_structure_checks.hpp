@@ -116,7 +116,9 @@ void check_queries(const S& s, const RefScene& scene, Random& rng, Real extent, 
     ASSERT_EQ(collect_box(s, box), expect_box);
     ASSERT_EQ(collect_point(s, c), expect_point);
 
-    Ray ray{rng.vec3(-extent, extent), rng.unit_vector() * rng.uniform(Real(0.5), Real(2))};
+    const Vec3 origin = rng.vec3(-extent, extent);
+    const Real speed = rng.uniform(Real(0.5), Real(2));
+    Ray ray{origin, rng.unit_vector() * speed};
     if (q % 5 == 0) ray.direction[q % 3] = Real(0);  // axis-parallel rays
     const Real max_t = q % 7 == 0 ? std::numeric_limits<Real>::infinity() : extent * Real(1.5);
     std::set<ProxyId> expect_ray;

@@ -64,7 +64,10 @@ double exact_segment_triangle(const Vec3& p, const Vec3& q, const Tri& t) {
 bool degenerate(const Tri& t) { return cg(t).is_degenerate(); }
 
 Vec3 grid_point(test::Random& rng, int r) {
-  return Vec3(Real(rng.integer(-r, r)), Real(rng.integer(-r, r)), Real(rng.integer(-r, r)));
+  const int z = rng.integer(-r, r);
+  const int y = rng.integer(-r, r);
+  const int x = rng.integer(-r, r);
+  return Vec3(Real(x), Real(y), Real(z));
 }
 
 TEST(ClosestCgal, PointSegment) {
@@ -111,8 +114,10 @@ TEST(ClosestCgal, SegmentSegment) {
         const Vec3 d = rng.vec3(-1, 1);
         p1 = p0 + d;
         const Real tilt = std::pow(Real(10), -Real(rng.integer(1, 6)));
-        q0 = p0 + rng.uniform(-1, 1) * d + tilt * rng.in_ball(1);
-        q1 = q0 + rng.uniform(-2, 2) * (d + tilt * rng.unit_vector());
+        const Vec3 wobble = rng.in_ball(1);
+        q0 = p0 + rng.uniform(-1, 1) * d + tilt * wobble;
+        const Vec3 lean = rng.unit_vector();
+        q1 = q0 + rng.uniform(-2, 2) * (d + tilt * lean);
         break;
       }
       default: p0 = rng.vec3(-1, 1), p1 = rng.vec3(-1, 1), q0 = rng.vec3(-1, 1), q1 = rng.vec3(-1, 1); break;

@@ -321,7 +321,8 @@ TEST(ClosestPoint, PointTriangleNearBoundariesAndSlivers) {
     if (kind == 1) {
       // sliver: c near the line ab (height 10^-k)
       const Real h = std::pow(Real(10), -Real(rng.integer(1, sizeof(Real) == 4 ? 8 : 16)));
-      c = a + rng.uniform(Real(-0.5), Real(1.5)) * (b - a) + h * rng.unit_vector();
+      const Vec3 off = rng.unit_vector();
+      c = a + rng.uniform(Real(-0.5), Real(1.5)) * (b - a) + h * off;
     } else if (kind == 2) {
       c = a + rng.uniform(Real(-0.5), Real(1.5)) * (b - a);  // collinear (up to rounding)
     }
@@ -330,7 +331,8 @@ TEST(ClosestPoint, PointTriangleNearBoundariesAndSlivers) {
       // on or just off the triangle, near a random point of its boundary
       const Real u = rng.uniform(0, 1);
       const Vec3 edge_point = (i % 3 == 0) ? a + u * (b - a) : (i % 3 == 1) ? b + u * (c - b) : c + u * (a - c);
-      p = edge_point + Real(1e-3) * rng.in_ball(1) * std::pow(Real(10), -Real(rng.integer(0, 4)));
+      const Real shrink = std::pow(Real(10), -Real(rng.integer(0, 4)));
+      p = edge_point + Real(1e-3) * rng.in_ball(1) * shrink;
     }
     const LD ref = std::sqrt(ref_dist2_point_triangle(ld(p), ld(a), ld(b), ld(c)));
     check_point_triangle(p, a, b, c, ref, tol_at(max_abs({a, b, c, p})), i);

@@ -375,7 +375,8 @@ Ray random_ray(test::Random& rng, const Vec3& target_center, Real scale, const V
   Vec3 dir;
   const int mode = rng.integer(0, 99);
   if (mode < 15 && special_count > 0) {
-    dir = special[rng.integer(0, special_count - 1)] * (rng.integer(0, 1) != 0 ? Real(1) : Real(-1));
+    const Real sign = rng.integer(0, 1) != 0 ? Real(1) : Real(-1);
+    dir = special[rng.integer(0, special_count - 1)] * sign;
     origin = target - dir * (scale * rng.uniform(Real(0.5), Real(4)));
   } else {
     origin = mode < 25 ? target_center + scale * rng.in_ball(Real(0.4)) : target_center + scale * rng.in_ball(Real(4));
@@ -499,7 +500,7 @@ TEST(RayCastBruteForce, Cone) {
 TEST(RayCastBruteForce, Halfspace) {
   sweep(107, 3000, [](test::Random& rng, const Setting& s, Stats& stats) {
     const Vec3 c = place(s, rng);
-    const Vec3 n = rng.unit_vector() * rng.uniform(Real(0.5), Real(2));
+    const Vec3 n = rng.vector_of_length(Real(0.5), Real(2));
     const HalfspaceSolid solid{n, glm::dot(n, c), c};
     Real max_t;
     const Vec3 unit = glm::normalize(n);

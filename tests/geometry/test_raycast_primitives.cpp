@@ -619,7 +619,8 @@ Real pick(test::Random& rng) {
                          Real(1e4),
                          Real(1e12),
                          kMaxCoordinate};
-  const Real v = values[rng.integer(0, 10)] * rng.uniform(Real(0.5), Real(1));
+  const Real magnitude = values[rng.integer(0, 10)];
+  const Real v = magnitude * rng.uniform(Real(0.5), Real(1));
   return rng.integer(0, 1) != 0 ? v : -v;
 }
 
@@ -658,7 +659,10 @@ TEST(RayCastInput, ExtremeValidInputNeverNaN) {
     const Vec3 q = rng.integer(0, 3) == 0 ? p : fuzz::pick3(rng);
     const Vec3 w = fuzz::pick3(rng);
     const Real r = fuzz::pick_size(rng);
-    const Vec3 h(fuzz::pick_size(rng), fuzz::pick_size(rng), rng.integer(0, 5) == 0 ? Real(0) : fuzz::pick_size(rng));
+    const Real hz = rng.integer(0, 5) == 0 ? Real(0) : fuzz::pick_size(rng);
+    const Real hy = fuzz::pick_size(rng);
+    const Real hx = fuzz::pick_size(rng);
+    const Vec3 h(hx, hy, hz);
     const Mat3 axes = glm::mat3_cast(rng.rotation());
     fuzz::check(ray_sphere(ray, max_t, p, r), ray, max_t, "sphere", i);
     fuzz::check(ray_aabb(ray, max_t, Aabb{min(p, q), max(p, q)}), ray, max_t, "aabb", i);

@@ -162,7 +162,10 @@ TEST(RayTriangleCgal, AxisAlignedRaysThroughVerticesAndEdgesHit) {
   for (int i = 0; i < 1500; ++i) {
     // Dyadic vertices (multiples of 1/8), exact sums and midpoints.
     auto grid = [&] {
-      return Vec3(Real(rng.integer(-16, 16)), Real(rng.integer(-16, 16)), Real(rng.integer(-16, 16))) * Real(0.125);
+      const int z = rng.integer(-16, 16);
+      const int y = rng.integer(-16, 16);
+      const int x = rng.integer(-16, 16);
+      return Vec3(Real(x), Real(y), Real(z)) * Real(0.125);
     };
     const Vec3 off = rng.integer(0, 1) != 0 ? Vec3(Real(1024), Real(-2048), Real(512)) : Vec3(0);
     const Vec3 a = off + grid(), b = off + grid(), c = off + grid();

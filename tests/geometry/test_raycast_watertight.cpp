@@ -275,7 +275,8 @@ void shoot(const Placed& p, const Ray& ray, Tally& tally, const char* what, int 
 /// the solid's bounding sphere (1.8 sizes from the centre covers the box's corners).
 Ray aimed(test::Random& rng, const Placed& p, const Vec3& target) {
   for (;;) {
-    const D3 from = D3(target) + D3(rng.unit_vector()) * p.size * double(rng.uniform(Real(2.5), Real(6)));
+    const double reach = double(rng.uniform(Real(2.5), Real(6)));
+    const D3 from = D3(target) + D3(rng.unit_vector()) * p.size * reach;
     if (glm::length(from - p.center) < 1.8 * p.size) continue;
     const Vec3 origin(from);
     return {origin, target - origin};

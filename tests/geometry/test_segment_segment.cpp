@@ -348,9 +348,13 @@ TEST(SegmentSegment, RandomNearlyParallel) {
     // q: the same direction tilted by 10^-k, possibly reversed and rescaled, offset a
     // little (often less than the tilt can cover, so that the segments cross).
     const Real tilt = std::pow(Real(10), -Real(rng.integer(1, 7)));
-    const Vec3 qdir = (rng.uniform(0, 1) < Real(0.5) ? Real(-1) : Real(1)) * rng.uniform(Real(0.2), Real(2)) *
-                      (dir + tilt * glm::length(dir) * rng.unit_vector());
-    const Vec3 q0 = p0 + rng.uniform(Real(-1), Real(1)) * dir + tilt * s * rng.in_ball(1) * rng.uniform(0, 2);
+    const Vec3 lean = rng.unit_vector();
+    const Real sign = rng.uniform(0, 1) < Real(0.5) ? Real(-1) : Real(1);
+    const Real stretch = rng.uniform(Real(0.2), Real(2));
+    const Vec3 qdir = sign * stretch * (dir + tilt * glm::length(dir) * lean);
+    const Real wobble_scale = rng.uniform(0, 2);
+    const Vec3 wobble = rng.in_ball(1);
+    const Vec3 q0 = p0 + rng.uniform(Real(-1), Real(1)) * dir + tilt * s * wobble * wobble_scale;
     const Vec3 q1 = q0 + qdir;
     worst = std::max(worst, check(p0, p1, q0, q1, ref_distance(p0, p1, q0, q1), "nearly parallel ", i));
   }
@@ -363,7 +367,10 @@ TEST(SegmentSegment, RandomExactlyParallelAndCollinear) {
     // Integer coordinates (exact in float): q is p's direction times a small integer,
     // shifted by an integer offset (zero offset across: collinear).
     auto ivec = [&](int lo, int hi) {
-      return Vec3(Real(rng.integer(lo, hi)), Real(rng.integer(lo, hi)), Real(rng.integer(lo, hi)));
+      const int z = rng.integer(lo, hi);
+      const int y = rng.integer(lo, hi);
+      const int x = rng.integer(lo, hi);
+      return Vec3(Real(x), Real(y), Real(z));
     };
     const Vec3 p0 = ivec(-50, 50);
     const Vec3 d = ivec(-5, 5);
@@ -396,7 +403,8 @@ TEST(SegmentSegment, RandomIntersectingAndTouching) {
     const int kind = i % 3;
     // crossing through x, ending at x (touching), or passing x at 1e-3
     const Vec3 q0 = kind == 1 ? x : x - rng.uniform(Real(0.1), 1) * dir;
-    const Vec3 q1 = x + rng.uniform(Real(0.1), 1) * dir + (kind == 2 ? Real(1e-3) * rng.unit_vector() : Vec3(0));
+    const Vec3 off = kind == 2 ? Real(1e-3) * rng.unit_vector() : Vec3(0);
+    const Vec3 q1 = x + rng.uniform(Real(0.1), 1) * dir + off;
     check(p0, p1, q0, q1, ref_distance(p0, p1, q0, q1), "intersecting ", i);
   }
 }

@@ -269,8 +269,14 @@ TEST(SegmentTriangle, RandomParallelAndCoplanar) {
     const Vec3 n = glm::normalize(glm::cross(b - a, c - a));
     // a segment in a plane parallel to the triangle at height h (0: coplanar)
     const Real h = (i % 3 == 0) ? Real(0) : rng.uniform(-1, 1);
-    const Vec3 p0 = a + rng.uniform(-1, 2) * (b - a) + rng.uniform(-1, 2) * (c - a);
-    const Vec3 p1 = a + rng.uniform(-1, 2) * (b - a) + rng.uniform(-1, 2) * (c - a);
+    // One draw per statement: the weight of (c - a) first.
+    auto in_plane = [&] {
+      const Real v = rng.uniform(-1, 2);
+      const Real u = rng.uniform(-1, 2);
+      return a + u * (b - a) + v * (c - a);
+    };
+    const Vec3 p0 = in_plane();
+    const Vec3 p1 = in_plane();
     const Vec3 p = p0 + h * n, q = p1 + h * n;
     check(p, q, a, b, c, ref_distance(p, q, a, b, c), "parallel ", i);
   }
@@ -283,9 +289,13 @@ TEST(SegmentTriangle, RandomDegenerate) {
     const Vec3 b = rng.vec3(-1, 1);
     Vec3 c;
     switch (i % 4) {
-      case 0: c = a + rng.uniform(-1, 2) * (b - a); break;                                  // collinear
-      case 1: c = b; break;                                                                 // two coincide
-      case 2: c = a + rng.uniform(0, 1) * (b - a) + Real(1e-4) * rng.unit_vector(); break;  // sliver
+      case 0: c = a + rng.uniform(-1, 2) * (b - a); break;  // collinear
+      case 1: c = b; break;                                 // two coincide
+      case 2: {                                             // sliver
+        const Vec3 off = rng.unit_vector();
+        c = a + rng.uniform(0, 1) * (b - a) + Real(1e-4) * off;
+        break;
+      }
       default: c = rng.vec3(-1, 1); break;
     }
     const Vec3 p = rng.vec3(-1.5, 1.5);

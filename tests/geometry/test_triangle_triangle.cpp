@@ -375,12 +375,18 @@ TEST(TriangleTriangle, RandomCoplanar) {
   for (int i = 0; i < 2000; ++i) {
     // Both triangles in the plane z = 0 (exactly coplanar); half of the pairs are then
     // moved by a random rigid transform (coplanar up to rounding).
-    Tri a{Vec3(rng.uniform(-1, 1), rng.uniform(-1, 1), 0), Vec3(rng.uniform(-1, 1), rng.uniform(-1, 1), 0),
-          Vec3(rng.uniform(-1, 1), rng.uniform(-1, 1), 0)};
-    const Vec2 shift(rng.uniform(-2, 2), rng.uniform(-2, 2));
-    Tri b{Vec3(rng.uniform(-1, 1) + shift.x, rng.uniform(-1, 1) + shift.y, 0),
-          Vec3(rng.uniform(-1, 1) + shift.x, rng.uniform(-1, 1) + shift.y, 0),
-          Vec3(rng.uniform(-1, 1) + shift.x, rng.uniform(-1, 1) + shift.y, 0)};
+    // A point of the plane z = 0, each coordinate uniform in [-1, 1); y is drawn first.
+    auto planar = [&] {
+      const Real y = rng.uniform(-1, 1);
+      const Real x = rng.uniform(-1, 1);
+      return Vec2(x, y);
+    };
+    auto lift = [](const Vec2& p) { return Vec3(p.x, p.y, 0); };
+    Tri a{lift(planar()), lift(planar()), lift(planar())};
+    const Real shift_y = rng.uniform(-2, 2);
+    const Real shift_x = rng.uniform(-2, 2);
+    const Vec2 shift(shift_x, shift_y);
+    Tri b{lift(planar() + shift), lift(planar() + shift), lift(planar() + shift)};
     if (i % 2 == 1) {
       const Transform pose = rng.pose(Real(2));
       for (Vec3& v : a) v = pose.apply(v);
@@ -439,10 +445,14 @@ TEST(TriangleTriangle, RandomDegenerate) {
     const Tri a = random_triangle(rng, Vec3(0), 1);
     Tri b = random_triangle(rng, Vec3(0), 1);
     switch (i % 4) {
-      case 0: b[2] = b[0] + rng.uniform(-1, 2) * (b[1] - b[0]); break;                                   // collinear
-      case 1: b[2] = b[1]; break;                                                                        // two coincide
-      case 2: b[1] = b[2] = b[0]; break;                                                                 // a point
-      default: b[2] = b[0] + rng.uniform(0, 1) * (b[1] - b[0]) + Real(1e-5) * rng.unit_vector(); break;  // sliver
+      case 0: b[2] = b[0] + rng.uniform(-1, 2) * (b[1] - b[0]); break;  // collinear
+      case 1: b[2] = b[1]; break;                                       // two coincide
+      case 2: b[1] = b[2] = b[0]; break;                                // a point
+      default: {                                                        // sliver
+        const Vec3 off = rng.unit_vector();
+        b[2] = b[0] + rng.uniform(0, 1) * (b[1] - b[0]) + Real(1e-5) * off;
+        break;
+      }
     }
     const LD ref = ref_distance(a, b);
     check_distance(a, b, ref, "degenerate ", i);

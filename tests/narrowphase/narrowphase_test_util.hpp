@@ -70,8 +70,10 @@ inline Real log_uniform(Random& rng, Real lo, Real hi) { return lo * std::pow(hi
 /// A size vector: each component log-uniform in [0.2, 1.5) times `s`; one time in five one
 /// component is squashed or stretched (ratios up to ~1:50).
 inline Vec3 random_extents(Random& rng, Real s) {
-  Vec3 e(log_uniform(rng, Real(0.2), Real(1.5)), log_uniform(rng, Real(0.2), Real(1.5)),
-         log_uniform(rng, Real(0.2), Real(1.5)));
+  const Real ez = log_uniform(rng, Real(0.2), Real(1.5));
+  const Real ey = log_uniform(rng, Real(0.2), Real(1.5));
+  const Real ex = log_uniform(rng, Real(0.2), Real(1.5));
+  Vec3 e(ex, ey, ez);
   if (rng.integer(0, 4) == 0) e[rng.integer(0, 2)] *= rng.integer(0, 1) == 0 ? Real(0.03) : Real(2.5);
   return e * s;
 }
@@ -94,12 +96,17 @@ inline Shape random_shape(Random& rng, ShapeType t, Real s = Real(1)) {
     case ShapeType::Point: return Point::create().value();
     case ShapeType::Segment:
       for (;;) {
-        auto r = Segment::create(rng.in_ball(s), rng.in_ball(s));
+        const Vec3 p1 = rng.in_ball(s);
+        const Vec3 p0 = rng.in_ball(s);
+        auto r = Segment::create(p0, p1);
         if (r.ok() && r.value().length() > Real(0.05) * s) return r.value();
       }
     case ShapeType::Triangle:
       for (;;) {
-        auto r = Triangle::create(rng.in_ball(s), rng.in_ball(s), rng.in_ball(s));
+        const Vec3 p2 = rng.in_ball(s);
+        const Vec3 p1 = rng.in_ball(s);
+        const Vec3 p0 = rng.in_ball(s);
+        auto r = Triangle::create(p0, p1, p2);
         if (r.ok() && r.value().area() > Real(0.01) * s * s) return r.value();
       }
     case ShapeType::Sphere: return Sphere::create(log_uniform(rng, Real(0.1), Real(1.2)) * s).value();
@@ -119,7 +126,9 @@ inline Shape random_shape(Random& rng, ShapeType t, Real s = Real(1)) {
     case ShapeType::Ellipsoid: return Ellipsoid::create(random_extents(rng, s)).value();
     case ShapeType::ConvexHull:
       for (;;) {
-        auto r = ConvexHull::create(random_cloud(rng, rng.integer(8, 64), random_extents(rng, s)));
+        const Vec3 e = random_extents(rng, s);
+        const int n = rng.integer(8, 64);
+        auto r = ConvexHull::create(random_cloud(rng, n, e));
         if (r.ok()) return r.value();
       }
     case ShapeType::HalfSpace:
@@ -127,7 +136,8 @@ inline Shape random_shape(Random& rng, ShapeType t, Real s = Real(1)) {
     case ShapeType::Compound:
     case ShapeType::Count: break;
   }
-  return HalfSpace::create(rng.unit_vector(), rng.uniform(Real(-0.5), Real(0.5)) * s).value();
+  const Real offset = rng.uniform(Real(-0.5), Real(0.5)) * s;
+  return HalfSpace::create(rng.unit_vector(), offset).value();
 }
 
 /// Length scale of a shape (half-spaces: 0, they have none).

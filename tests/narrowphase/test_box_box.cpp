@@ -287,9 +287,12 @@ TEST(BoxBox, FewerContactsKeepTheDeepestAndTheLargestArea) {
   for (int n = 0; n < 300; ++n) {
     const Box top = make_box(rng.vec3(Real(0.3), Real(1.2)));
     Transform pb;
-    pb.rotation = glm::normalize(glm::angleAxis(rng.uniform(-kPi, kPi), Vec3(0, 0, 1)) *
-                                 glm::angleAxis(rng.uniform(Real(-0.05), Real(0.05)), Vec3(1, 0, 0)));
-    pb.position = Vec3(rng.uniform(-1, 1), rng.uniform(-1, 1), Real(0.5) + top.half_extents().z - Real(0.02));
+    const Real tilt = rng.uniform(Real(-0.05), Real(0.05));
+    const Real turn = rng.uniform(-kPi, kPi);
+    pb.rotation = glm::normalize(glm::angleAxis(turn, Vec3(0, 0, 1)) * glm::angleAxis(tilt, Vec3(1, 0, 0)));
+    const Real y = rng.uniform(-1, 1);
+    const Real x = rng.uniform(-1, 1);
+    pb.position = Vec3(x, y, Real(0.5) + top.half_extents().z - Real(0.02));
     const DistanceResult d = narrow::pair_distance(ground, {}, top, pb, {}, nullptr);
     if (d.signed_distance > 0) continue;
     SCOPED_TRACE(n);

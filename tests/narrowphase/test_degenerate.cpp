@@ -115,7 +115,9 @@ TEST(Degenerate, CoincidentCentresEveryPair) {
         const Shape a = test::random_shape(rng, ta);
         const Shape b = test::random_shape(rng, tb);
         const Vec3 c = rng.vec3(Real(-1), Real(1));
-        checker.check(a, Transform{c, rng.rotation()}, b, Transform{c, rng.rotation()}, label);
+        const Quat qb = rng.rotation();
+        const Quat qa = rng.rotation();
+        checker.check(a, Transform{c, qa}, b, Transform{c, qb}, label);
         const Quat q = rng.rotation();
         checker.check(a, Transform{c, q}, b, Transform{c, q}, label + " same rotation");
       },
@@ -233,7 +235,9 @@ TEST(Degenerate, BoxFacesTouchingAndParallelEdges) {
   for (int i = 0; i < 20 * kReps; ++i) {
     // Face on face, shifted sideways, exactly touching (gap 0) or slightly apart/overlapping.
     const Real gap = Real(rng.integer(-1, 1)) * Real(1e-3);
-    const Vec3 shift(rng.uniform(Real(-1.5), Real(1.5)), rng.uniform(Real(-0.8), Real(0.8)), Real(0.5) + gap);
+    const Real shift_y = rng.uniform(Real(-0.8), Real(0.8));
+    const Real shift_x = rng.uniform(Real(-1.5), Real(1.5));
+    const Vec3 shift(shift_x, shift_y, Real(0.5) + gap);
     const Transform pa = Transform::identity();
     const Transform pb{shift, Quat(Real(1), Real(0), Real(0), Real(0))};
     checker.check(box, pa, box, pb, "faces gap=" + std::to_string(gap));
@@ -411,7 +415,8 @@ TEST(DegenerateRegression, IdenticalSegmentsNormalOrthogonal) {
   const Real eps = Real(1e-2);
   for (int i = 0; i < 50; ++i) {
     const Vec3 p = rng.vec3(Real(-1), Real(1));
-    const Vec3 q = p + rng.unit_vector() * rng.uniform(Real(0.2), Real(2));
+    const Real length = rng.uniform(Real(0.2), Real(2));
+    const Vec3 q = p + rng.unit_vector() * length;
     const Shape s = Segment::create(p, q).value();
     const Transform pose = rng.pose(Real(2));
     const Vec3 u = glm::normalize(pose.apply_vector(q - p));
@@ -475,7 +480,8 @@ TEST(DegenerateRegression, PointAtCapsuleCentreHasRadiusDepthAcrossTheAxis) {
 TEST(DegenerateRegression, PointOnSegmentTouchesAcrossIt) {
   test::Random rng(43);
   for (int i = 0; i < 200; ++i) {
-    const Shape seg = Segment::create(rng.vec3(Real(-1), Real(1)), rng.vec3(Real(-1), Real(1))).value();
+    const Vec3 b = rng.vec3(Real(-1), Real(1));
+    const Shape seg = Segment::create(rng.vec3(Real(-1), Real(1)), b).value();
     const Segment& sg = std::get<Segment>(seg);
     const Transform ps{rng.vec3(Real(-1), Real(1)), rng.rotation()};
     const Real t = rng.uniform(Real(0.1), Real(0.9));

@@ -151,10 +151,14 @@ TEST(Epa, RefinedDepthOfCurvedShapesMatchesClosedForm) {
   const Point point = Point::create().value();
   const Real tol = sizeof(Real) == 4 ? Real(2e-3) : Real(1e-9);  // float: the suite's narrow tolerance
   for (int t = 0; t < 200; ++t) {
-    const Vec3 axes(rng.uniform(Real(0.2), Real(1.5)), rng.uniform(Real(0.2), Real(1.5)),
-                    rng.uniform(Real(0.2), Real(1.5)));
+    const Real az = rng.uniform(Real(0.2), Real(1.5));
+    const Real ay = rng.uniform(Real(0.2), Real(1.5));
+    const Real ax = rng.uniform(Real(0.2), Real(1.5));
+    const Vec3 axes(ax, ay, az);
     const Ellipsoid ell = Ellipsoid::create(axes).value();
-    const Cylinder cyl = Cylinder::create(rng.uniform(Real(0.2), Real(1.5)), rng.uniform(Real(0.2), Real(1.5))).value();
+    const Real cyl_h = rng.uniform(Real(0.2), Real(1.5));
+    const Real cyl_r = rng.uniform(Real(0.2), Real(1.5));
+    const Cylinder cyl = Cylinder::create(cyl_r, cyl_h).value();
     const Transform ps = rng.pose(Real(1));
     const Transform pp{ps.position, rng.rotation()};
     const DistanceResult de = generic_distance(point, pp, ell, ps, {}, nullptr);

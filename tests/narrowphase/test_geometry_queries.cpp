@@ -30,8 +30,16 @@ Shape random_convex(test::Random& rng) {
   switch (rng.integer(0, 4)) {
     case 0: return Sphere::create(rng.uniform(Real(0.1), Real(0.5))).value();
     case 1: return Box::create(rng.vec3(Real(0.1), Real(0.5))).value();
-    case 2: return Capsule::create(rng.uniform(Real(0.1), Real(0.3)), rng.uniform(Real(0.1), Real(0.4))).value();
-    case 3: return Cylinder::create(rng.uniform(Real(0.1), Real(0.4)), rng.uniform(Real(0.1), Real(0.4))).value();
+    case 2: {
+      const Real h = rng.uniform(Real(0.1), Real(0.4));
+      const Real r = rng.uniform(Real(0.1), Real(0.3));
+      return Capsule::create(r, h).value();
+    }
+    case 3: {
+      const Real h = rng.uniform(Real(0.1), Real(0.4));
+      const Real r = rng.uniform(Real(0.1), Real(0.4));
+      return Cylinder::create(r, h).value();
+    }
     default: return Ellipsoid::create(rng.vec3(Real(0.15), Real(0.5))).value();
   }
 }
@@ -339,7 +347,9 @@ TEST(MeshMesh, ShapeRefQueriesAgreeWithAllTrianglePairs) {
   int hits = 0, separated = 0;
   for (int k = 0; k < test::sweep_size(150); ++k) {
     const Transform pa = rng.pose(Real(0.2));
-    const Transform pb{pa.position + rng.uniform(Real(0.3), Real(1.2)) * rng.unit_vector(), rng.rotation()};
+    const Vec3 towards = rng.unit_vector();
+    const Real apart = rng.uniform(Real(0.3), Real(1.2));
+    const Transform pb{pa.position + apart * towards, rng.rotation()};
     const std::vector<Triangle> ta = triangles(ma, pa), tb = triangles(mb, pb);
     bool any = false;
     Real best = std::numeric_limits<Real>::infinity();

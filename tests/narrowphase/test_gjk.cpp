@@ -231,7 +231,8 @@ TEST(Gjk, SignedVolumesSolverOnRawSupports) {
   for (int t = 0; t < 500; ++t) {
     const ConvexHull a = ref::random_hull(rng, 10, Real(1));
     const ConvexHull b = ref::random_hull(rng, 10, Real(1));
-    const Vec3 shift = rng.unit_vector() * rng.uniform(Real(2.5), Real(4));
+    const Real apart = rng.uniform(Real(2.5), Real(4));
+    const Vec3 shift = rng.unit_vector() * apart;
     auto sa = [&](const Vec3& d) { return a.support(d); };
     auto sb = [&](const Vec3& d) { return b.support(d) + shift; };
     const gjk::Outcome r = gjk::distance(sa, sb, shift, gjk::Settings{});

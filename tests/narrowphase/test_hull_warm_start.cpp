@@ -24,8 +24,10 @@ namespace test_hull_warm_start {
 
 ConvexHull random_hull(test::Random& rng, int n) {
   std::vector<Vec3> pts;
-  const Vec3 axes(rng.uniform(Real(0.3), Real(1.5)), rng.uniform(Real(0.3), Real(1.5)),
-                  rng.uniform(Real(0.3), Real(1.5)));
+  const Real az = rng.uniform(Real(0.3), Real(1.5));
+  const Real ay = rng.uniform(Real(0.3), Real(1.5));
+  const Real ax = rng.uniform(Real(0.3), Real(1.5));
+  const Vec3 axes(ax, ay, az);
   for (int i = 0; i < n; ++i) pts.push_back(rng.unit_vector() * axes);
   auto hull = ConvexHull::create(pts);
   EXPECT_TRUE(hull.ok());
@@ -50,7 +52,8 @@ TEST(HullWarmStart, WarmEqualsColdAlongCoherentPaths) {
     const ConvexHull b = random_hull(rng, nb);
     const Transform pose_a = rng.pose(Real(0.5));
     Transform pose_b = rng.pose(Real(0.5));
-    pose_b.position = pose_a.position + rng.unit_vector() * rng.uniform(Real(0.5), Real(3));
+    const Real apart = rng.uniform(Real(0.5), Real(3));
+    pose_b.position = pose_a.position + rng.unit_vector() * apart;
     const Vec3 velocity = rng.unit_vector() * Real(0.02);
     const Vec3 spin_axis = rng.unit_vector();
     PairCache bool_cache;

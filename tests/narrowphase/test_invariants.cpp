@@ -72,6 +72,61 @@ TEST_P(Invariants, ConventionHoldsAtRandomPoses) {
 
 INSTANTIATE_TEST_SUITE_P(AllPairs, Invariants, testing::ValuesIn(all_pairs()), pair_name);
 
+// Named cases of the sweep above that the sanitizer build (clang) drew while the sweep's
+// random draws were still arguments of one call, evaluated left to right there (seed, case
+// index and pair in each name's comment). Each is a penetrating pair on which the witnesses
+// were not the extremes along the reported normal: `point_a - point_b` a few degrees off it.
+Transform pose_at(Real px, Real py, Real pz, Real qx, Real qy, Real qz, Real qw) {
+  return Transform{Vec3(px, py, pz), Quat(qw, qx, qy, qz)};
+}
+
+void expect_case_holds(const Shape& a, const Transform& pose_a, const Shape& b, const Transform& pose_b) {
+  test::PairChecker checker;
+  checker.check(a, pose_a, b, pose_b, "named case");
+  std::string detail;
+  for (const std::string& m : checker.messages()) detail += "\n  " + m;
+  EXPECT_EQ(checker.failed_cases(), 0) << checker.summary() << detail;
+}
+
+// cylinder_point, seed 11400714819323199239, case 168.
+TEST(Invariants, PenetratingCylinderPointWitnessesAlongTheNormal) {
+  const Shape a = Cylinder::create(Real(0.234891653), Real(0.43138805)).value();
+  const Shape b = Point::create().value();
+  expect_case_holds(a,
+                    pose_at(Real(0.163918957), Real(0.477707863), Real(0.0526624881), Real(-0.812584162),
+                            Real(-0.574059725), Real(0.00482989149), Real(0.100692943)),
+                    b,
+                    pose_at(Real(0.33881399), Real(0.53607893), Real(0.389382184), Real(0.597603083), Real(0.718969882),
+                            Real(-0.0613401681), Real(0.34955743)));
+}
+
+// cylinder_sphere, seed 11400714819323199232, case 152.
+TEST(Invariants, PenetratingCylinderSphereWitnessesAlongTheNormal) {
+  const Shape a = Cylinder::create(Real(0.266970128), Real(0.515582025)).value();
+  const Shape b = Sphere::create(Real(0.400624603)).value();
+  expect_case_holds(a,
+                    pose_at(Real(-0.0747481287), Real(-0.0742161721), Real(0.0680137202), Real(-0.53657794),
+                            Real(-0.179250434), Real(0.0390798189), Real(-0.823666334)),
+                    b,
+                    pose_at(Real(0.0917934254), Real(-0.0925482288), Real(0.273165762), Real(0.138753787),
+                            Real(0.363699079), Real(-0.371205628), Real(0.843016446)));
+}
+
+// triangle_cone, seed 11400714819323198744, case 211.
+TEST(Invariants, PenetratingTriangleConeWitnessesAlongTheNormal) {
+  const Shape a = Triangle::create(Vec3(Real(-0.180859894), Real(-0.157164052), Real(0.00203177356)),
+                                   Vec3(Real(-0.207829699), Real(0.43431443), Real(0.518991709)),
+                                   Vec3(Real(0.903351247), Real(0.117090374), Real(-0.0198749155)))
+                      .value();
+  const Shape b = Cone::create(Real(0.59872061), Real(1.11695445)).value();
+  expect_case_holds(a,
+                    pose_at(Real(0.386148214), Real(-0.238055617), Real(-0.111065365), Real(-0.0409402214),
+                            Real(0.978061378), Real(0.0983644426), Real(0.179009303)),
+                    b,
+                    pose_at(Real(0.813615203), Real(0.14112699), Real(0.107882202), Real(0.178019911),
+                            Real(0.410289198), Real(-0.881062925), Real(0.153948307)));
+}
+
 // The dispatch table is complete and consistent: every cell has its three functions, and a
 // mirrored cell's (B, A) partner is not itself mirrored.
 TEST(Invariants, DispatchTableIsComplete) {

@@ -65,7 +65,10 @@ TEST(ManifoldReduction, EachStepMatchesExhaustiveSearch) {
     const int n = rng.integer(1, 24);
     std::vector<ContactPoint> in;
     for (int i = 0; i < n; ++i) {
-      const Vec3 p(rng.uniform(-2, 2), rng.uniform(-2, 2), rng.uniform(Real(-0.01), Real(0.01)));
+      const Real z = rng.uniform(Real(-0.01), Real(0.01));
+      const Real y = rng.uniform(-2, 2);
+      const Real x = rng.uniform(-2, 2);
+      const Vec3 p(x, y, z);
       in.push_back(contact(p, rng.uniform(Real(-0.1), Real(0.1))));
     }
     const int k = rng.integer(1, 4);

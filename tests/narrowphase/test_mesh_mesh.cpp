@@ -280,7 +280,9 @@ TEST(MeshMesh, BoxGapAnalytic) {
     const Quat q = rng.rotation();
     const Vec3 origin = rng.vec3(Real(-3), Real(3));
     const Real gap = k < 20 ? Real(0) : rng.uniform(Real(1e-3), Real(1));
-    const Vec3 offset(Real(0.8) + gap, rng.uniform(Real(-0.5), Real(0.5)), rng.uniform(Real(-0.5), Real(0.5)));
+    const Real offset_z = rng.uniform(Real(-0.5), Real(0.5));
+    const Real offset_y = rng.uniform(Real(-0.5), Real(0.5));
+    const Vec3 offset(Real(0.8) + gap, offset_y, offset_z);
     const Transform pa{origin, q};
     const Transform pb{origin + q * offset, q};
     const DistanceResult d = narrow::mesh_mesh_distance(a, pa, b, pb, {});

@@ -109,7 +109,8 @@ void sweep(std::uint64_t seed, const char* name, MakeShape make, Features featur
     pa.position += centre;
     Transform pb = rng.pose(Real(1.5));
     pb.position += centre;
-    const HalfSpace b = *HalfSpace::create(rng.unit_vector(), rng.uniform(Real(-1), Real(1)));
+    const Real offset = rng.uniform(Real(-1), Real(1));
+    const HalfSpace b = *HalfSpace::create(rng.unit_vector(), offset);
     PairRequest request;
     request.contact_distance = i % 2 == 0 ? Real(0) : rng.uniform(Real(0), Real(0.5));
     request.max_contacts = rng.integer(1, 4);
@@ -137,7 +138,10 @@ TEST(PairsHalfSpace, PointSweep) {
 TEST(PairsHalfSpace, SegmentSweep) {
   sweep(
       202, "segment",
-      [](test::Random& r) { return *Segment::create(r.vec3(Real(-1), Real(1)), r.vec3(Real(-1), Real(1))); },
+      [](test::Random& r) {
+        const Vec3 b = r.vec3(Real(-1), Real(1));
+        return *Segment::create(r.vec3(Real(-1), Real(1)), b);
+      },
       [](const Segment& s, const Transform& p) {
         return std::vector<Vec3>{p.apply(s.a()), p.apply(s.b())};
       },
@@ -149,7 +153,9 @@ TEST(PairsHalfSpace, TriangleSweep) {
       203, "triangle",
       [](test::Random& r) {
         for (;;) {
-          auto t = Triangle::create(r.vec3(Real(-1), Real(1)), r.vec3(Real(-1), Real(1)), r.vec3(Real(-1), Real(1)));
+          const Vec3 c = r.vec3(Real(-1), Real(1));
+          const Vec3 b = r.vec3(Real(-1), Real(1));
+          auto t = Triangle::create(r.vec3(Real(-1), Real(1)), b, c);
           if (t && t->area() > Real(0.05)) return *t;
         }
       },
@@ -168,7 +174,10 @@ TEST(PairsHalfSpace, SphereSweep) {
 TEST(PairsHalfSpace, CapsuleSweep) {
   sweep(
       205, "capsule",
-      [](test::Random& r) { return *Capsule::create(r.uniform(Real(0.1), Real(1)), r.uniform(Real(0), Real(1.5))); },
+      [](test::Random& r) {
+        const Real h = r.uniform(Real(0), Real(1.5));
+        return *Capsule::create(r.uniform(Real(0.1), Real(1)), h);
+      },
       [](const Capsule&, const Transform&) { return std::vector<Vec3>{}; }, Real(0), Real(3));
 }
 
@@ -189,7 +198,8 @@ TEST(PairsHalfSpace, CylinderSweep) {
   sweep(
       207, "cylinder",
       [](test::Random& r) {
-        return *Cylinder::create(r.uniform(Real(0.1), Real(1.5)), r.uniform(Real(0.1), Real(1.5)));
+        const Real h = r.uniform(Real(0.1), Real(1.5));
+        return *Cylinder::create(r.uniform(Real(0.1), Real(1.5)), h);
       },
       [](const Cylinder&, const Transform&) { return std::vector<Vec3>{}; }, Real(0), Real(3));
 }
@@ -197,7 +207,10 @@ TEST(PairsHalfSpace, CylinderSweep) {
 TEST(PairsHalfSpace, ConeSweep) {
   sweep(
       208, "cone",
-      [](test::Random& r) { return *Cone::create(r.uniform(Real(0.1), Real(1.5)), r.uniform(Real(0.1), Real(1.5))); },
+      [](test::Random& r) {
+        const Real h = r.uniform(Real(0.1), Real(1.5));
+        return *Cone::create(r.uniform(Real(0.1), Real(1.5)), h);
+      },
       [](const Cone&, const Transform&) { return std::vector<Vec3>{}; }, Real(0), Real(3));
 }
 
@@ -230,13 +243,18 @@ TEST(PairsHalfSpace, GenericSizeMatchesTheClosedForms) {
       EXPECT_EQ(narrow::detail::halfspace_size<S>(shape), narrow::detail::halfspace_size(shape)) << i;
     };
     same(*Point::create());
-    same(*Segment::create(rng.vec3(Real(-2), Real(2)), rng.vec3(Real(-2), Real(2))));
-    same(*Triangle::create(Vec3(0), rng.vec3(Real(0.5), Real(2)), rng.vec3(Real(-2), Real(-0.5))));
+    const Vec3 s1 = rng.vec3(Real(-2), Real(2));
+    same(*Segment::create(rng.vec3(Real(-2), Real(2)), s1));
+    const Vec3 t2 = rng.vec3(Real(-2), Real(-0.5));
+    same(*Triangle::create(Vec3(0), rng.vec3(Real(0.5), Real(2)), t2));
     same(*Sphere::create(rng.uniform(Real(0.1), Real(2))));
-    same(*Capsule::create(rng.uniform(Real(0.1), Real(2)), i % 4 == 0 ? Real(0) : rng.uniform(Real(0), Real(2))));
+    const Real capsule_h = i % 4 == 0 ? Real(0) : rng.uniform(Real(0), Real(2));
+    same(*Capsule::create(rng.uniform(Real(0.1), Real(2)), capsule_h));
     same(*Box::create(rng.vec3(Real(0.1), Real(2))));
-    same(*Cylinder::create(rng.uniform(Real(0.1), Real(2)), rng.uniform(Real(0.1), Real(2))));
-    same(*Cone::create(rng.uniform(Real(0.1), Real(2)), rng.uniform(Real(0.1), Real(2))));
+    const Real cylinder_h = rng.uniform(Real(0.1), Real(2));
+    same(*Cylinder::create(rng.uniform(Real(0.1), Real(2)), cylinder_h));
+    const Real cone_h = rng.uniform(Real(0.1), Real(2));
+    same(*Cone::create(rng.uniform(Real(0.1), Real(2)), cone_h));
     same(*Ellipsoid::create(rng.vec3(Real(0.1), Real(2))));
   }
 }
@@ -263,7 +281,8 @@ TEST(PairsHalfSpace, SupportingFeatureStepMatchesTheClosedForms) {
   for (int i = 0; i < 3000; ++i) {
     const Transform pa = rng.pose(Real(1.5));
     const Transform pb = rng.pose(Real(1.5));
-    const HalfSpace b = *HalfSpace::create(rng.unit_vector(), rng.uniform(Real(-1), Real(1)));
+    const Real offset = rng.uniform(Real(-1), Real(1));
+    const HalfSpace b = *HalfSpace::create(rng.unit_vector(), offset);
     PairRequest request;
     request.contact_distance = i % 2 == 0 ? Real(0) : rng.uniform(Real(0), Real(0.5));
     request.max_contacts = rng.integer(1, 4);
@@ -275,9 +294,12 @@ TEST(PairsHalfSpace, SupportingFeatureStepMatchesTheClosedForms) {
       expect_same_manifold(narrow::detail::plane_contacts<S>(a, pa, q, request),
                            narrow::detail::plane_contacts(a, pa, q, request), name + std::to_string(i));
     };
-    compare(*Segment::create(rng.vec3(Real(-1), Real(1)), rng.vec3(Real(-1), Real(1))), "segment ");
-    compare(*Capsule::create(rng.uniform(Real(0.1), Real(1)), rng.uniform(Real(0.01), Real(1.5))), "capsule ");
-    const Triangle t = *Triangle::create(Vec3(0), rng.vec3(Real(0.5), Real(1)), rng.vec3(Real(-1), Real(-0.5)));
+    const Vec3 s1 = rng.vec3(Real(-1), Real(1));
+    compare(*Segment::create(rng.vec3(Real(-1), Real(1)), s1), "segment ");
+    const Real capsule_h = rng.uniform(Real(0.01), Real(1.5));
+    compare(*Capsule::create(rng.uniform(Real(0.1), Real(1)), capsule_h), "capsule ");
+    const Vec3 t2 = rng.vec3(Real(-1), Real(-0.5));
+    const Triangle t = *Triangle::create(Vec3(0), rng.vec3(Real(0.5), Real(1)), t2);
     const Vec3 down = pa.inverse_apply_vector(-pb.apply_vector(b.normal()));
     if (glm::dot(t.normal(), down) >= Real(0)) compare(t, "triangle ");
   }

@@ -24,6 +24,14 @@ using test::LVec;
 
 Sphere sphere(Real r) { return *Sphere::create(r); }
 Capsule capsule(Real r, Real h) { return *Capsule::create(r, h); }
+
+// A random capsule: radius in [0.1, 1), half length in [0, 1.5); the half length is drawn
+// first.
+Capsule random_capsule(test::Random& rng) {
+  const Real h = rng.uniform(Real(0), Real(1.5));
+  const Real r = rng.uniform(Real(0.1), Real(1.0));
+  return capsule(r, h);
+}
 Box box(const Vec3& h) { return *Box::create(h); }
 Transform at(const Vec3& p, const Quat& q = kIdentityQuat) { return Transform{p, q}; }
 Quat about(const Vec3& axis, Real angle) { return glm::angleAxis(angle, glm::normalize(axis)); }
@@ -67,7 +75,7 @@ TEST(PairsRounded, SphereCapsuleSweep) {
   for (int i = 0; i < kSweep; ++i) {
     const Vec3 c = kCentres[i % 2];
     const Sphere a = sphere(rng.uniform(Real(0.1), Real(1.2)));
-    const Capsule b = capsule(rng.uniform(Real(0.1), Real(1.0)), rng.uniform(Real(0), Real(1.5)));
+    const Capsule b = random_capsule(rng);
     const Transform pa = random_pose(rng, c, Real(1.5));
     const Transform pb = random_pose(rng, c, Real(1.5));
     LVec q0, q1;
@@ -81,25 +89,49 @@ TEST(PairsRounded, SphereCapsuleSweep) {
   }
 }
 
+// Reference for two capsules: the long double core distance less the radii, where the cores
+// are apart (else the depth is checked against the sampled minimum overlap).
+test::Reference capsule_pair_reference(const Capsule& a, const Transform& pa, const Capsule& b, const Transform& pb) {
+  LVec p0, p1, q0, q1;
+  test::capsule_core(a, pa, p0, p1);
+  test::capsule_core(b, pb, q0, q1);
+  const LD core = std::sqrt(test::ref_dist2_segment_segment(p0, p1, q0, q1));
+  test::Reference ref;
+  ref.has_distance = core > 1e-3L;
+  ref.distance = core - a.radius() - b.radius();
+  return ref;
+}
+
 TEST(PairsRounded, CapsuleCapsuleSweep) {
   test::Random rng(103);
   for (int i = 0; i < kSweep; ++i) {
     const Vec3 c = kCentres[i % 2];
-    const Capsule a = capsule(rng.uniform(Real(0.1), Real(1.0)), rng.uniform(Real(0), Real(1.5)));
-    const Capsule b = capsule(rng.uniform(Real(0.1), Real(1.0)), rng.uniform(Real(0), Real(1.5)));
+    const Capsule a = random_capsule(rng);
+    const Capsule b = random_capsule(rng);
     Transform pa = random_pose(rng, c, Real(1.5));
     Transform pb = random_pose(rng, c, Real(1.5));
     if (i % 5 == 0) pb.rotation = pa.rotation;  // parallel axes
-    LVec p0, p1, q0, q1;
-    test::capsule_core(a, pa, p0, p1);
-    test::capsule_core(b, pb, q0, q1);
-    const LD core = std::sqrt(test::ref_dist2_segment_segment(p0, p1, q0, q1));
-    test::Reference ref;
-    ref.has_distance = core > 1e-3L;
-    ref.distance = core - a.radius() - b.radius();
     const Real tol = test::pair_tol(scale_of(pa, pb, Real(6)));
-    test::check_pair(a, pa, b, pb, ref, tol, rng.uniform(Real(0), Real(0.3)), "capsule-capsule " + std::to_string(i));
+    test::check_pair(a, pa, b, pb, capsule_pair_reference(a, pa, b, pb), tol, rng.uniform(Real(0), Real(0.3)),
+                     "capsule-capsule " + std::to_string(i));
   }
+}
+
+// Case 1014 of the sweep above as the sanitizer build (clang) drew it while its draws were
+// arguments of one call (evaluated left to right there): a deep overlap (depth 0.64) of two
+// capsules whose cores pass 2.0e-4 apart, inside both. The normal taken from the difference
+// of the two closest points carried their rounding (1e-7 on a length of 2e-4), and along it
+// the capsules overlapped by 2.8e-4 more than the reported depth.
+TEST(PairsRounded, CapsuleCapsuleDeepCrossing) {
+  const Capsule a = capsule(Real(0.188083768), Real(0.835361838));
+  const Capsule b = capsule(Real(0.450000465), Real(1.49526405));
+  const Transform pa{Vec3(Real(-0.755729795), Real(-0.447105736), Real(1.42397392)),
+                     Quat(Real(0.54143858), Real(-0.443786114), Real(-0.696358442), Real(0.158060491))};
+  const Transform pb{Vec3(Real(-0.162981138), Real(0.343179345), Real(1.26895154)),
+                     Quat(Real(-0.179657131), Real(-0.329601675), Real(-0.50355196), Real(0.778152585))};
+  const Real tol = test::pair_tol(scale_of(pa, pb, Real(6)));
+  test::check_pair(a, pa, b, pb, capsule_pair_reference(a, pa, b, pb), tol, Real(0.0568147711),
+                   "capsule-capsule deep crossing");
 }
 
 TEST(PairsRounded, SphereBoxSweep) {
@@ -124,7 +156,7 @@ TEST(PairsRounded, CapsuleBoxSweep) {
   test::Random rng(105);
   for (int i = 0; i < kSweep; ++i) {
     const Vec3 c = kCentres[i % 2];
-    const Capsule a = capsule(rng.uniform(Real(0.1), Real(1.0)), rng.uniform(Real(0), Real(1.5)));
+    const Capsule a = random_capsule(rng);
     const Box b = box(rng.vec3(Real(0.1), Real(1.5)));
     Transform pa = random_pose(rng, c, Real(1.8));
     const Transform pb = random_pose(rng, c, Real(1.8));
@@ -147,8 +179,9 @@ TEST(PairsRounded, CapsuleBoxSweep) {
 
 Triangle random_triangle(test::Random& rng) {
   for (;;) {
-    auto t = Triangle::create(rng.vec3(Real(-1.5), Real(1.5)), rng.vec3(Real(-1.5), Real(1.5)),
-                              rng.vec3(Real(-1.5), Real(1.5)));
+    const Vec3 c = rng.vec3(Real(-1.5), Real(1.5));
+    const Vec3 b = rng.vec3(Real(-1.5), Real(1.5));
+    auto t = Triangle::create(rng.vec3(Real(-1.5), Real(1.5)), b, c);
     if (t && t->area() > Real(0.05)) return *t;
   }
 }
@@ -177,7 +210,7 @@ TEST(PairsRounded, TriangleCapsuleSweep) {
   for (int i = 0; i < kSweep; ++i) {
     const Vec3 c = kCentres[i % 2];
     const Triangle a = random_triangle(rng);
-    const Capsule b = capsule(rng.uniform(Real(0.1), Real(1.0)), rng.uniform(Real(0), Real(1.5)));
+    const Capsule b = random_capsule(rng);
     const Transform pa = random_pose(rng, c, Real(1.0));
     const Transform pb = random_pose(rng, c, Real(1.5));
     const test::LPose la(pa);

@@ -87,8 +87,11 @@ TEST(PolytopeSat, FlatAndLowerDimensionalPolytopes) {
   test::Random rng(33);
   const Point point = Point::create().value();
   for (int t = 0; t < 600; ++t) {
-    const Triangle tri = Triangle::create(rng.vec3(-1, 1), rng.vec3(-1, 1), rng.vec3(-1, 1)).value();
-    const Segment seg = Segment::create(rng.vec3(-1, 1), rng.vec3(-1, 1)).value();
+    const Vec3 tc = rng.vec3(-1, 1);
+    const Vec3 tb = rng.vec3(-1, 1);
+    const Triangle tri = Triangle::create(rng.vec3(-1, 1), tb, tc).value();
+    const Vec3 sb = rng.vec3(-1, 1);
+    const Segment seg = Segment::create(rng.vec3(-1, 1), sb).value();
     const Box box = Box::create(rng.vec3(Real(0.2), Real(0.8))).value();
     const Transform pa = rng.pose(Real(0.5));
     const Transform pb = rng.pose(Real(0.5));

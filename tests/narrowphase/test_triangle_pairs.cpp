@@ -25,7 +25,9 @@ constexpr bool kFloat = sizeof(Real) == 4;
 
 Triangle random_triangle(Random& rng, Real size) {
   for (;;) {
-    auto t = Triangle::create(rng.vec3(-size, size), rng.vec3(-size, size), rng.vec3(-size, size));
+    const Vec3 c = rng.vec3(-size, size);
+    const Vec3 b = rng.vec3(-size, size);
+    auto t = Triangle::create(rng.vec3(-size, size), b, c);
     if (t && t.value().area() > Real(0.05) * size * size) return t.value();
   }
 }

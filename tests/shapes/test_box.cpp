@@ -35,10 +35,7 @@ auto implicit_inside(const Vec3& h) {
   };
 }
 
-Vec3 random_half_extents(test::Random& rng, Real scale) {
-  return Vec3(rng.uniform(Real(0.2), Real(2)), rng.uniform(Real(0.2), Real(2)), rng.uniform(Real(0.2), Real(2))) *
-         scale;
-}
+Vec3 random_half_extents(test::Random& rng, Real scale) { return rng.in_box(Vec3(Real(0.2)), Vec3(Real(2))) * scale; }
 
 TEST(Box, CreateValidatesEachHalfExtent) {
   test::expect_positive_field_validated([](Real x) { return Box::create(Vec3(x, 1, 1)); }, "half_extents.x");

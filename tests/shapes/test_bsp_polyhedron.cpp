@@ -67,8 +67,7 @@ TEST(BspPolyhedron, RandomPointsAgreeWithWindingNumber) {
     int boundary = 0;
     const int n = 1000;
     for (int i = 0; i < n; ++i) {
-      const Vec3 p(rng.uniform(box.min.x - pad.x, box.max.x + pad.x), rng.uniform(box.min.y - pad.y, box.max.y + pad.y),
-                   rng.uniform(box.min.z - pad.z, box.max.z + pad.z));
+      const Vec3 p = rng.in_box(box.min - pad, box.max + pad);
       const PointClass c = bsp.classify(p);
       const double w = test::winding_number(nm.mesh, p);
       const PointClass expected = w > 0.5 ? PointClass::Inside : PointClass::Outside;
@@ -157,11 +156,7 @@ TEST(BspPolyhedron, SegmentsAgreeWithSampledWindingNumber) {
     const Vec3 pad = box.extents() * Real(0.3);
     int with_intervals = 0;
     for (int s = 0; s < 40; ++s) {
-      auto random_point = [&] {
-        return Vec3(rng.uniform(box.min.x - pad.x, box.max.x + pad.x),
-                    rng.uniform(box.min.y - pad.y, box.max.y + pad.y),
-                    rng.uniform(box.min.z - pad.z, box.max.z + pad.z));
-      };
+      auto random_point = [&] { return rng.in_box(box.min - pad, box.max + pad); };
       const Vec3 p = random_point();
       const Vec3 q = random_point();
       const Ray ray{p, q - p};

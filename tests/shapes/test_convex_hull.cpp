@@ -707,7 +707,7 @@ TEST(ConvexHull, SupportIndexMatchesLinearScanOverInputPoints) {
     // Many directions with a warm start, plus the support point itself.
     std::uint32_t warm = 0;
     for (int k = 0; k < 300; ++k) {
-      const Vec3 d = rng.unit_vector() * rng.uniform(Real(0.1), Real(10));
+      const Vec3 d = rng.vector_of_length(Real(0.1), Real(10));
       warm = h.support_index(d, warm);
       ASSERT_NEAR(glm::dot(h.vertices()[warm], d), brute(d), tol * glm::length(d));
       EXPECT_EQ(h.support(d), h.vertices()[h.support_index(d)]);
@@ -931,7 +931,8 @@ TEST(ConvexHull, RaycastMatchesMarchingOnContains) {
     const Vec3 center = h.local_aabb().center();
     const Real surface_tol = Real(2) * h.tolerance() + rounding_tol(h);
     for (int k = 0; k < 100; ++k) {
-      const Vec3 origin = center + rng.unit_vector() * (size * rng.uniform(Real(1.2), Real(2)));
+      const Real reach = rng.uniform(Real(1.2), Real(2));
+      const Vec3 origin = center + rng.unit_vector() * (size * reach);
       Vec3 target = (k % 3 == 0) ? center + rng.vec3(Real(-0.7), Real(0.7)) * size : inside_point(c.points, rng);
       const Vec3 dir = (target - origin) * rng.uniform(Real(0.2), Real(3));
       const Real max_t = Real(4) * (size * Real(3)) / glm::length(dir);

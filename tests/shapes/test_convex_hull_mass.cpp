@@ -221,7 +221,11 @@ TEST(ConvexHullMass, MatchesQuasiMonteCarloIntegrationOfContains) {
     for (int i = 0; i < 150; ++i) {
       if (cloud == 0) p.push_back(rng.unit_vector() * Vec3(Real(1), Real(1.5), Real(0.7)));
       if (cloud == 1) p.push_back(rng.vec3(Real(-1), Real(1)) * Vec3(Real(0.5), Real(1), Real(2)));
-      if (cloud == 2) p.push_back(rng.in_ball(Real(1)) * Real(0.5) + rng.unit_vector() * Real(0.8) + Vec3(3, 0, -2));
+      if (cloud == 2) {
+        const Vec3 u = rng.unit_vector();
+        const Vec3 b = rng.in_ball(Real(1));
+        p.push_back(b * Real(0.5) + u * Real(0.8) + Vec3(3, 0, -2));
+      }
     }
     const ConvexHull h = build(p);
     const MassProperties m = h.mass_properties(Real(1));

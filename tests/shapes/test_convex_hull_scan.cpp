@@ -31,7 +31,7 @@ using test::brute_support;
 
 std::vector<Vec3> directions(const ConvexHull& hull, test::Random& rng) {
   std::vector<Vec3> dirs;
-  for (int i = 0; i < 150; ++i) dirs.push_back(rng.unit_vector() * rng.uniform(Real(0.01), Real(100)));
+  for (int i = 0; i < 150; ++i) dirs.push_back(rng.vector_of_length(Real(0.01), Real(100)));
   for (int a = 0; a < 3; ++a) {
     for (const Real s : {Real(1), Real(-1)}) {
       Vec3 d(Real(0));
@@ -93,7 +93,7 @@ TEST(ConvexHullScan, RandomCloudsEverySize) {
   test::Random rng(99);
   for (int n = 4; n <= 300; n += (n < 40 ? 1 : 13)) {
     std::vector<Vec3> pts;
-    for (int i = 0; i < n; ++i) pts.push_back(rng.unit_vector() * rng.uniform(Real(0.5), Real(2)));
+    for (int i = 0; i < n; ++i) pts.push_back(rng.vector_of_length(Real(0.5), Real(2)));
     // Far from the local origin: the shifted vertices keep the hull's resolution.
     const Vec3 offset = n % 3 == 0 ? Vec3(Real(100), Real(-50), Real(20)) : Vec3(Real(0));
     for (Vec3& p : pts) p += offset;

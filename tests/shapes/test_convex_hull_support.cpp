@@ -60,7 +60,7 @@ TEST(ConvexHullSupport, MatchesBruteForceAtEverySize) {
   test::Random rng(2024);
   for (int n = 4; n <= 200; n += (n < 80 ? 1 : 7)) {
     std::vector<Vec3> pts;
-    for (int i = 0; i < n; ++i) pts.push_back(rng.unit_vector() * rng.uniform(Real(0.5), Real(2)));
+    for (int i = 0; i < n; ++i) pts.push_back(rng.vector_of_length(Real(0.5), Real(2)));
     const auto hull = ConvexHull::create(pts);
     ASSERT_TRUE(hull.ok()) << n;
     check_hull(hull.value(), rng, "cloud n=" + std::to_string(n));

@@ -72,13 +72,13 @@ Vec3 random_query(test::Random& rng, const RefSurface& ref, Real r, Real h, int 
   const Vec3 e(Real(1.5) * r, Real(1.5) * r, Real(1.5) * h);
   switch (i % 5) {
     case 0:
-    case 1: return Vec3(rng.uniform(-e.x, e.x), rng.uniform(-e.y, e.y), rng.uniform(-e.z, e.z));
+    case 1: return rng.in_box(-e, e);
     case 2: return Vec3(0, 0, rng.uniform(-e.z, e.z));
     case 3: {
       const Real a = rng.uniform(Real(0), Real(2) * kPi);
       const Real s = std::max(r, h);
-      return Vec3(r * std::cos(a), r * std::sin(a), rng.uniform(Real(0), Real(1)) < Real(0.5) ? h : -h) +
-             rng.vec3(Real(-0.01) * s, Real(0.01) * s);
+      const Vec3 jitter = rng.vec3(Real(-0.01) * s, Real(0.01) * s);
+      return Vec3(r * std::cos(a), r * std::sin(a), rng.uniform(Real(0), Real(1)) < Real(0.5) ? h : -h) + jitter;
     }
     default: {
       const auto& s = ref.samples();
@@ -225,11 +225,11 @@ TEST(Cylinder, ContainsMatchesImplicitFunction) {
   for (const Dims& dm : sweep_dims()) {
     const Cylinder c = make(dm.r, dm.h);
     const Real tol = tol_at(std::max(dm.r, dm.h));
+    const Vec3 half(Real(1.3) * dm.r, Real(1.3) * dm.r, Real(1.3) * dm.h);
     int in = 0;
     int out = 0;
     for (int i = 0; i < 5000; ++i) {
-      const Vec3 p(rng.uniform(-Real(1.3) * dm.r, Real(1.3) * dm.r), rng.uniform(-Real(1.3) * dm.r, Real(1.3) * dm.r),
-                   rng.uniform(-Real(1.3) * dm.h, Real(1.3) * dm.h));
+      const Vec3 p = rng.in_box(-half, half);
       const double f = implicit(dm.r, dm.h, to_d(p));
       if (std::abs(f) <= tol) continue;
       EXPECT_EQ(c.contains(p), f < 0) << p.x << " " << p.y << " " << p.z;
@@ -337,8 +337,8 @@ TEST(Cylinder, RaycastMatchesMarching) {
     const auto inside = [&c](const Vec3& p) { return c.contains(p); };
     for (int i = 0; i < 300; ++i) {
       const Vec3 e(Real(2) * dm.r, Real(2) * dm.r, Real(2) * dm.h);
-      const Vec3 o(rng.uniform(-e.x, e.x), rng.uniform(-e.y, e.y), rng.uniform(-e.z, e.z));
-      const Vec3 target = Vec3(rng.uniform(-e.x, e.x), rng.uniform(-e.y, e.y), rng.uniform(-e.z, e.z)) * Real(0.5);
+      const Vec3 o = rng.in_box(-e, e);
+      const Vec3 target = rng.in_box(-e, e) * Real(0.5);
       Vec3 dir = target - o;
       if (i % 7 == 0) dir = Vec3(0, 0, o.z > 0 ? -1 : 1) * static_cast<Real>(size);  // along the axis
       if (i % 7 == 1) dir.z = 0;                                                     // across the axis

@@ -84,7 +84,7 @@ const std::vector<Vec3>& sweep_radii() {
 // symmetry plane, within 1e-30 of a plane, near the centre, or near a surface sample.
 Vec3 random_query(test::Random& rng, const RefSurface& ref, const Vec3& radii, int i) {
   const Vec3 e = Real(1.5) * radii;
-  const Vec3 u(rng.uniform(-e.x, e.x), rng.uniform(-e.y, e.y), rng.uniform(-e.z, e.z));
+  const Vec3 u = rng.in_box(-e, e);
   const int axis = rng.integer(0, 2);
   switch (i % 7) {
     case 0: return u;
@@ -269,7 +269,7 @@ TEST(Ellipsoid, ContainsMatchesImplicitFunction) {
     int out = 0;
     for (int i = 0; i < 5000; ++i) {
       const Vec3 e = Real(1.2) * radii;
-      const Vec3 p(rng.uniform(-e.x, e.x), rng.uniform(-e.y, e.y), rng.uniform(-e.z, e.z));
+      const Vec3 p = rng.in_box(-e, e);
       // Skip points whose level |p / R| is within rounding of 1.
       const double f = glm::length(to_d(p) / to_d(radii)) - 1.0;
       if (std::abs(f) <= 4.0 * static_cast<double>(kRelativeTolerance)) continue;
@@ -415,8 +415,8 @@ TEST(Ellipsoid, RaycastMatchesMarching) {
     const auto inside = [&el](const Vec3& p) { return el.contains(p); };
     for (int i = 0; i < 250; ++i) {
       const Vec3 e = Real(2) * radii;
-      const Vec3 o(rng.uniform(-e.x, e.x), rng.uniform(-e.y, e.y), rng.uniform(-e.z, e.z));
-      const Vec3 target = Vec3(rng.uniform(-e.x, e.x), rng.uniform(-e.y, e.y), rng.uniform(-e.z, e.z)) * Real(0.5);
+      const Vec3 o = rng.in_box(-e, e);
+      const Vec3 target = rng.in_box(-e, e) * Real(0.5);
       Vec3 dir = target - o;
       if (i % 7 == 0) {
         dir = Vec3(0);

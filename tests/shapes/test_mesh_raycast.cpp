@@ -207,7 +207,7 @@ TEST(TriangleMeshRaycast, RandomRaysMatchBruteForce) {
   int hits = 0, total = 0;
   for (const TriangleMesh& mesh : meshes) {
     for (int k = 0; k < 1500; ++k) {
-      Ray ray{rng.vec3(-5, 5), rng.unit_vector() * rng.uniform(Real(0.2), Real(3))};
+      Ray ray{rng.vec3(-5, 5), rng.vector_of_length(Real(0.2), Real(3))};
       if (k % 3 == 0) ray.direction = rng.vec3(-1, 1) - ray.origin;  // aimed at the middle
       if (k % 50 == 0) ray.direction.y = 0;                          // axis-parallel components
       const Real max_t = k % 4 == 0 ? kRealMax : rng.uniform(0, 20);
@@ -332,7 +332,7 @@ TEST(TriangleMeshRaycast, WideTraversalEqualsBinaryReference) {
     for (std::size_t m = 0; m < meshes.size(); ++m) {
       const TriangleMesh& mesh = meshes[m];
       for (int k = 0; k < 400; ++k) {
-        Ray ray{rng.vec3(-5, 5), rng.unit_vector() * rng.uniform(Real(0.2), Real(3))};
+        Ray ray{rng.vec3(-5, 5), rng.vector_of_length(Real(0.2), Real(3))};
         if (k % 2 == 0) ray.direction = rng.vec3(-1, 1) - ray.origin;
         if (k % 40 == 0) ray.direction.x = 0;
         if (k % 40 == 1) ray.direction.z = Real(1e-31);
@@ -387,7 +387,11 @@ TEST(TriangleMeshDeform, RefittedRaysMatchBruteForce) {
   EXPECT_EQ(deformed.bvh().nodes().size(), mesh.bvh().nodes().size());
   EXPECT_EQ(deformed.vertices()[5], moved[5]);
   EXPECT_EQ(mesh.vertices()[5], TriangleMesh(mesh).vertices()[5]);  // original untouched
-  for (int k = 0; k < 1000; ++k) check_ray(deformed, {rng.vec3(-4, 4), rng.vec3(-1, 1) - rng.vec3(-4, 4)}, kRealMax);
+  for (int k = 0; k < 1000; ++k) {
+    const Vec3 origin = rng.vec3(-4, 4);
+    const Vec3 from = rng.vec3(-4, 4);
+    check_ray(deformed, {origin, rng.vec3(-1, 1) - from}, kRealMax);
+  }
   EXPECT_NEAR(double(deformed.report().volume), 4.18879 * 1.0, 0.2);
   EXPECT_FALSE(mesh.deformed(std::span<const Vec3>(moved).first(3)).ok());
   {
@@ -420,7 +424,9 @@ TEST(RayBatch, EqualsSerialOnEveryExecutor) {
   const TriangleMesh mesh = make(test::torus_mesh(2, Real(0.6), 48, 24));
   std::vector<BatchRay> rays(3000);
   for (BatchRay& r : rays) {
-    r.ray = {rng.vec3(-4, 4), rng.vec3(-2, 2) - rng.vec3(-4, 4)};
+    const Vec3 origin = rng.vec3(-4, 4);
+    const Vec3 from = rng.vec3(-4, 4);
+    r.ray = {origin, rng.vec3(-2, 2) - from};
     r.max_t = rng.uniform(0, 3);
   }
   std::vector<RayHit> serial(rays.size());

@@ -66,7 +66,8 @@ TEST(Point, ContainsOnlyTheOrigin) {
   test::Random rng(403);
   for (const Real s : test::scales()) {
     for (int i = 0; i < 1000; ++i) {
-      const Vec3 p = rng.unit_vector() * s * rng.uniform(Real(0.5), Real(2));
+      const Real length = rng.uniform(Real(0.5), Real(2));
+      const Vec3 p = rng.unit_vector() * s * length;
       EXPECT_EQ(kPoint.contains(p), glm::length(p) <= tol);
     }
   }

@@ -125,7 +125,9 @@ TEST(Segment, ContainsPointsOnItOnly) {
         const Real t = rng.uniform(Real(0), Real(1));
         const Vec3 on = s.a() + t * (s.b() - s.a());
         EXPECT_TRUE(s.contains(on));
-        const Vec3 side = glm::normalize(t1 * rng.uniform(Real(-1), Real(1)) + t2 * rng.uniform(Real(-1), Real(1)));
+        const Real v = rng.uniform(Real(-1), Real(1));
+        const Real u = rng.uniform(Real(-1), Real(1));
+        const Vec3 side = glm::normalize(t1 * u + t2 * v);
         EXPECT_TRUE(s.contains(on + side * s.tolerance() * Real(0.25)));
         EXPECT_FALSE(s.contains(on + side * s.tolerance() * Real(4)));
         EXPECT_FALSE(s.contains(on + side * (sc * Real(0.01) + s.tolerance() * Real(4))));
@@ -241,7 +243,7 @@ TEST(Segment, RandomRaysMissUnlessTheyPassWithinTolerance) {
       const auto pts = samples(s.a(), s.b(), n);
       const Real res = s.length() / static_cast<Real>(2 * n);
       for (int i = 0; i < 100; ++i) {
-        const Ray ray{rng.vec3(Real(-3) * sc, Real(3) * sc), rng.unit_vector() * rng.uniform(Real(0.5), Real(2))};
+        const Ray ray{rng.vec3(Real(-3) * sc, Real(3) * sc), rng.vector_of_length(Real(0.5), Real(2))};
         const Real max_t = Real(6) * sc;
         const double miss = ray_sample_distance(ray, max_t, pts);
         const Real tol = std::max(s.tolerance(), linear_tolerance(test::max_abs(ray.origin)));

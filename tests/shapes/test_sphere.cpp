@@ -220,7 +220,7 @@ TEST(Sphere, PlacedQueriesMatchLocalOnes) {
   for (int i = 0; i < 500; ++i) {
     const Transform pose = rng.pose(Real(20));
     // A query outside the sphere, so that the ray to its centre enters through the surface.
-    const Vec3 q = pose.position + rng.unit_vector() * rng.uniform(Real(1.6), Real(4));
+    const Vec3 q = pose.position + rng.vector_of_length(Real(1.6), Real(4));
     const Real tol = precision_tolerance(Real(30), Real(32));
     const SurfacePoint w = closest_point(s, pose, q);
     EXPECT_NEAR(w.signed_distance, glm::length(q - pose.position) - Real(1.5), tol);

@@ -79,8 +79,14 @@ Shape random_probe(test::Random& rng) {
   switch (rng.integer(0, 3)) {
     case 0: return Sphere::create(rng.uniform(Real(0.1), Real(0.4))).value();
     case 1: return Box::create(rng.vec3(Real(0.1), Real(0.35))).value();
-    case 2: return Capsule::create(rng.uniform(Real(0.1), Real(0.25)), rng.uniform(Real(0.05), Real(0.3))).value();
-    default: return Cylinder::create(rng.uniform(Real(0.1), Real(0.3)), rng.uniform(Real(0.1), Real(0.3))).value();
+    case 2: {
+      const Real h = rng.uniform(Real(0.05), Real(0.3));
+      return Capsule::create(rng.uniform(Real(0.1), Real(0.25)), h).value();
+    }
+    default: {
+      const Real h = rng.uniform(Real(0.1), Real(0.3));
+      return Cylinder::create(rng.uniform(Real(0.1), Real(0.3)), h).value();
+    }
   }
 }
 
@@ -122,7 +128,9 @@ TEST(TessellationConsistency, DistancesBracketedWhenSeparated) {
     for (int k = 0; k < test::sweep_size(1500); ++k) {
       const Transform pose = rng.pose(Real(1));
       const Shape probe = random_probe(rng);
-      const Transform pp{pose.position + rng.uniform(Real(1), Real(2.5)) * rng.unit_vector(), rng.rotation()};
+      const Vec3 towards = rng.unit_vector();
+      const Real apart = rng.uniform(Real(1), Real(2.5));
+      const Transform pp{pose.position + apart * towards, rng.rotation()};
       const DistanceResult outer = distance(ShapeRef(c.outer), pose, ShapeRef(probe), pp);
       if (outer.signed_distance <= Real(0.01)) continue;
       const DistanceResult inner = distance(ShapeRef(c.inner), pose, ShapeRef(probe), pp);

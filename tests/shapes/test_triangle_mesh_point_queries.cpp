@@ -89,8 +89,7 @@ std::vector<Prepared> closed_meshes() {
 
 Vec3 random_point_near(test::Random& rng, const Aabb& box) {
   const Vec3 pad = box.extents() * Real(0.3);
-  return Vec3(rng.uniform(box.min.x - pad.x, box.max.x + pad.x), rng.uniform(box.min.y - pad.y, box.max.y + pad.y),
-              rng.uniform(box.min.z - pad.z, box.max.z + pad.z));
+  return rng.in_box(box.min - pad, box.max + pad);
 }
 
 // Checks one closest-point answer against brute force and the winding number.
@@ -143,7 +142,7 @@ TEST(MeshPointQueries, PointsNearEdgesAndVerticesGetTheRightSign) {
       const Vec3 a = m.mesh.vertices[t[0]];
       const Vec3 b = m.mesh.vertices[t[1]];
       const Vec3 base = i % 2 == 0 ? a : (a + b) * Real(0.5);
-      const Vec3 p = base + rng.unit_vector() * rng.uniform(Real(1e-3), Real(0.05));
+      const Vec3 p = base + rng.vector_of_length(Real(1e-3), Real(0.05));
       const SurfacePoint sp = detail::mesh_closest_point(view, Bvh{}, p);
       check_closest(m, p, sp, true);
     }

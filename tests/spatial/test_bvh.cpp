@@ -105,7 +105,7 @@ std::vector<Aabb> random_boxes(test::Random& rng, std::size_t n, Real extent, Re
   std::vector<Aabb> boxes(n);
   for (Aabb& b : boxes) {
     const Vec3 c = rng.vec3(-extent, extent);
-    const Vec3 h(rng.uniform(0, max_size), rng.uniform(0, max_size), rng.uniform(0, max_size));
+    const Vec3 h = rng.in_box(Vec3(0), Vec3(max_size));
     b = Aabb::from_center_half_extents(c, h);
   }
   return boxes;
@@ -158,7 +158,8 @@ TEST(Bvh, RandomBoxesStructureAndQueriesMatchBruteForce) {
     const Bvh bvh = Bvh::build(boxes, centers_of(boxes), opt);
     check_structure(bvh, boxes, cfg.leaf);
     for (int q = 0; q < 500; ++q) {
-      const Aabb query = Aabb::from_center_half_extents(rng.vec3(-11, 11), Vec3(rng.uniform(0, 3)));
+      const Real half = rng.uniform(0, 3);
+      const Aabb query = Aabb::from_center_half_extents(rng.vec3(-11, 11), Vec3(half));
       check_query(bvh, boxes, query);
     }
   }
@@ -177,7 +178,8 @@ TEST(Bvh, RefitKeepsExactBoxesAndQueries) {
     bvh.refit(boxes);
     check_structure(bvh, boxes, 4);
     for (int q = 0; q < 700; ++q) {
-      const Aabb query = Aabb::from_center_half_extents(rng.vec3(-25, 25), Vec3(rng.uniform(0, 4)));
+      const Real half = rng.uniform(0, 4);
+      const Aabb query = Aabb::from_center_half_extents(rng.vec3(-25, 25), Vec3(half));
       check_query(bvh, boxes, query);
     }
   }
@@ -250,8 +252,8 @@ TEST(Bvh, MillionScaleSpread) {
   std::vector<Aabb> boxes(3000);
   for (Aabb& b : boxes) {
     const Real scale = std::pow(Real(10), rng.uniform(-3, 3));
-    b = Aabb::from_center_half_extents(rng.vec3(-1, 1) * Real(1e6) * std::pow(Real(10), rng.uniform(-6, 0)),
-                                       Vec3(scale));
+    const Real spread = std::pow(Real(10), rng.uniform(-6, 0));
+    b = Aabb::from_center_half_extents(rng.vec3(-1, 1) * Real(1e6) * spread, Vec3(scale));
   }
   const Bvh bvh = Bvh::build(boxes, centers_of(boxes));
   check_structure(bvh, boxes, 4);
@@ -266,15 +268,19 @@ TEST(Bvh, FlatAndDegenerateBoxes) {
   test::Random rng(6);
   std::vector<Aabb> boxes(2000);
   for (Aabb& b : boxes) {
-    const Vec3 c(rng.uniform(-5, 5), rng.uniform(-5, 5), 0);
+    const Real cy = rng.uniform(-5, 5);
+    const Real cx = rng.uniform(-5, 5);
+    const Vec3 c(cx, cy, 0);
     b = {c, c + Vec3(rng.uniform(0, Real(0.1)), 0, 0)};
   }
   const Bvh bvh = Bvh::build(boxes, centers_of(boxes));
   check_structure(bvh, boxes, 4);
-  for (int q = 0; q < 300; ++q)
-    check_query(
-        bvh, boxes,
-        Aabb::from_center_half_extents(Vec3(rng.uniform(-5, 5), rng.uniform(-5, 5), 0), Vec3(rng.uniform(0, 1))));
+  for (int q = 0; q < 300; ++q) {
+    const Real half = rng.uniform(0, 1);
+    const Real cy = rng.uniform(-5, 5);
+    const Real cx = rng.uniform(-5, 5);
+    check_query(bvh, boxes, Aabb::from_center_half_extents(Vec3(cx, cy, 0), Vec3(half)));
+  }
 }
 
 }  // namespace test_bvh

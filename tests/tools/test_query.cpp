@@ -62,7 +62,8 @@ TEST(Query, FloatsPrintAsTheirShortestDecimal) {
   // Round trip: the printed number reads back as the same Real.
   test::Random rng(11);
   for (int i = 0; i < 1000; ++i) {
-    const Real x = rng.uniform(Real(-1e6), Real(1e6)) * std::pow(Real(10), Real(rng.integer(-20, 10)));
+    const Real mantissa = rng.uniform(Real(-1e6), Real(1e6));
+    const Real x = mantissa * std::pow(Real(10), Real(rng.integer(-20, 10)));
     const Json parsed = Json::parse(tool::to_json(x).dump());
     EXPECT_EQ(static_cast<Real>(parsed.get<double>()), x);
   }

@@ -21,6 +21,12 @@ class Random {
   int integer(int lo, int hi);
   /// Each coordinate uniform in [lo, hi).
   Vec3 vec3(Real lo, Real hi);
+  /// Each coordinate uniform in [lo[i], hi[i]), drawn z first, then y, then x (the order of
+  /// the three-argument form `Vec3(uniform(..x..), uniform(..y..), uniform(..z..))` under GCC,
+  /// which the sweeps' seeds were chosen with).
+  Vec3 in_box(const Vec3& lo, const Vec3& hi);
+  /// A uniform direction times a length uniform in [lo, hi); the length is drawn first.
+  Vec3 vector_of_length(Real lo, Real hi);
   /// Uniform in the ball of radius r.
   Vec3 in_ball(Real r);
   /// Uniform on the unit sphere.
