@@ -248,8 +248,12 @@ bool register_all(const std::string& dir) {
   benchmark::RegisterBenchmark("MeshMesh/Build/proxima", proxima_build)->Unit(benchmark::kMillisecond);
   for (const auto& [name, shape] : {std::pair{"mesh", 0}, std::pair{"capsule", 1}}) {
     const std::string base = std::string("MeshMesh/DistancePath/") + name + "/proxima_";
-    benchmark::RegisterBenchmark((base + "cold").c_str(), proxima_path_distance<false>)->Arg(shape)->Unit(benchmark::kMillisecond);
-    benchmark::RegisterBenchmark((base + "warm").c_str(), proxima_path_distance<true>)->Arg(shape)->Unit(benchmark::kMillisecond);
+    benchmark::RegisterBenchmark((base + "cold").c_str(), proxima_path_distance<false>)
+        ->Arg(shape)
+        ->Unit(benchmark::kMillisecond);
+    benchmark::RegisterBenchmark((base + "warm").c_str(), proxima_path_distance<true>)
+        ->Arg(shape)
+        ->Unit(benchmark::kMillisecond);
   }
   benchmark::RegisterBenchmark("MeshMesh/BuildOriented/proxima", proxima_build_oriented)->Unit(benchmark::kMillisecond);
   const auto oriented = static_cast<std::int64_t>(MeshMeshNodes::Oriented);

@@ -54,7 +54,9 @@ struct CompoundNodes {
 
   Aabb fix_a(std::uint32_t i) const { return na[i].bounds(); }
   Aabb fix_b(std::uint32_t j) const { return nb[j].bounds().transformed(rel); }
-  bool overlap(std::uint32_t i, const Aabb& b, Real margin) const { return na[i].bounds().inflated(margin).overlaps(b); }
+  bool overlap(std::uint32_t i, const Aabb& b, Real margin) const {
+    return na[i].bounds().inflated(margin).overlaps(b);
+  }
   bool overlap(const Aabb& a, std::uint32_t j, Real margin) const { return a.inflated(margin).overlaps(fix_b(j)); }
   Real size_a(std::uint32_t i) const { return na[i].bounds().surface_area(); }
   Real size_b(std::uint32_t j) const { return nb[j].bounds().surface_area(); }
@@ -88,8 +90,8 @@ DistanceResult distance_below(ShapeRef a, const Transform& pose_a, ShapeRef b, c
   return pair_functions(a.type(), b.type()).distance(a.data(), pose_a, b.data(), pose_b, request, nullptr, cutoff);
 }
 
-bool compound_intersect(const Compound& a, const Transform& pa, ShapeRef b, const Transform& pb,
-                        const PairRequest& req, PartHint* hint) {
+bool compound_intersect(const Compound& a, const Transform& pa, ShapeRef b, const Transform& pb, const PairRequest& req,
+                        PartHint* hint) {
   const auto kids = a.children();
   if (b.type() == ShapeType::Compound) {
     const auto kb = b.as<Compound>().children();

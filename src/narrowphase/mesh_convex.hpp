@@ -8,9 +8,9 @@
 #include <proxima/narrowphase/contact_collector.hpp>
 #include <proxima/shapes/shape_ref.hpp>
 
-#include "part_hint.hpp"
-
 #include <vector>
+
+#include "part_hint.hpp"
 
 namespace proxima::narrow {
 

@@ -9,10 +9,10 @@
 #include <proxima/narrowphase/contact_collector.hpp>
 #include <proxima/shapes/shape_ref.hpp>
 
-#include "part_hint.hpp"
-
 #include <cstdint>
 #include <vector>
+
+#include "part_hint.hpp"
 
 namespace proxima::narrow {
 

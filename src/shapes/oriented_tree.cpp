@@ -13,7 +13,6 @@
 // Cost: O(1) per node for steps 2 and the eigen solve, O(corners) per tree level for the
 // projections: O(n log n) in all, built once per mesh on the first mesh-mesh query.
 #include "shapes/oriented_tree.hpp"
-#include "shapes/triangle_mesh_derived.hpp"
 
 #include <algorithm>
 #include <cstdint>
@@ -21,6 +20,7 @@
 #include <span>
 
 #include "geometry/eigen_frame.hpp"
+#include "shapes/triangle_mesh_derived.hpp"
 
 namespace proxima {
 namespace detail {

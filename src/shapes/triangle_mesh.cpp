@@ -448,8 +448,8 @@ bool visit_wide_leaf(const detail::RayBvh& wide, std::uint32_t first, std::uint3
 /// whose box the ray meets within [0, max_t], through the chosen hierarchy, in no
 /// particular order. Returns false when stopped.
 template <class Visit>
-bool for_each_candidate(const MeshParts& d, const Ray& ray, const MeshRay& r, Real max_t,
-                        RayTraversal traversal, Visit&& visit) {
+bool for_each_candidate(const MeshParts& d, const Ray& ray, const MeshRay& r, Real max_t, RayTraversal traversal,
+                        Visit&& visit) {
   if (const detail::RayBvh* wide = wide_of(d.derived, traversal)) {
     const detail::WideRay w = detail::prepare_wide_ray(ray);
     if (w.valid) {

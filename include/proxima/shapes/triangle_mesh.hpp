@@ -140,7 +140,7 @@ class TriangleMesh {
     Bvh bvh;                                              ///< hierarchy over the triangles
     std::vector<std::array<std::uint32_t, 3>> neighbors;  ///< triangle across each edge
     std::vector<std::uint8_t> active_edges;               ///< 3 bits per triangle
-    Real flat_edge_angle = Real(0.01);  ///< MeshCreateOptions::flat_edge_angle used (deformed() reuses it)
+    Real flat_edge_angle = Real(0.01);             ///< MeshCreateOptions::flat_edge_angle used (deformed() reuses it)
     std::shared_ptr<detail::MeshDerived> derived;  ///< internal derived data and caches (never null)
   };
   explicit TriangleMesh(std::shared_ptr<const Data> data) : data_(std::move(data)) {}
