@@ -83,12 +83,17 @@ inline CoreSegmentPair core_segment_pair(const Vec3& a0, const Vec3& a1, const V
     // sqrt(epsilon): in float, along the normal of capsule cores 2e-4 apart the capsules
     // overlapped 2.8e-4 more than the depth) and the directions determine it better (the
     // sine of their angle times the shorter core exceeds the distance).
-    const Real scale = std::max({glm::length(a1 - a0), glm::length(b1 - b0), max_abs_component(sp.on_a)});
-    if (length < kSqrtEpsilon * scale && sp.s > Real(0) && sp.s < Real(1) && sp.t > Real(0) && sp.t < Real(1)) {
-      const Vec3 da = a1 - a0;
-      const Vec3 db = b1 - b0;
-      const Real la = glm::length(da);
-      const Real lb = glm::length(db);
+    // The L1 norms bound the core lengths from above, so that pairs far apart (nearly all)
+    // leave the test without a square root.
+    const Vec3 da = a1 - a0;
+    const Vec3 db = b1 - b0;
+    const Real rough_scale = std::max(
+        std::max(std::abs(da.x) + std::abs(da.y) + std::abs(da.z), std::abs(db.x) + std::abs(db.y) + std::abs(db.z)),
+        max_abs_component(sp.on_a));
+    const bool inside_both = sp.s > Real(0) && sp.s < Real(1) && sp.t > Real(0) && sp.t < Real(1);
+    const Real la = inside_both && length < kSqrtEpsilon * rough_scale ? glm::length(da) : Real(0);
+    const Real lb = la > Real(0) ? glm::length(db) : Real(0);
+    if (la > Real(0) && length < kSqrtEpsilon * std::max(std::max(la, lb), max_abs_component(sp.on_a))) {
       Vec3 c;
       Real lc = Real(0);
       if (unit_and_length(glm::cross(da, db), c, lc) && lc > kSqrtEpsilon * la * lb && lc > length * std::max(la, lb)) {

@@ -278,10 +278,11 @@ TEST(Cone, ContainsMatchesImplicitFunctionOnTheLeftToRightDraws) {
     // The inside counts of the sweep's thin and flat cones (r / h = 1e-3 and 1e3), where the
     // band |f| <= tol skipped near the surface is wide: about 515 of 5,000 expected there
     // (standard deviation 21), under the sweep's floor of 500 on this sequence.
-    if (dm.r == Real(1e-3) && dm.h == Real(1)) {
+    // Counts of the float build, where the band is that wide (double draws other values).
+    if (sizeof(Real) == 4 && dm.r == Real(1e-3) && dm.h == Real(1)) {
       EXPECT_EQ(in, 499);
     }
-    if (dm.r == Real(1e3) && dm.h == Real(1)) {
+    if (sizeof(Real) == 4 && dm.r == Real(1e3) && dm.h == Real(1)) {
       EXPECT_EQ(in, 491);
     }
   }
