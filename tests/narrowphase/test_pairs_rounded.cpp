@@ -117,6 +117,10 @@ TEST(PairsRounded, CapsuleCapsuleSweep) {
   }
 }
 
+// A rotation written with float's 9 digits: unit to float precision, so the double build
+// normalises it (unnormalised, it scales the pose by 1 +- 1e-7, far above double's tolerance).
+Quat unit_here(const Quat& q) { return sizeof(Real) == 4 ? q : glm::normalize(q); }
+
 // Case 1014 of the sweep above as the sanitizer build (clang) drew it while its draws were
 // arguments of one call (evaluated left to right there): a deep overlap (depth 0.64) of two
 // capsules whose cores pass 2.0e-4 apart, inside both. The normal taken from the difference
@@ -126,9 +130,9 @@ TEST(PairsRounded, CapsuleCapsuleDeepCrossing) {
   const Capsule a = capsule(Real(0.188083768), Real(0.835361838));
   const Capsule b = capsule(Real(0.450000465), Real(1.49526405));
   const Transform pa{Vec3(Real(-0.755729795), Real(-0.447105736), Real(1.42397392)),
-                     Quat(Real(0.54143858), Real(-0.443786114), Real(-0.696358442), Real(0.158060491))};
+                     unit_here(Quat(Real(0.54143858), Real(-0.443786114), Real(-0.696358442), Real(0.158060491)))};
   const Transform pb{Vec3(Real(-0.162981138), Real(0.343179345), Real(1.26895154)),
-                     Quat(Real(-0.179657131), Real(-0.329601675), Real(-0.50355196), Real(0.778152585))};
+                     unit_here(Quat(Real(-0.179657131), Real(-0.329601675), Real(-0.50355196), Real(0.778152585)))};
   const Real tol = test::pair_tol(scale_of(pa, pb, Real(6)));
   test::check_pair(a, pa, b, pb, capsule_pair_reference(a, pa, b, pb), tol, Real(0.0568147711),
                    "capsule-capsule deep crossing");
