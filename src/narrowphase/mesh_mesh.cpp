@@ -369,16 +369,19 @@ inline void triangle_sphere(const std::array<Vec3, 3>& t, Vec3& c, Real& r) {
   r = std::sqrt(std::max({glm::dot(t[0] - c, t[0] - c), glm::dot(t[1] - c, t[1] - c), glm::dot(t[2] - c, t[2] - c)}));
 }
 
+/// Triangle `t` of B in A's frame.
+std::array<Vec3, 3> b_in_a(const TriangleMesh& b, const RelativeFrame& f, std::uint32_t t) {
+  const std::array<Vec3, 3> v = b.triangle(t);
+  return {f.rotation * v[0] + f.t, f.rotation * v[1] + f.t, f.rotation * v[2] + f.t};
+}
+
 void load_leaf(const TriangleMesh& b, const RelativeFrame& f, const BvhNode& leaf, LeafTriangles& out) {
   const auto prims = b.bvh().primitives();
-  const auto verts = b.vertices();
-  const auto tris = b.triangles();
   out.count = std::min(leaf.count, kMaxLeafTriangles);
   for (std::uint32_t k = 0; k < out.count; ++k) {
     const std::uint32_t ti = prims[leaf.first + k];
     out.index[k] = ti;
-    const TriangleIndices& t = tris[ti];
-    for (int c = 0; c < 3; ++c) out.v[k][c] = f.rotation * verts[t[c]] + f.t;
+    out.v[k] = b_in_a(b, f, ti);
     triangle_sphere(out.v[k], out.center[k], out.radius[k]);
     out.normal[k] = unit_normal(out.v[k]);
     out.box[k] = {glm::min(glm::min(out.v[k][0], out.v[k][1]), out.v[k][2]),
@@ -397,12 +400,6 @@ inline bool triangles_within(const std::array<Vec3, 3>& a, const std::array<Vec3
 /// True when `hint` names a triangle of A and a triangle of B.
 bool valid_pair(const TriangleMesh& a, const TriangleMesh& b, const PartHint* hint) {
   return hint != nullptr && hint->a < a.triangle_count() && hint->b < b.triangle_count();
-}
-
-/// Triangle `t` of B in A's frame.
-std::array<Vec3, 3> b_in_a(const TriangleMesh& b, const RelativeFrame& f, std::uint32_t t) {
-  const std::array<Vec3, 3> v = b.triangle(t);
-  return {f.rotation * v[0] + f.t, f.rotation * v[1] + f.t, f.rotation * v[2] + f.t};
 }
 
 /// World-frame unit normal of A's triangle turned towards `towards` (A frame), +z when flat.
@@ -583,8 +580,7 @@ DistanceResult distance_descent(const TriangleMesh& a, const Transform& pose_a, 
     }
     if (hinted_touch || find_pair_within(a, b, f, nodes, node_margin(scale, Real(0)), Real(0), hit_a, hit_b)) {
       const std::array<Vec3, 3> ta = a.triangle(hit_a);
-      const std::array<Vec3, 3> tl = b.triangle(hit_b);
-      const std::array<Vec3, 3> tb{f.rotation * tl[0] + f.t, f.rotation * tl[1] + f.t, f.rotation * tl[2] + f.t};
+      const std::array<Vec3, 3> tb = b_in_a(b, f, hit_b);
       best_pair = geometry::closest_points_triangle_triangle(ta[0], ta[1], ta[2], tb[0], tb[1], tb[2]);
       best2 = Real(0);  // touching within the triangle test's tolerance
       best_a = hit_a;
