@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
 # Installs the dependencies, then builds and runs every test in three configurations:
 # AddressSanitizer + UBSan (float), double precision, and release (float, with the benchmark
-# programs, the workload tests and the package consumers: find_package, FetchContent,
-# and add_subdirectory with PROXIMA_EXCEPTIONS=OFF). Warnings are errors. The last lines printed are ctest's summary of the
-# release run. Compilation goes through ccache: a cold cache builds everything, a warm one
+# programs, the workload tests and the package consumers: find_package, and FetchContent
+# with PROXIMA_EXCEPTIONS=OFF). Warnings are errors. The last lines printed are ctest's
+# summary of the release run. Compilation goes through ccache: a cold cache builds everything, a warm one
 # (the same checkout rebuilt) only what changed.
 set -euo pipefail
 cd "$(dirname "$0")/.."

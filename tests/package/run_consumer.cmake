@@ -1,8 +1,8 @@
 # cmake -P script: configures, builds and runs tests/package/consumer in one of its modes.
 # Inputs (-D): MODE, SOURCE (proxima source dir), WORK (scratch dir), BUILD (proxima build
 # dir, for MODE=installed), GENERATOR, LAUNCHER (compiler launcher such as ccache; optional).
-# The consumers that compile the library from source (subdirectory, fetchcontent,
-# noexceptions) build it unoptimised and with clang when it is installed: they test how the
+# The fetchcontent consumer builds the library without exceptions (PROXIMA_CONSUMER_NO_EXCEPTIONS).
+# The consumers that compile the library from source (subdirectory, fetchcontent) build it unoptimised and with clang when it is installed: they test how the
 # package is consumed, not its speed, and -O0 compiles the library several times faster.
 file(REMOVE_RECURSE "${WORK}")
 file(MAKE_DIRECTORY "${WORK}")
@@ -30,6 +30,7 @@ elseif(MODE STREQUAL "fetchcontent")
       list(APPEND extra "-DPROXIMA_GIT_TAG=${head}")
     endif()
   endif()
+  list(APPEND extra "-DPROXIMA_CONSUMER_NO_EXCEPTIONS=ON")
 endif()
 
 set(build_type Release)
