@@ -53,26 +53,6 @@ Aabb padded(const Aabb& box) {
 
 }  // namespace
 
-Transform Motion::at(Real t) const {
-  Transform r;
-  r.position = start.position * (Real(1) - t) + end.position * t;
-  r.rotation = glm::normalize(glm::slerp(start.rotation, end.rotation, t));
-  return r;
-}
-
-Real Motion::rotation_angle() const {
-  const Quat rel = glm::conjugate(start.rotation) * end.rotation;
-  const Real v = std::sqrt(rel.x * rel.x + rel.y * rel.y + rel.z * rel.z);
-  return Real(2) * std::atan2(v, std::abs(rel.w));
-}
-
-bool Motion::is_translation() const {
-  const Quat& a = start.rotation;
-  const Quat& b = end.rotation;
-  return (a.w == b.w && a.x == b.x && a.y == b.y && a.z == b.z) ||
-         (a.w == -b.w && a.x == -b.x && a.y == -b.y && a.z == -b.z);
-}
-
 Real radius_about_origin(const Aabb& local_box) {
   const Vec3 far = glm::max(glm::abs(local_box.min), glm::abs(local_box.max));
   return glm::length(far);

@@ -4,14 +4,15 @@
 /// every placement of a shape along a motion between two poses, the capsule swept by a
 /// sphere, and the convex hull swept by a box or a convex hull.
 ///
-/// A Motion moves the position linearly and the rotation by slerp (constant angular
-/// velocity about a fixed axis, shortest arc) as t goes from 0 to 1. Pure translations
+/// A Motion (motion.hpp) moves the position linearly and the rotation by slerp (constant
+/// angular velocity about a fixed axis, shortest arc) as t goes from 0 to 1. Pure translations
 /// (identical start and end rotations) get tight answers; motions with rotation get
 /// conservative ones, as stated per function.
 
 #include <proxima/bounds/bounding_sphere.hpp>
 #include <proxima/bounds/fit_shape.hpp>
 #include <proxima/bounds/obb.hpp>
+#include <proxima/ccd/motion.hpp>
 #include <proxima/core/math.hpp>
 #include <proxima/core/result.hpp>
 #include <proxima/core/transform.hpp>
@@ -26,22 +27,6 @@
 #include <span>
 
 namespace proxima {
-
-/// A rigid motion from `start` (t = 0) to `end` (t = 1), both local-to-world placements.
-struct Motion {
-  Transform start;  ///< placement at t = 0
-  Transform end;    ///< placement at t = 1
-
-  /// The placement at `t` in [0, 1]: position (1 - t) start + t end, rotation slerp (shortest
-  /// arc) from start to end.
-  Transform at(Real t) const;
-  /// Angle in radians, in [0, pi], of the rotation from start to end along the slerp path.
-  Real rotation_angle() const;
-  /// True when start and end rotations are equal (q or -q): the motion is a translation.
-  bool is_translation() const;
-  /// Displacement of the origin, end.position - start.position.
-  Vec3 displacement() const { return end.position - start.position; }
-};
 
 /// Radius of the ball about the local origin that contains `local_box` (its farthest
 /// corner's distance).
