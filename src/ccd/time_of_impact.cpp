@@ -24,79 +24,22 @@
 //     and normal from the narrow phase's EPA or closed form); a touching pair whose
 //     certified closing speed is <= 0 is Separated.
 
-#include <proxima/ccd/movement_bounds.hpp>
 #include <proxima/ccd/time_of_impact.hpp>
 #include <proxima/core/tolerance.hpp>
 #include <proxima/core/validate.hpp>
 #include <proxima/narrowphase/narrowphase.hpp>
-#include <proxima/shapes/placed.hpp>
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <type_traits>
+
+#include "ccd/shape_radii.hpp"
 
 namespace proxima {
 
 namespace {
 
 constexpr Real kInfinity = std::numeric_limits<Real>::infinity();
-
-// Radii of a geometry about its local origin: `core` bounds the points that rotation moves
-// (infinite for a half-space), `full` bounds the whole shape.
-struct Radii {
-  Real core = Real(0);
-  Real full = Real(0);
-  bool convex = false;     // bounded convex shape: has a support mapping
-  bool halfspace = false;  // unbounded
-};
-
-template <class S>
-Real hull_radius(const S& shape) {
-  Real r2 = Real(0);
-  for (const Vec3& v : shape.vertices()) r2 = std::max(r2, glm::dot(v, v));
-  return std::sqrt(r2);
-}
-
-Radii radii_of(ShapeRef shape) {
-  return visit_shape(shape, [](const auto& s) -> Radii {
-    using S = std::decay_t<decltype(s)>;
-    Radii r;
-    if constexpr (std::is_same_v<S, HalfSpace>) {
-      r.core = r.full = kInfinity;
-      r.halfspace = true;
-    } else if constexpr (std::is_same_v<S, TriangleMesh> || std::is_same_v<S, Compound>) {
-      r.core = r.full = radius_about_origin(s.local_aabb());
-    } else {
-      r.convex = true;
-      if constexpr (std::is_same_v<S, Sphere> || std::is_same_v<S, Point>) {
-        r.core = Real(0);
-        r.full = s.core_radius();
-      } else if constexpr (std::is_same_v<S, Capsule>) {
-        r.core = s.half_length();
-        r.full = s.half_length() + s.radius();
-      } else if constexpr (std::is_same_v<S, ConvexHull>) {
-        r.core = r.full = hull_radius(s);
-      } else {
-        r.full = radius_about_origin(s.local_aabb());
-        r.core = r.full;
-      }
-    }
-    return r;
-  });
-}
-
-// World support point of a bounded convex shape (only called when Radii::convex).
-Vec3 world_support(ShapeRef shape, const Transform& pose, const Vec3& direction) {
-  return visit_shape(shape, [&](const auto& s) -> Vec3 {
-    using S = std::decay_t<decltype(s)>;
-    if constexpr (ConvexShape<S> && !std::is_same_v<S, HalfSpace>) {
-      return support(s, pose, direction);
-    } else {
-      return pose.position;
-    }
-  });
-}
 
 std::optional<Error> validate_options(const ToiOptions& o) {
   if (auto e = validate::non_negative(o.target_distance, "options.target_distance")) return e;
@@ -117,7 +60,7 @@ struct Pair {
   ShapeRef a, b;
   Motion ma, mb;  // recentred motions
   Vec3 va{Real(0)}, vb{Real(0)}, wa{Real(0)}, wb{Real(0)};
-  Radii ra, rb;
+  detail::ShapeRadii ra, rb;
   Real lip_a = Real(0), lip_b = Real(0);  // rotational radii of the Lipschitz bound
   Real scale = Real(1);
   Real target = Real(0);
@@ -127,7 +70,8 @@ struct Pair {
 // Rotational radius of the Lipschitz bound for `self`: its full radius, or, for a
 // half-space, the largest distance from its origin to any point of `other` over the step
 // (the distance between the two linear origin paths is convex in t: largest at an end).
-Real lipschitz_radius(const Radii& self, const Radii& other, const Motion& ms, const Motion& mo) {
+Real lipschitz_radius(const detail::ShapeRadii& self, const detail::ShapeRadii& other, const Motion& ms,
+                      const Motion& mo) {
   if (!self.halfspace) return self.full;
   const Real ends =
       std::max(glm::length(mo.start.position - ms.start.position), glm::length(mo.end.position - ms.end.position));
@@ -151,7 +95,7 @@ Real certified_step(const Pair& p, const DistanceResult& d, const Transform& pa,
   if (lower > p.target) step = lip > Real(0) ? (lower - p.target) / lip : kInfinity;
   // Directional bound (two bounded convex shapes).
   if (p.ra.convex && p.rb.convex) {
-    const Real g = glm::dot(n, world_support(p.b, pb, -n)) - glm::dot(n, world_support(p.a, pa, n));
+    const Real g = glm::dot(n, detail::world_support(p.b, pb, -n)) - glm::dot(n, detail::world_support(p.a, pa, n));
     lower = std::max(lower, g);
     const Real mu =
         directional_speed_bound(n, p.va - p.vb, p.wa, p.ra.core) +
@@ -221,8 +165,8 @@ Result<ToiResult> time_of_impact(ShapeRef a, const Motion& motion_a, ShapeRef b,
   p.vb = p.mb.displacement();
   p.wa = p.ma.angular_velocity();
   p.wb = p.mb.angular_velocity();
-  p.ra = radii_of(a);
-  p.rb = radii_of(b);
+  p.ra = detail::shape_radii(a);
+  p.rb = detail::shape_radii(b);
   p.lip_a = lipschitz_radius(p.ra, p.rb, p.ma, p.mb);
   p.lip_b = lipschitz_radius(p.rb, p.ra, p.mb, p.ma);
   const Real reach =
