@@ -335,6 +335,13 @@ std::optional<Error> validate_pose(const Transform& pose, const std::string& nam
 
 }  // namespace
 
+std::optional<Error> validate_cast_options(const CastOptions& o) {
+  if (auto e = validate::non_negative(o.target_distance, "options.target_distance")) return e;
+  if (auto e = validate::non_negative(o.tolerance, "options.tolerance")) return e;
+  if (o.max_iterations < 1) return make_error(ErrorCode::OutOfRange, "options.max_iterations", "must be at least 1");
+  return std::nullopt;
+}
+
 Result<CastResult> shape_cast(ShapeRef a, const Transform& pose_a, const Vec3& translation, ShapeRef b,
                               const Transform& pose_b, const CastOptions& options) {
   if (auto e = validate_pose(pose_a, "pose_a")) return *e;

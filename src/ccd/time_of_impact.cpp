@@ -41,7 +41,9 @@ namespace {
 
 constexpr Real kInfinity = std::numeric_limits<Real>::infinity();
 
-std::optional<Error> validate_options(const ToiOptions& o) {
+}  // namespace
+
+std::optional<Error> validate_toi_options(const ToiOptions& o) {
   if (auto e = validate::non_negative(o.target_distance, "options.target_distance")) return e;
   if (auto e = validate::non_negative(o.tolerance, "options.tolerance")) return e;
   if (o.max_iterations < 1) {
@@ -49,6 +51,8 @@ std::optional<Error> validate_options(const ToiOptions& o) {
   }
   return std::nullopt;
 }
+
+namespace {
 
 Motion shifted(const Motion& m, const Vec3& origin) {
   return {{m.start.position - origin, m.start.rotation}, {m.end.position - origin, m.end.rotation}};
@@ -84,19 +88,17 @@ Real rotational(const Vec3& w, Real radius) {
 }
 
 // How far past t the gap is proved to stay above the target (0: no progress proved).
-Real certified_step(const Pair& p, const DistanceResult& d, const Transform& pa, const Transform& pb, Real& lower) {
-  // `lower` receives the best proven lower bound of the distance at t.
+Real certified_step(const Pair& p, const DistanceResult& d, const Transform& pa, const Transform& pb) {
   const Vec3 n = d.normal;
   Real step = Real(0);
   // Lipschitz bound on the narrow phase's distance, less its error.
   const Real error = Real(16) * kEpsilon * p.scale + Real(8) * kEpsilon * std::abs(d.signed_distance);
-  lower = d.signed_distance - error;
+  const Real lower = d.signed_distance - error;
   const Real lip = glm::length(p.va - p.vb) + rotational(p.wa, p.lip_a) + rotational(p.wb, p.lip_b);
   if (lower > p.target) step = lip > Real(0) ? (lower - p.target) / lip : kInfinity;
   // Directional bound (two bounded convex shapes).
   if (p.ra.convex && p.rb.convex) {
     const Real g = glm::dot(n, detail::world_support(p.b, pb, -n)) - glm::dot(n, detail::world_support(p.a, pa, n));
-    lower = std::max(lower, g);
     const Real mu =
         directional_speed_bound(n, p.va - p.vb, p.wa, p.ra.core) +
         (glm::length(glm::cross(n, p.wb)) > Real(0) ? glm::length(glm::cross(n, p.wb)) * p.rb.core : Real(0));
@@ -155,7 +157,7 @@ Result<ToiResult> time_of_impact(ShapeRef a, const Motion& motion_a, ShapeRef b,
                                  const ToiOptions& options) {
   if (auto e = validate_motion(motion_a, "motion_a")) return *e;
   if (auto e = validate_motion(motion_b, "motion_b")) return *e;
-  if (auto e = validate_options(options)) return *e;
+  if (auto e = validate_toi_options(options)) return *e;
 
   Pair p(a, b);
   const Vec3 origin = motion_b.start.position;
@@ -204,8 +206,7 @@ Result<ToiResult> time_of_impact(ShapeRef a, const Motion& motion_a, ShapeRef b,
       fill_contact(r, d, origin);
       return r;
     }
-    Real lower = Real(0);
-    const Real step = certified_step(p, d, pa, pb, lower);
+    const Real step = certified_step(p, d, pa, pb);
     // No bound proves progress when the tolerance is below what the geometry can resolve:
     // report the bracket reached.
     if (!(step > Real(0))) return bracket(r, t);

@@ -24,6 +24,8 @@
 #include <proxima/core/transform.hpp>
 #include <proxima/shapes/shape_ref.hpp>
 
+#include <optional>
+
 namespace proxima {
 
 /// Options of shape_cast.
@@ -55,6 +57,10 @@ struct CastResult {
   SubShapeId sub_a{};                       ///< part of A at the hit (mesh triangle, compound child)
   SubShapeId sub_b{};                       ///< part of B at the hit
 };
+
+/// Checks CastOptions: empty when acceptable, else the Error naming the field
+/// ("options.target_distance", "options.tolerance", "options.max_iterations").
+std::optional<Error> validate_cast_options(const CastOptions& options);
 
 /// Casts A, placed at `pose_a`, along `translation` (world, length units) against B at
 /// `pose_b`. Errors (Result, never an exception): non-finite or non-unit poses ("pose_a.rotation"

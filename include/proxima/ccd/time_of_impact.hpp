@@ -21,6 +21,7 @@
 #include <proxima/shapes/shape_ref.hpp>
 
 #include <cstdint>
+#include <optional>
 
 namespace proxima {
 
@@ -81,6 +82,10 @@ struct ToiResult {
 /// do not graze).
 Result<ToiResult> time_of_impact(ShapeRef a, const Motion& motion_a, ShapeRef b, const Motion& motion_b,
                                  const ToiOptions& options = {});
+
+/// Checks ToiOptions: empty when acceptable, else the Error naming the field
+/// ("options.target_distance", "options.tolerance", "options.max_iterations").
+std::optional<Error> validate_toi_options(const ToiOptions& options);
 
 /// Name of a status ("hit", "separated", "initially_overlapping", "max_iterations", "failed").
 const char* to_string(CcdStatus status);
