@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <string>
+#include <string_view>
 
 namespace proxima {
 
@@ -17,9 +18,11 @@ Error in_query(Error e, std::size_t i) {
   return e;
 }
 
-std::optional<Error> check_pose(const Transform& pose, const std::string& name) {
-  if (auto e = validate::finite(pose.position, name + ".position")) return e;
-  return validate::unit_quaternion(pose.rotation, name + ".rotation");
+std::optional<Error> check_pose(const Transform& pose, std::string_view name) {
+  if (validate::is_acceptable(pose.position) && validate::is_unit(pose.rotation)) return std::nullopt;
+  const std::string n(name);
+  if (auto e = validate::finite(pose.position, n + ".position")) return e;
+  return validate::unit_quaternion(pose.rotation, n + ".rotation");
 }
 
 // Items per executor call: a handful of grains per thread, whole queries each.

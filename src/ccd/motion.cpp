@@ -53,11 +53,16 @@ Vec3 Motion::angular_velocity() const {
   return axis * (angle / s);
 }
 
-std::optional<Error> validate_motion(const Motion& motion, const std::string& name) {
-  if (auto e = validate::finite(motion.start.position, name + ".start.position")) return e;
-  if (auto e = validate::unit_quaternion(motion.start.rotation, name + ".start.rotation")) return e;
-  if (auto e = validate::finite(motion.end.position, name + ".end.position")) return e;
-  if (auto e = validate::unit_quaternion(motion.end.rotation, name + ".end.rotation")) return e;
+std::optional<Error> validate_motion(const Motion& motion, std::string_view name) {
+  if (validate::is_acceptable(motion.start.position) && validate::is_acceptable(motion.end.position) &&
+      validate::is_unit(motion.start.rotation) && validate::is_unit(motion.end.rotation)) {
+    return std::nullopt;  // the usual case: no field names built
+  }
+  const std::string n(name);
+  if (auto e = validate::finite(motion.start.position, n + ".start.position")) return e;
+  if (auto e = validate::unit_quaternion(motion.start.rotation, n + ".start.rotation")) return e;
+  if (auto e = validate::finite(motion.end.position, n + ".end.position")) return e;
+  if (auto e = validate::unit_quaternion(motion.end.rotation, n + ".end.rotation")) return e;
   return std::nullopt;
 }
 

@@ -30,6 +30,10 @@ namespace {
 constexpr Real kInfinity = std::numeric_limits<Real>::infinity();
 
 std::optional<Error> validate_body(const MovingBody& body, const std::string& name) {
+  if (validate::is_acceptable(body.pose.position) && validate::is_unit(body.pose.rotation) &&
+      validate::is_acceptable(body.linear) && validate::is_acceptable(body.angular)) {
+    return std::nullopt;
+  }
   if (auto e = validate::finite(body.pose.position, name + ".pose.position")) return e;
   if (auto e = validate::unit_quaternion(body.pose.rotation, name + ".pose.rotation")) return e;
   if (auto e = validate::finite(body.linear, name + ".linear")) return e;
@@ -86,7 +90,9 @@ Real rotation_radius(ShapeRef shape) { return detail::shape_radii(shape).core; }
 Result<Real> safe_time_step(const MovingBody& a, const MovingBody& b, Real target_distance) {
   if (auto e = validate_body(a, "a")) return *e;
   if (auto e = validate_body(b, "b")) return *e;
-  if (auto e = validate::non_negative(target_distance, "target_distance")) return *e;
+  if (!(target_distance >= Real(0) && target_distance <= kMaxCoordinate)) {
+    if (auto e = validate::non_negative(target_distance, "target_distance")) return *e;
+  }
   return pair_step(a, b, target_distance);
 }
 

@@ -27,6 +27,8 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <string>
+#include <string_view>
 #include <type_traits>
 
 namespace proxima {
@@ -328,14 +330,18 @@ CastResult cast_any(const Cast& c, ShapeRef b, const Transform& pose_b) {
   return cast_by_toi(c, b, pose_b);
 }
 
-std::optional<Error> validate_pose(const Transform& pose, const std::string& name) {
-  if (auto e = validate::finite(pose.position, name + ".position")) return e;
-  return validate::unit_quaternion(pose.rotation, name + ".rotation");
+std::optional<Error> validate_pose(const Transform& pose, std::string_view name) {
+  if (validate::is_acceptable(pose.position) && validate::is_unit(pose.rotation)) return std::nullopt;
+  const std::string n(name);
+  if (auto e = validate::finite(pose.position, n + ".position")) return e;
+  return validate::unit_quaternion(pose.rotation, n + ".rotation");
 }
 
 }  // namespace
 
 std::optional<Error> validate_cast_options(const CastOptions& o) {
+  const auto fine = [](Real x) { return std::isfinite(x) && x >= Real(0) && x <= kMaxCoordinate; };
+  if (fine(o.target_distance) && fine(o.tolerance) && o.max_iterations >= 1) return std::nullopt;
   if (auto e = validate::non_negative(o.target_distance, "options.target_distance")) return e;
   if (auto e = validate::non_negative(o.tolerance, "options.tolerance")) return e;
   if (o.max_iterations < 1) return make_error(ErrorCode::OutOfRange, "options.max_iterations", "must be at least 1");

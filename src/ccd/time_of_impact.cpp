@@ -44,6 +44,8 @@ constexpr Real kInfinity = std::numeric_limits<Real>::infinity();
 }  // namespace
 
 std::optional<Error> validate_toi_options(const ToiOptions& o) {
+  const auto fine = [](Real x) { return std::isfinite(x) && x >= Real(0) && x <= kMaxCoordinate; };
+  if (fine(o.target_distance) && fine(o.tolerance) && o.max_iterations >= 1) return std::nullopt;
   if (auto e = validate::non_negative(o.target_distance, "options.target_distance")) return e;
   if (auto e = validate::non_negative(o.tolerance, "options.tolerance")) return e;
   if (o.max_iterations < 1) {

@@ -14,6 +14,7 @@ std::optional<Error> finite(Real x, const std::string& field) {
 }
 
 std::optional<Error> finite(const Vec3& v, const std::string& field) {
+  if (is_acceptable(v)) return std::nullopt;
   static const char* const kAxis[] = {".x", ".y", ".z"};
   for (int i = 0; i < 3; ++i) {
     if (auto e = finite(v[i], field + kAxis[i])) return e;

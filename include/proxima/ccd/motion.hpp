@@ -17,7 +17,7 @@
 #include <proxima/core/transform.hpp>
 
 #include <optional>
-#include <string>
+#include <string_view>
 
 namespace proxima {
 
@@ -53,7 +53,7 @@ struct Motion {
 /// Checks a motion at an API boundary: finite positions (|x| <= kMaxCoordinate) and unit
 /// quaternions (|1 - |q|| <= 1e-3). Empty when acceptable, else the Error naming the field:
 /// "<name>.start.rotation", "<name>.end.position" ...
-std::optional<Error> validate_motion(const Motion& motion, const std::string& name);
+std::optional<Error> validate_motion(const Motion& motion, std::string_view name);
 
 /// Upper bound of the speed, along the unit direction `n`, of any point within `radius` of
 /// the origin of a shape moving with origin velocity `linear` and angular velocity

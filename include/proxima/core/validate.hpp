@@ -5,11 +5,21 @@
 
 #include <proxima/core/math.hpp>
 #include <proxima/core/result.hpp>
+#include <proxima/core/tolerance.hpp>
 
+#include <cmath>
 #include <optional>
 #include <string>
 
 namespace proxima::validate {
+
+/// True when `v` passes finite(v, ...): the allocation-free test for hot paths, which build
+/// the Error (and its field name) only when this fails.
+inline bool is_acceptable(const Vec3& v) { return is_finite(v) && max_abs_component(v) <= kMaxCoordinate; }
+/// True when `q` passes unit_quaternion(q, ...).
+inline bool is_unit(const Quat& q) {
+  return is_finite(q) && std::abs(std::sqrt(q.w * q.w + q.x * q.x + q.y * q.y + q.z * q.z) - Real(1)) <= Real(1e-3);
+}
 
 /// A finite number with |x| <= kMaxCoordinate.
 std::optional<Error> finite(Real x, const std::string& field);
