@@ -6,6 +6,7 @@
 #include <proxima/shapes/placed.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <type_traits>
@@ -21,7 +22,48 @@ Real hull_radius(const S& shape) {
   return std::sqrt(r2);
 }
 
+// Largest distance of `points` from the line through the origin along the unit `axis`.
+template <class Points>
+Real farthest_from_axis(const Points& points, const Vec3& axis) {
+  Real r2 = Real(0);
+  for (const Vec3& p : points) {
+    const Vec3 off = p - glm::dot(p, axis) * axis;
+    r2 = std::max(r2, glm::dot(off, off));
+  }
+  return std::sqrt(r2);
+}
+
+std::array<Vec3, 8> corners(const Aabb& box) {
+  std::array<Vec3, 8> c;
+  for (int i = 0; i < 8; ++i) {
+    c[i] = Vec3(i & 1 ? box.max.x : box.min.x, i & 2 ? box.max.y : box.min.y, i & 4 ? box.max.z : box.min.z);
+  }
+  return c;
+}
+
 }  // namespace
+
+ShapeRadii shape_radii_about_axis(ShapeRef shape, const Vec3& axis) {
+  ShapeRadii r = shape_radii(shape);
+  if (r.halfspace) return r;
+  visit_shape(shape, [&](const auto& s) {
+    using S = std::decay_t<decltype(s)>;
+    if constexpr (std::is_same_v<S, Sphere> || std::is_same_v<S, Point>) {
+      // Rotation does not move them; `full` keeps the rounding radius.
+    } else if constexpr (std::is_same_v<S, Capsule>) {
+      const std::array<Vec3, 2> ends{s.top(), -s.top()};
+      r.core = std::min(r.core, farthest_from_axis(ends, axis));
+      r.full = std::min(r.full, r.core + s.radius());
+    } else if constexpr (std::is_same_v<S, ConvexHull>) {
+      r.core = r.full = std::min(r.full, farthest_from_axis(s.vertices(), axis));
+    } else {
+      const Real by_box = farthest_from_axis(corners(s.local_aabb()), axis);
+      r.core = std::min(r.core, by_box);
+      r.full = std::min(r.full, by_box);
+    }
+  });
+  return r;
+}
 
 ShapeRadii shape_radii(ShapeRef shape) {
   constexpr Real kInfinity = std::numeric_limits<Real>::infinity();

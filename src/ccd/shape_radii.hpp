@@ -20,6 +20,13 @@ struct ShapeRadii {
 /// The radii of `shape` (O(1), a hull: O(vertices)).
 ShapeRadii shape_radii(ShapeRef shape);
 
+/// Radii about the line through the local origin along the unit `local_axis` (the axis of a
+/// rotation, fixed in the body's frame): `core` for the points that the rotation moves,
+/// `full` for the whole shape; each at most the matching radius of shape_radii. Half-spaces:
+/// +infinity. Exact for boxes, hulls and capsules; other shapes use the corners of their
+/// local box (distance from a line is convex, so a box's farthest point is a corner).
+ShapeRadii shape_radii_about_axis(ShapeRef shape, const Vec3& local_axis);
+
 /// World support point of a bounded convex shape at `pose` (only when ShapeRadii::convex;
 /// the pose's position otherwise).
 Vec3 world_support(ShapeRef shape, const Transform& pose, const Vec3& direction);

@@ -11,8 +11,9 @@
 //     - directional (bounded convex shapes): g = min over B of n.x - max over A of n.x,
 //       from one support call per shape, is <= the distance at every time, and it
 //       decreases at most at mu = n.(v_a - v_b) + |n x w_a| r_a + |n x w_b| r_b, where r
-//       is the radius of the shape's core about its origin (a rounding ball does not move
-//       under rotation about its centre);
+//       is the radius of the shape's core about its rotation axis through its origin (the
+//       axis is fixed in the body's frame; a rounding ball does not move under rotation
+//       about its centre);
 //     - Lipschitz (any geometry): the distance itself, less the narrow phase's error,
 //       decreases at most at L = |v_a - v_b| + |w_a| R_a + |w_b| R_b (R the full radius;
 //       for a half-space, the largest distance from its origin to the other shape).
@@ -82,6 +83,14 @@ Real lipschitz_radius(const detail::ShapeRadii& self, const detail::ShapeRadii& 
   const Real ends =
       std::max(glm::length(mo.start.position - ms.start.position), glm::length(mo.end.position - ms.end.position));
   return ends + other.full;
+}
+
+// Radii of a geometry for its motion: about its rotation axis (fixed in the body's frame,
+// since the body turns about it) when it rotates.
+detail::ShapeRadii radii_for(ShapeRef shape, const Motion& m, const Vec3& w) {
+  const Real speed = glm::length(w);
+  if (!(speed > Real(0))) return detail::shape_radii(shape);
+  return detail::shape_radii_about_axis(shape, m.start.inverse_apply_vector(w / speed));
 }
 
 Real rotational(const Vec3& w, Real radius) {
@@ -169,8 +178,8 @@ Result<ToiResult> time_of_impact(ShapeRef a, const Motion& motion_a, ShapeRef b,
   p.vb = p.mb.displacement();
   p.wa = p.ma.angular_velocity();
   p.wb = p.mb.angular_velocity();
-  p.ra = detail::shape_radii(a);
-  p.rb = detail::shape_radii(b);
+  p.ra = radii_for(a, p.ma, p.wa);
+  p.rb = radii_for(b, p.mb, p.wb);
   p.lip_a = lipschitz_radius(p.ra, p.rb, p.ma, p.mb);
   p.lip_b = lipschitz_radius(p.rb, p.ra, p.mb, p.ma);
   const Real reach =
