@@ -78,8 +78,9 @@ struct ToiResult {
 /// ...), NotFinite / Negative target_distance ("options.target_distance"), NotFinite /
 /// Negative tolerance ("options.tolerance"), max_iterations < 1 ("options.max_iterations").
 /// Identical start and end poses are valid: a static overlap test. Any pair of geometry
-/// kinds; cost: a few distance queries (one for a pure translation of convex shapes that
-/// do not graze).
+/// kinds. Two convex shapes whose cores do not turn (translations; spheres and points may
+/// spin) are answered by one GJK ray cast (shape_cast.hpp), with the same certificate.
+/// Cost: a few distance queries, more for fast rotations of elongated shapes.
 Result<ToiResult> time_of_impact(ShapeRef a, const Motion& motion_a, ShapeRef b, const Motion& motion_b,
                                  const ToiOptions& options = {});
 
