@@ -1,6 +1,7 @@
 // proxima: the command-line tool of the Proxima library.
 //   proxima --version          version and scalar precision
 //   proxima demo [options]     the billiard-break demo (statistics + SVG picture)
+//   proxima demo-tunnelling    discrete against continuous detection of fast bullets (+ SVG)
 //   proxima query [FILE|-]     the JSON query protocol, one request per line
 //   proxima bench broadphase   one broad-phase structure on a W1 workload file
 //   proxima mesh-info FILE     validation/repair report, bounds, volume, BVH of a mesh file
@@ -16,6 +17,7 @@
 
 #include "bench_command.hpp"
 #include "demo_billiards.hpp"
+#include "demo_tunnelling.hpp"
 #include "json_shapes.hpp"
 #include "mesh_info.hpp"
 #include "query.hpp"
@@ -73,6 +75,23 @@ int run(int argc, char** argv) {
       ->check(CLI::Range(0.0, 1000.0));
   demo_cmd->add_flag("--quiet,-q", demo.quiet, "Print nothing (still writes the SVG)");
 
+  proxima::tool::TunnellingDemoOptions tunnelling;
+  CLI::App* tunnelling_cmd = app.add_subcommand(
+      "demo-tunnelling",
+      "Fast bullets at thin spinning plates: discrete (intersect per frame) against continuous (time_of_impact) "
+      "detection; prints statistics, draws both runs side by side as an SVG");
+  tunnelling_cmd->add_option("--frames", tunnelling.config.frames, "Frames to simulate at 60 Hz")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 100000));
+  tunnelling_cmd->add_option("--bullets", tunnelling.config.bullets, "Bullets fired, spread over the run")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 100000));
+  tunnelling_cmd->add_option("--svg", tunnelling.svg_path, "Picture of both runs side by side (empty: none)")
+      ->capture_default_str();
+  tunnelling_cmd->add_option("--seed", tunnelling.config.seed, "Bullets' lanes, aims, speeds, sizes; plates' phases")
+      ->capture_default_str();
+  tunnelling_cmd->add_flag("--quiet,-q", tunnelling.quiet, "Print nothing (still writes the SVG)");
+
   std::string query_input;
   CLI::App* query_cmd = app.add_subcommand(
       "query", "Answer JSON requests, one per line, from FILE or standard input; one JSON answer per line");
@@ -118,6 +137,7 @@ int run(int argc, char** argv) {
 
   try {
     if (demo_cmd->parsed()) return proxima::tool::run_billiards_demo(demo, std::cout, std::cerr);
+    if (tunnelling_cmd->parsed()) return proxima::tool::run_tunnelling_demo(tunnelling, std::cout, std::cerr);
     if (query_cmd->parsed()) return run_query(query_input);
     if (mesh_info_cmd->parsed()) {
       mesh_info.repair = !mesh_info_no_repair;

@@ -78,6 +78,22 @@ void SvgWriter::polyline(const std::vector<SvgPoint>& points, std::string_view s
   body_ += "/>\n";
 }
 
+void SvgWriter::polygon(const std::vector<SvgPoint>& points, std::string_view fill, std::string_view stroke,
+                        double stroke_width, double opacity) {
+  std::string coords;
+  coords.reserve(points.size() * 14);
+  for (const SvgPoint& p : points) {
+    if (!coords.empty()) coords += ' ';
+    coords += num(p.x) + "," + num(p.y);
+  }
+  body_ += "<polygon" + attr("points", coords) + attr("fill", fill);
+  if (stroke_width > 0.0) {
+    body_ += attr("stroke", stroke) + attr("stroke-width", num(stroke_width)) + attr("stroke-linejoin", "round");
+  }
+  if (opacity < 1.0) body_ += attr("opacity", num(opacity));
+  body_ += "/>\n";
+}
+
 void SvgWriter::line(SvgPoint a, SvgPoint b, std::string_view stroke, double stroke_width) {
   body_ += "<line" + attr("x1", num(a.x)) + attr("y1", num(a.y)) + attr("x2", num(b.x)) + attr("y2", num(b.y)) +
            attr("stroke", stroke) + attr("stroke-width", num(stroke_width)) + "/>\n";

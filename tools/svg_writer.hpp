@@ -1,5 +1,5 @@
 #pragma once
-// SvgWriter: builds a small SVG 1.1 document (rectangles, circles, polylines, text) in
+// SvgWriter: builds a small SVG 1.1 document (rectangles, circles, polylines, polygons, text) in
 // memory and writes it to a file. Coordinates are in user units (pixels of the viewBox).
 #include <string>
 #include <string_view>
@@ -30,6 +30,10 @@ class SvgWriter {
   /// Open polyline through `points` (no fill); `dash` is an SVG stroke-dasharray or empty.
   void polyline(const std::vector<SvgPoint>& points, std::string_view stroke, double stroke_width, double opacity = 1.0,
                 std::string_view dash = {});
+  /// Closed polygon through `points`, filled (fill "none": outline only) and stroked when
+  /// stroke_width > 0; opacity (of fill and stroke) in [0, 1].
+  void polygon(const std::vector<SvgPoint>& points, std::string_view fill, std::string_view stroke = "none",
+               double stroke_width = 0.0, double opacity = 1.0);
   /// A line segment.
   void line(SvgPoint a, SvgPoint b, std::string_view stroke, double stroke_width);
   /// Text with its baseline starting at (x, y); `text` is escaped.
