@@ -4,6 +4,7 @@
 
 #include "query_bound_ops.hpp"
 #include "query_broadphase_ops.hpp"
+#include "query_ccd_ops.hpp"
 #include "query_pair_ops.hpp"
 #include "query_shape_ops.hpp"
 
@@ -24,6 +25,14 @@ const std::array kOperations = {
     Operation{"collide", op_collide,
               "a, b, max_contacts?, contact_distance? -> hit, normal, contacts[point_a, point_b, normal, depth], "
               "status, method"},
+    Operation{"toi", op_toi,
+              "a, b (each shape, pose, pose_end?), target_distance?, tolerance?, max_iterations? -> hit, toi, "
+              "toi_lower, toi_upper, point, normal, depth, status, iterations"},
+    Operation{"cast", op_cast,
+              "a, translation, b, target_distance?, tolerance?, max_iterations?, cull_back_faces? -> hit, t, point, "
+              "normal, depth, status, iterations"},
+    Operation{"safe_step", op_safe_step,
+              "a, b (each shape, pose, linear_velocity?, angular_velocity?), target_distance? -> dt (null: never)"},
 };
 
 }  // namespace
