@@ -31,6 +31,8 @@
 #include <string_view>
 #include <type_traits>
 
+#include "ccd/toi_unchecked.hpp"
+
 namespace proxima {
 
 namespace {
@@ -94,6 +96,31 @@ CastResult classify_start(const Cast& c, ShapeRef b, const Transform& pose_b) {
   return r;
 }
 
+// Conservative advancement on the narrow phase's distance for the translation of A (two
+// non-convex geometries, or a convex pair whose GJK cast could not decide).
+CastResult cast_by_advancement(const Cast& c, ShapeRef b, const Transform& pose_b) {
+  ToiOptions o;
+  o.target_distance = c.target;
+  o.tolerance = c.tolerance;
+  o.max_iterations = std::max(c.max_iterations, 128);
+  const Motion ma{c.pose_a, {c.pose_a.position + c.s, c.pose_a.rotation}};
+  const ToiResult toi_result = detail::time_of_impact_unchecked(c.a, ma, b, Motion::stationary(pose_b), o, false);
+  const ToiResult* toi = &toi_result;
+  CastResult r;
+  r.status = toi->status;
+  r.t = toi->toi;
+  r.distance = toi->distance;
+  r.depth = toi->depth;
+  r.point = toi->point;
+  r.point_a = toi->point_a;
+  r.point_b = toi->point_b;
+  r.normal = toi->normal;
+  r.iterations = toi->iterations;
+  r.sub_a = toi->sub_a;
+  r.sub_b = toi->sub_b;
+  return r;
+}
+
 // A's core support and radius in the recentred world frame.
 template <class F>
 decltype(auto) with_core(ShapeRef shape, const Transform& pose, F&& f) {
@@ -110,15 +137,16 @@ decltype(auto) with_core(ShapeRef shape, const Transform& pose, F&& f) {
 }
 
 // GJK cast of A's core against a core given by `support_b` (radius rb), B still.
+// `classify` answers a pair within reach at t = 0; `fallback` answers by conservative
+// advancement when the GJK cast cannot decide (iteration cap, or stalled by rounding).
 template <class SupportB>
-CastResult cast_cores(const Cast& c, SupportB& support_b, Real rb, const auto& classify) {
+CastResult cast_cores(const Cast& c, SupportB& support_b, Real rb, const auto& classify, const auto& fallback) {
   return with_core(c.a, c.pose_a, [&](auto& support_a, Real ra) {
     const Real margin = ra + rb + c.target;
     const gjk::CastOutcome o = gjk::cast(support_a, support_b, c.s, margin, c.tolerance, c.max_iterations);
-    if (o.capped) {
-      CastResult r;
-      r.status = CcdStatus::MaxIterations;
-      r.iterations = o.iterations;
+    if (o.capped || o.stalled) {
+      CastResult r = fallback();
+      r.iterations += o.iterations;
       return r;
     }
     if (!o.hit) {
@@ -146,7 +174,9 @@ CastResult cast_cores(const Cast& c, SupportB& support_b, Real rb, const auto& c
 
 CastResult cast_convex(const Cast& c, ShapeRef b, const Transform& pose_b) {
   return with_core(b, pose_b, [&](auto& support_b, Real rb) {
-    return cast_cores(c, support_b, rb, [&] { return classify_start(c, b, pose_b); });
+    return cast_cores(
+        c, support_b, rb, [&] { return classify_start(c, b, pose_b); },
+        [&] { return cast_by_advancement(c, b, pose_b); });
   });
 }
 
@@ -218,6 +248,17 @@ void keep_best(CastResult& best, const CastResult& r, SubShapeId sub) {
 
 CastResult cast_any(const Cast& c, ShapeRef b, const Transform& pose_b);
 
+// An overlap found on one part stands for the whole geometry: the narrow phase's distance
+// over all parts gives the deepest penetration and its normal, as distance and collide do.
+CastResult deepest_overlap(const Cast& c, const CastResult& found, ShapeRef b, const Transform& pose_b) {
+  if (found.status != CcdStatus::InitiallyOverlapping) return found;
+  const DistanceResult d = distance(c.a, c.pose_a, b, pose_b);
+  if (!(d.signed_distance < Real(0))) return found;
+  CastResult r = overlapping(d);
+  r.iterations = found.iterations;
+  return r;
+}
+
 CastResult cast_mesh(const Cast& c, const TriangleMesh& mesh, const Transform& pose_b) {
   const Transform to_b = pose_b.inverse();
   const Aabb moving = world_aabb(c.a, to_b * c.pose_a).inflated(c.target + c.tolerance);
@@ -238,12 +279,16 @@ CastResult cast_mesh(const Cast& c, const TriangleMesh& mesh, const Transform& p
       const auto tri = Triangle::create(v[0], v[1], v[2]);
       return tri ? classify_start(c, *tri, pose_b) : no_hit();
     };
-    const CastResult r = cast_cores(c, support_b, Real(0), classify);
+    const auto fallback = [&]() {
+      const auto tri = Triangle::create(v[0], v[1], v[2]);
+      return tri ? cast_by_advancement(c, *tri, pose_b) : no_hit();
+    };
+    const CastResult r = cast_cores(c, support_b, Real(0), classify, fallback);
     keep_best(best, r, SubShapeId{kNoIndex, t});
     if (best.status == CcdStatus::Hit) bound = best.t;
     if (best.status == CcdStatus::InitiallyOverlapping) bound = Real(-1);
   });
-  return best;
+  return deepest_overlap(c, best, mesh, pose_b);
 }
 
 CastResult cast_compound(const Cast& c, const Compound& compound, const Transform& pose_b) {
@@ -260,7 +305,7 @@ CastResult cast_compound(const Cast& c, const Compound& compound, const Transfor
     if (best.status == CcdStatus::Hit) bound = best.t;
     if (best.status == CcdStatus::InitiallyOverlapping) bound = Real(-1);
   });
-  return best;
+  return deepest_overlap(c, best, compound, pose_b);
 }
 
 CastResult mirrored(const CastResult& r) {
@@ -271,29 +316,6 @@ CastResult mirrored(const CastResult& r) {
   m.sub_a = r.sub_b;
   m.sub_b = r.sub_a;
   return m;
-}
-
-// Two non-convex geometries: the time of impact of the two translations.
-CastResult cast_by_toi(const Cast& c, ShapeRef b, const Transform& pose_b) {
-  ToiOptions o;
-  o.target_distance = c.target;
-  o.tolerance = c.tolerance;
-  const Motion ma{c.pose_a, {c.pose_a.position + c.s, c.pose_a.rotation}};
-  const auto toi = time_of_impact(c.a, ma, b, Motion::stationary(pose_b), o);
-  CastResult r;
-  if (!toi) return r;
-  r.status = toi->status;
-  r.t = toi->toi;
-  r.distance = toi->distance;
-  r.depth = toi->depth;
-  r.point = toi->point;
-  r.point_a = toi->point_a;
-  r.point_b = toi->point_b;
-  r.normal = toi->normal;
-  r.iterations = toi->iterations;
-  r.sub_a = toi->sub_a;
-  r.sub_b = toi->sub_b;
-  return r;
 }
 
 CastResult cast_any(const Cast& c, ShapeRef b, const Transform& pose_b) {
@@ -311,7 +333,16 @@ CastResult cast_any(const Cast& c, ShapeRef b, const Transform& pose_b) {
     back.a = b;
     back.pose_a = pose_b;
     back.s = -c.s;
-    return mirrored(cast_any(back, c.a, c.pose_a));
+    // The answer has B moved back by t s with A still; moving both by t s puts A where it
+    // is at t and B where it stays.
+    CastResult r = mirrored(cast_any(back, c.a, c.pose_a));
+    const Vec3 shift = r.t * c.s;
+    if (r.status == CcdStatus::Hit) {
+      r.point += shift;
+      r.point_a += shift;
+      r.point_b += shift;
+    }
+    return r;
   }
   if (ka == Kind::Compound) {
     // Each child of a moving compound against B (B is not convex here).
@@ -327,7 +358,7 @@ CastResult cast_any(const Cast& c, ShapeRef b, const Transform& pose_b) {
     }
     return best;
   }
-  return cast_by_toi(c, b, pose_b);
+  return cast_by_advancement(c, b, pose_b);
 }
 
 std::optional<Error> validate_pose(const Transform& pose, std::string_view name) {

@@ -39,6 +39,7 @@
 #include <limits>
 
 #include "ccd/shape_radii.hpp"
+#include "ccd/toi_unchecked.hpp"
 
 namespace proxima {
 
@@ -240,7 +241,13 @@ Result<ToiResult> time_of_impact(ShapeRef a, const Motion& motion_a, ShapeRef b,
   if (auto e = validate_motion(motion_a, "motion_a")) return *e;
   if (auto e = validate_motion(motion_b, "motion_b")) return *e;
   if (auto e = validate_toi_options(options)) return *e;
+  return detail::time_of_impact_unchecked(a, motion_a, b, motion_b, options, true);
+}
 
+namespace detail {
+
+ToiResult time_of_impact_unchecked(ShapeRef a, const Motion& motion_a, ShapeRef b, const Motion& motion_b,
+                                   const ToiOptions& options, bool allow_cast) {
   Pair p(a, b);
   const Vec3 origin = motion_b.start.position;
   p.ma = shifted(motion_a, origin);
@@ -261,7 +268,7 @@ Result<ToiResult> time_of_impact(ShapeRef a, const Motion& motion_a, ShapeRef b,
   p.target = options.target_distance;
   p.tolerance = std::max(options.tolerance, Real(64) * kEpsilon * p.scale);
 
-  if (translating_convex_pair(p)) return by_cast(p, options, origin);
+  if (allow_cast && translating_convex_pair(p)) return by_cast(p, options, origin);
 
   const Placements place_a(p.ma, p.wa), place_b(p.mb, p.wb);
   ToiResult r;
@@ -300,5 +307,7 @@ Result<ToiResult> time_of_impact(ShapeRef a, const Motion& motion_a, ShapeRef b,
   }
   return bracket(r, t);
 }
+
+}  // namespace detail
 
 }  // namespace proxima

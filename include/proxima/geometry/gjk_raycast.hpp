@@ -27,9 +27,13 @@ namespace proxima::gjk {
 /// What cast found. Points are on the sets (before adding the margin), in the common frame,
 /// at lambda.
 struct CastOutcome {
-  bool hit = false;         ///< A + lambda s is within margin (+ tolerance) of B
-  bool advanced = false;    ///< lambda moved from 0 (false with a hit: within margin at 0)
-  bool capped = false;      ///< the iteration cap stopped it: no answer (hit is false)
+  bool hit = false;       ///< A + lambda s is within margin (+ tolerance) of B
+  bool advanced = false;  ///< lambda moved from 0 (false with a hit: within margin at 0)
+  bool capped = false;    ///< the iteration cap stopped it: no answer (hit is false)
+  /// No new support point and no advance while |v| is still above margin + tolerance: the
+  /// rounding of the supports (float, curved shapes) stops the iteration short of an
+  /// answer; hit is false and the caller must decide another way.
+  bool stalled = false;
   Real lambda = Real(1);    ///< fraction of s at the hit (1 on a miss)
   Real distance = Real(0);  ///< |v| at lambda: distance of the sets (0 if they overlap)
   Vec3 normal{Real(0)};     ///< unit, from A to B at the hit; zero when never defined
@@ -82,7 +86,10 @@ CastOutcome cast(SupportA& support_a, SupportB& support_b, const Vec3& s, Real m
     if (repeated && !moved) {
       // No new support point and no advance: the distance is |v| within rounding.
       r.hit = vn <= margin + tolerance + Real(8) * kEpsilon * std::sqrt(scale2);
-      if (!r.hit) return r;
+      if (!r.hit) {
+        r.stalled = true;
+        return r;
+      }
       break;
     }
     if (!repeated) {
@@ -107,8 +114,9 @@ CastOutcome cast(SupportA& support_a, SupportB& support_b, const Vec3& s, Real m
   r.point_a = simplex.size > 0 ? combine(simplex, 1) + lambda * s : support_a(-dir) + lambda * s;
   r.point_b = simplex.size > 0 ? combine(simplex, 2) : support_b(dir);
   // The normal: along the closest points when they are apart, else the last plane's.
-  if (r.distance > Real(8) * kEpsilon * std::sqrt(scale2)) normal = (r.point_b - r.point_a) / r.distance;
-  r.normal = normal;
+  if (r.distance > Real(8) * kEpsilon * std::sqrt(scale2)) normal = r.point_b - r.point_a;
+  const Real length = glm::length(normal);
+  r.normal = length > Real(0) ? normal / length : normal;
   return r;
 }
 
