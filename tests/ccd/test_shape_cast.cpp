@@ -104,7 +104,16 @@ std::string num(Real x) {
   return buffer;
 }
 
-std::string text(const Vec3& v) { return "(" + num(v.x) + ", " + num(v.y) + ", " + num(v.z) + ")"; }
+std::string text(const Vec3& v) {
+  std::string out(1, '(');
+  out += num(v.x);
+  out += ", ";
+  out += num(v.y);
+  out += ", ";
+  out += num(v.z);
+  out += ')';
+  return out;
+}
 
 std::string text(const Transform& t) {
   const Quat& q = t.rotation;
