@@ -517,7 +517,7 @@ Compound floor_and_wall_boxes() {
 // Regression: for meshes and compounds the step uses the directional bound along the
 // current normal, which holds for two convex shapes only: here n . v = 0, so dt = +infinity,
 // while the sphere reaches the wall after 2.5 s.
-TEST(SafeStep, RegressionNonConvexBodiesApproachingSidewaysAreNotInfinite) {
+TEST(SafeStepRegression, NonConvexBodiesApproachingSidewaysAreNotInfinite) {
   const Sphere ball = Sphere::create(Real(0.5)).value();
   const TriangleMesh mesh = TriangleMesh::create(floor_and_wall()).value();
   const Compound boxes = floor_and_wall_boxes();

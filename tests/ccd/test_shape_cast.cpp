@@ -1437,7 +1437,8 @@ TEST_F(ShapeCast, ExtremeValidInputsGiveFiniteAnswers) {
 
 // ---------------------------------------------------------------------------------------
 // Regressions: single cases found by the sweeps above (float build), each against its
-// reference. They reproduce with these exact inputs (printed to 9 digits).
+// reference. They reproduce with these exact inputs (printed to 9 digits). Each checks its
+// own defect only (no audit of the other fields: not the ShapeCast fixture).
 
 // A pose from 9-digit values: unit to float precision, so normalised in the double build only
 // (normalising in float would move the case off the failing input).
@@ -1461,7 +1462,7 @@ std::string point_cast_against_ray(ShapeRef shape, const Transform& pose, const 
 // GJK ray casting stops on a repeated support point without an advance and reports a miss
 // although v . w / |v| (the lower bound of the distance) does not separate: the point runs
 // 0.19 deep through the cone (time_of_impact: hit at 0.632).
-TEST_F(ShapeCast, RegressionPointThroughAConeIsAHit) {
+TEST(ShapeCastRegression, PointThroughAConeIsAHit) {
   const Cone cone = Cone::create(Real(0.568271458), Real(0.372399509)).value();
   const Transform pose =
       pose_of(1.28455925f, 0.462019712f, 2.46860552f, -0.532759845f, 0.255102545f, 0.801973104f, -0.0890451595f);
@@ -1475,7 +1476,7 @@ TEST_F(ShapeCast, RegressionPointThroughAConeIsAHit) {
 // Polytopes too (found against Bullet, test_shape_cast_peers.cpp): |v| stalls at 1.06e-4,
 // just above the tolerance 1e-4, on a repeated support pair, and the cast reports a miss
 // while the boxes end 0.19 deep in each other.
-TEST_F(ShapeCast, RegressionBoxThroughABoxIsAHit) {
+TEST(ShapeCastRegression, BoxThroughABoxIsAHit) {
   const Box a = Box::create(Vec3(0.380244434f, 0.45102337f, 0.377971739f)).value();
   const Box b = Box::create(Vec3(0.533439159f, 0.442136437f, 0.856935978f)).value();
   const Transform pa =
@@ -1493,7 +1494,7 @@ TEST_F(ShapeCast, RegressionBoxThroughABoxIsAHit) {
 }
 
 // Also on ordinary casts: the cone passes 0.53 deep through the triangle.
-TEST_F(ShapeCast, RegressionConeThroughATriangleIsAHit) {
+TEST(ShapeCastRegression, ConeThroughATriangleIsAHit) {
   const Cone cone = Cone::create(Real(0.701608837), Real(0.730057538)).value();
   const Transform pa =
       pose_of(-1.06578934f, 1.04728389f, 1.67153203f, -0.226285577f, 0.564129949f, -0.0401409678f, 0.793057978f);
@@ -1516,7 +1517,7 @@ TEST_F(ShapeCast, RegressionConeThroughATriangleIsAHit) {
 
 // The iteration cap (64 by default) stops casts on curved shapes that the raycast answers
 // at once: a point against a cylinder, and a static test of a touching cone and box.
-TEST_F(ShapeCast, RegressionCurvedCastsAnswerWithinTheDefaultIterations) {
+TEST(ShapeCastRegression, CurvedCastsAnswerWithinTheDefaultIterations) {
   const Cylinder cylinder = Cylinder::create(Real(0.811885536), Real(0.946917415)).value();
   const Transform pose =
       pose_of(1.01122451f, -0.884249032f, -0.222990736f, -0.119771868f, 0.0326477885f, 0.0696597025f, -0.989816308f);
@@ -1538,7 +1539,7 @@ TEST_F(ShapeCast, RegressionCurvedCastsAnswerWithinTheDefaultIterations) {
 // The hit's normal is (point_b - point_a) / |v|: in float, at a gap of about the tolerance,
 // those points carry rounding of the same order as the gap, so the normal is neither unit
 // nor reliable (0.4 long here).
-TEST_F(ShapeCast, RegressionHitNormalsAreUnit) {
+TEST(ShapeCastRegression, HitNormalsAreUnit) {
   const Point point = Point::create().value();
   const Cylinder cylinder = Cylinder::create(Real(0.288711935), Real(0.963573575)).value();
   const Transform pc =
@@ -1563,7 +1564,7 @@ TEST_F(ShapeCast, RegressionHitNormalsAreUnit) {
 
 // "Moving in" is normal . s > 0 with no tolerance: a box sliding on a box's face (n . s =
 // 6e-8 |s| from rounding) is reported as a hit at t = 0.
-TEST_F(ShapeCast, RegressionSlidingOnAFaceIsNoHit) {
+TEST(ShapeCastRegression, SlidingOnAFaceIsNoHit) {
   const Box a = Box::create(Vec3(0.572800338f, 0.959105849f, 0.599920034f)).value();
   const Box b = Box::create(Vec3(0.321812481f, 0.449137092f, 0.307086259f)).value();
   const Transform pa =
