@@ -7,8 +7,10 @@
 //     narrow phase's error is used.
 //  2. mu = n.(v_a - v_b) + |n x w_a| r_a + |n x w_b| r_b bounds how fast that gap closes at
 //     every future time (constant velocities); dt = (gap - target) / mu.
-//  3. A half-space turns its normal when it rotates: then the step uses the Lipschitz bound
-//     |v_a - v_b| + |w| R of the distance itself.
+//  3. The directional bound needs a gap that bounds the distance at every time: two convex
+//     shapes, or a still (or translating) half-space's plane against anything. Meshes,
+//     compounds and turning half-spaces use the Lipschitz bound |v_a - v_b| + |w| R of the
+//     distance itself.
 
 #include <proxima/ccd/motion.hpp>
 #include <proxima/ccd/safe_step.hpp>
@@ -59,19 +61,22 @@ Real pair_step(const MovingBody& a, const MovingBody& b, Real target) {
     return safe_time_step_from_distance(g, n, a.linear, a.angular, ra.core, b.linear, b.angular, rb.core, target);
   }
   const Real lower = d.signed_distance - Real(16) * kEpsilon * scale - Real(8) * kEpsilon * std::abs(d.signed_distance);
-  const bool turning_plane =
-      (ra.halfspace && glm::length(a.angular) > Real(0)) || (rb.halfspace && glm::length(b.angular) > Real(0));
-  if (!turning_plane) {
-    // A still or translating half-space keeps its normal; other radii are finite.
-    const Real core_a = ra.halfspace ? Real(0) : ra.core, core_b = rb.halfspace ? Real(0) : rb.core;
+  // A still or translating half-space keeps its plane, the exact projection of its solid on
+  // the normal: the directional bound holds against any other shape.
+  const bool plane_a = ra.halfspace && !(glm::length(a.angular) > Real(0));
+  const bool plane_b = rb.halfspace && !(glm::length(b.angular) > Real(0));
+  if ((plane_a && !rb.halfspace) || (plane_b && !ra.halfspace)) {
+    const Real core_a = ra.halfspace ? Real(0) : ra.full, core_b = rb.halfspace ? Real(0) : rb.full;
     return safe_time_step_from_distance(lower, n, a.linear, a.angular, core_a, b.linear, b.angular, core_b, target);
   }
-  // A turning half-space: Lipschitz bound with the other shape's farthest point from its origin.
+  // Otherwise (a mesh, a compound, a turning half-space) only the Lipschitz bound of the
+  // distance holds: no point approaches faster than |v_a - v_b| + |w_a| R_a + |w_b| R_b, with
+  // R for a half-space the farthest point of the other shape from its origin.
   const Real reach = glm::length(a.pose.position - b.pose.position);
   const Real lip_a = ra.halfspace ? reach + rb.full : ra.full;
   const Real lip_b = rb.halfspace ? reach + ra.full : rb.full;
   const Real speed = glm::length(a.linear - b.linear) + rotating(a.angular, lip_a) + rotating(b.angular, lip_b);
-  if (lower <= target) return Real(0);
+  if (!(lower > target)) return Real(0);
   return speed > Real(0) ? (lower - target) / speed : kInfinity;
 }
 

@@ -82,7 +82,9 @@ CastResult overlapping(const DistanceResult& d) {
 CastResult classify_start(const Cast& c, ShapeRef b, const Transform& pose_b) {
   const DistanceResult d = distance(c.a, c.pose_a, b, pose_b);
   if (d.signed_distance < -c.tolerance) return overlapping(d);
-  if (d.signed_distance > c.target + c.tolerance || !(glm::dot(d.normal, c.s) > Real(0))) return no_hit();
+  // Moving in: the translation closes the gap along the normal by more than the tolerance
+  // (a slide along the contact plane, rounding included, is no hit).
+  if (d.signed_distance > c.target + c.tolerance || !(glm::dot(d.normal, c.s) > c.tolerance)) return no_hit();
   CastResult r;
   r.status = CcdStatus::Hit;
   r.t = Real(0);
@@ -259,6 +261,47 @@ CastResult deepest_overlap(const Cast& c, const CastResult& found, ShapeRef b, c
   return r;
 }
 
+// Distance from p to the segment [a, b].
+Real segment_distance(const Vec3& p, const Vec3& a, const Vec3& b) {
+  const Vec3 ab = b - a;
+  const Real len2 = glm::dot(ab, ab);
+  const Real u = len2 > Real(0) ? std::clamp(glm::dot(p - a, ab) / len2, Real(0), Real(1)) : Real(0);
+  return glm::length(p - (a + u * ab));
+}
+
+// A hit on triangle t (mesh frame: contact point `p`, normal `n` from A to the mesh) is a
+// ghost when the motion does not close it along n by more than the tolerance (a graze), or
+// when it lies on an inactive (flat or concave) edge, or on a corner whose two edges in t
+// are inactive, while A does not move into the triangle's plane: a shape sliding over a
+// flat mesh reaches the seams between its triangles edge-on, and those are not walls (the
+// narrow phase's internal-edge rule, mesh_convex.cpp, applied to casts).
+bool ghost_contact(const Cast& c, const TriangleMesh& mesh, std::uint32_t t, const std::array<Vec3, 3>& v,
+                   const Vec3& p, const Vec3& n, const Vec3& s_local) {
+  Vec3 face = glm::cross(v[1] - v[0], v[2] - v[0]);
+  const Real area2 = glm::length(face);
+  if (!(area2 > Real(0))) return false;
+  face /= area2;
+  if (glm::dot(face, n) > Real(0)) face = -face;  // now from the triangle towards A
+  // A graze: the motion does not close the contact (a shape sliding along the mesh touches
+  // the next triangle at the seam, with the floor's normal).
+  if (!(glm::dot(n, s_local) > c.tolerance)) return true;
+  if (std::abs(glm::dot(face, n)) >= Real(1) - Real(1e-3)) return false;  // a face contact
+  const Real reach = std::max(c.tolerance, Real(1e-3) * std::sqrt(area2));
+  const std::uint8_t active = mesh.active_edges(t);
+  int near = 0;
+  bool real = false;
+  for (int e = 0; e < 3; ++e) {
+    if (segment_distance(p, v[e], v[(e + 1) % 3]) <= reach) {
+      ++near;
+      real = real || ((active >> e) & 1u);
+    }
+  }
+  if (near == 0 || real) return false;  // inside the face, or on an active edge or corner
+  // Moving into the plane along the face normal (A to B is -face) by more than the
+  // tolerance: the triangle is really in the way.
+  return !(glm::dot(-face, s_local) > c.tolerance);
+}
+
 CastResult cast_mesh(const Cast& c, const TriangleMesh& mesh, const Transform& pose_b) {
   const Transform to_b = pose_b.inverse();
   const Aabb moving = world_aabb(c.a, to_b * c.pose_a).inflated(c.target + c.tolerance);
@@ -283,7 +326,11 @@ CastResult cast_mesh(const Cast& c, const TriangleMesh& mesh, const Transform& p
       const auto tri = Triangle::create(v[0], v[1], v[2]);
       return tri ? cast_by_advancement(c, *tri, pose_b) : no_hit();
     };
-    const CastResult r = cast_cores(c, support_b, Real(0), classify, fallback);
+    CastResult r = cast_cores(c, support_b, Real(0), classify, fallback);
+    if (r.status == CcdStatus::Hit &&
+        ghost_contact(c, mesh, t, v, to_b.apply(r.point_b), to_b.apply_vector(r.normal), s_local)) {
+      r = no_hit();
+    }
     keep_best(best, r, SubShapeId{kNoIndex, t});
     if (best.status == CcdStatus::Hit) bound = best.t;
     if (best.status == CcdStatus::InitiallyOverlapping) bound = Real(-1);

@@ -292,7 +292,7 @@ ToiResult time_of_impact_unchecked(ShapeRef a, const Motion& motion_a, ShapeRef 
       return r;
     }
     if (d.signed_distance <= p.target + p.tolerance) {
-      if (k == 0 && closing_speed(p, d.normal) <= Real(0)) return separated(r);  // touching, moving apart
+      if (k == 0 && closing_speed(p, d.normal) <= p.tolerance) return separated(r);  // touching, moving apart
       r.status = CcdStatus::Hit;
       r.toi = r.t_lower = r.t_upper = t;
       fill_contact(r, d, origin);

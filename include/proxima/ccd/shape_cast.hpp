@@ -13,10 +13,13 @@
 /// The t = 0 contract (docs/conventions.md), per convex pair (so per mesh triangle):
 ///   - penetrating at t = 0 by more than the tolerance: InitiallyOverlapping, t = 0, with the
 ///     depth and the push-out normal from A to B;
-///   - within target + tolerance at t = 0 and moving in (normal . translation > 0): Hit at 0;
+///   - within target + tolerance at t = 0 and moving in (normal . translation > tolerance):
+///     Hit at 0;
 ///   - within target + tolerance and not moving in: no hit from that pair. So on a mesh, a
 ///     grazing edge that A slides along never hides a later face hit: candidates are
-///     validated before the least t is taken.
+///     validated before the least t is taken. Likewise a hit on an inactive (flat or
+///     concave) mesh edge or corner while A does not move into that triangle's plane is a
+///     seam between flat triangles, not a wall, and is dropped.
 #include <proxima/ccd/time_of_impact.hpp>
 #include <proxima/core/math.hpp>
 #include <proxima/core/result.hpp>

@@ -13,7 +13,7 @@
 ///     toi 0, with the depth and the minimum-translation normal (from A to B);
 ///   - within target + tolerance at t = 0 and approaching: Hit at t = 0;
 ///   - within target + tolerance at t = 0 and not approaching (the certified closing speed
-///     is <= 0): Separated.
+///     along the normal, in length per step, is at most the tolerance): Separated.
 #include <proxima/ccd/motion.hpp>
 #include <proxima/core/math.hpp>
 #include <proxima/core/result.hpp>
@@ -40,9 +40,10 @@ struct ToiOptions {
   /// skin > 0 for speculative contacts.
   Real target_distance = Real(0);
   /// Length tolerance (> 0): at t_upper the shapes are within target_distance + tolerance.
-  /// It is raised to the precision floor of the pair, 8 * linear_tolerance(scale), scale being
-  /// the shapes' size plus their distance (so the accuracy is relative, whatever the shapes'
-  /// size or their distance from the origin). 0 picks that floor.
+  /// It is raised to the precision floor of the pair, 64 * epsilon * scale, scale being the
+  /// shapes' size plus the reach of their motions after recentring on B (so the accuracy is
+  /// relative, whatever the shapes' size or their distance from the origin). 0 picks that
+  /// floor.
   Real tolerance = Real(1e-4);
   /// Iteration cap of the conservative advancement (>= 1); reaching it gives MaxIterations.
   int max_iterations = 128;

@@ -113,8 +113,9 @@ CastOutcome cast(SupportA& support_a, SupportB& support_b, const Vec3& s, Real m
   r.distance = simplex.size == 4 ? Real(0) : glm::length(v);
   r.point_a = simplex.size > 0 ? combine(simplex, 1) + lambda * s : support_a(-dir) + lambda * s;
   r.point_b = simplex.size > 0 ? combine(simplex, 2) : support_b(dir);
-  // The normal: along the closest points when they are apart, else the last plane's.
-  if (r.distance > Real(8) * kEpsilon * std::sqrt(scale2)) normal = r.point_b - r.point_a;
+  // The normal: along -v (the simplex's nearest point, better than a difference of
+  // witnesses) when the sets are clearly apart, else the last separating plane's.
+  if (r.distance > tolerance || (!r.advanced && r.distance > Real(0))) normal = -v;
   const Real length = glm::length(normal);
   r.normal = length > Real(0) ? normal / length : normal;
   return r;
