@@ -285,7 +285,6 @@ bool ghost_contact(const Cast& c, const TriangleMesh& mesh, std::uint32_t t, con
   // A graze: the motion does not close the contact (a shape sliding along the mesh touches
   // the next triangle at the seam, with the floor's normal).
   if (!(glm::dot(n, s_local) > c.tolerance)) return true;
-  if (std::abs(glm::dot(face, n)) >= Real(1) - Real(1e-3)) return false;  // a face contact
   const Real reach = std::max(c.tolerance, Real(1e-3) * std::sqrt(area2));
   const std::uint8_t active = mesh.active_edges(t);
   int near = 0;
