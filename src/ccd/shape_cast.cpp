@@ -104,7 +104,7 @@ CastResult cast_by_advancement(const Cast& c, ShapeRef b, const Transform& pose_
   ToiOptions o;
   o.target_distance = c.target;
   o.tolerance = c.tolerance;
-  o.max_iterations = std::max(c.max_iterations, 128);
+  o.max_iterations = c.max_iterations;
   const Motion ma{c.pose_a, {c.pose_a.position + c.s, c.pose_a.rotation}};
   const ToiResult toi_result = detail::time_of_impact_unchecked(c.a, ma, b, Motion::stationary(pose_b), o, false);
   const ToiResult* toi = &toi_result;

@@ -136,7 +136,7 @@ TEST(QueryCcd, SphereIntoBoxFaceExactQuarter) {
       R"({"op":"toi","a":{"shape":{"type":"sphere","radius":0.5},"pose":{"position":[-3,0,0]},"pose_end":{"position":[3,0,0]}},"b":{"shape":{"type":"box","half_extents":[1,1,1]}}})"));
   EXPECT_EQ(t.dump(),
             R"({"hit":true,"toi":0.25,"toi_lower":0.25,"toi_upper":0.25,"point":[-1.0,0.0,0.0],"normal":[1.0,0.0,0.0],)"
-            R"("status":"hit","iterations":2})");
+            R"("status":"hit","iterations":4})");
   const Json c = answer(Json::parse(
       R"({"op":"cast","a":{"shape":{"type":"sphere","radius":0.5},"pose":{"position":[-3,0,0]}},"translation":[6,0,0],"b":{"type":"box","half_extents":[1,1,1]}})"));
   EXPECT_EQ(c["t"].get<double>(), 0.25) << c.dump();

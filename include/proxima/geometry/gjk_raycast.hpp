@@ -76,7 +76,7 @@ CastOutcome cast(SupportA& support_a, SupportB& support_b, const Vec3& s, Real m
       if (!(vs < Real(0))) return r;  // s does not close the separating plane: miss
       lambda -= (vw - margin * vn) / vs;
       if (!(lambda <= Real(1))) return r;
-      normal = -v / vn;
+      normal = (Vec3(Real(0)) - v) / vn;
       r.advanced = moved = true;
       for (int i = 0; i < simplex.size; ++i) simplex.v[i].w = simplex.v[i].a + lambda * s - simplex.v[i].b;
       w.w = w.a + lambda * s - w.b;
@@ -115,7 +115,7 @@ CastOutcome cast(SupportA& support_a, SupportB& support_b, const Vec3& s, Real m
   r.point_b = simplex.size > 0 ? combine(simplex, 2) : support_b(dir);
   // The normal: along -v (the simplex's nearest point, better than a difference of
   // witnesses) when the sets are clearly apart, else the last separating plane's.
-  if (r.distance > tolerance || (!r.advanced && r.distance > Real(0))) normal = -v;
+  if (r.distance > tolerance || (!r.advanced && r.distance > Real(0))) normal = Vec3(Real(0)) - v;  // no negative zeros
   const Real length = glm::length(normal);
   r.normal = length > Real(0) ? normal / length : normal;
   return r;
