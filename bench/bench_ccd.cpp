@@ -14,6 +14,7 @@
 //   CCD/Linear/...  the same cases with the rotations removed (each body keeps its start
 //                   orientation; the file has no case where both bodies only translate):
 //     proxima_toi     proxima::time_of_impact on the translations
+//     proxima_shape_cast  proxima::shape_cast of A along its displacement relative to B
 //     bullet_subsimplex, bullet_gjk_cast   Bullet's linear casts btSubsimplexConvexCast and
 //                     btGjkConvexCast
 //
@@ -31,6 +32,7 @@
 // wrong). Shapes and motions are converted to each library's types before timing.
 #include <benchmark/benchmark.h>
 
+#include <proxima/ccd/shape_cast.hpp>
 #include <proxima/ccd/time_of_impact.hpp>
 
 #include <cstdint>
@@ -150,6 +152,29 @@ void proxima_toi(benchmark::State& state, const CaseSet* set) {
   if (set->checked) state.counters["check_wrong"] = static_cast<double>(set->check_wrong);
 }
 
+// Proxima's linear shape cast on the rotation-free set: A cast along its displacement
+// relative to B, B still at its start pose (the same query as the time of impact of two
+// translations).
+void proxima_cast(benchmark::State& state, const CaseSet* set) {
+  const pb::ProximaCcdCases& p = *set->proxima;
+  const std::size_t n = set->cases.size();
+  std::uint64_t hits = 0, iterations = 0;
+  for (auto _ : state) {
+    hits = iterations = 0;
+    for (std::size_t k = 0; k < n; ++k) {
+      const proxima::Vec3 s = p.ma[k].displacement() - p.mb[k].displacement();
+      const auto r = proxima::shape_cast(p.a[k], p.ma[k].start, s, p.b[k], p.mb[k].start);
+      if (!r) continue;
+      hits += r->status == CcdStatus::Hit ? 1u : 0u;
+      iterations += static_cast<std::uint64_t>(r->iterations);
+    }
+    benchmark::DoNotOptimize(hits);
+  }
+  state.counters["per_query"] = pb::time_per_item(n);
+  state.counters["hits"] = static_cast<double>(hits);
+  state.counters["iterations"] = static_cast<double>(iterations) / static_cast<double>(n);
+}
+
 // -------------------------------------------------------------------------------------
 // The peers: timing, then one untimed pass judged against Proxima's bracket
 // -------------------------------------------------------------------------------------
@@ -254,9 +279,7 @@ bool register_ccd(const std::string& dir) {
 #endif
 
   add("CCD/Linear/proxima_toi", proxima_toi, &g_linear);
-  // CCD/Linear/proxima_shape_cast: the row of Proxima's linear shape cast
-  // (include/proxima/ccd/shape_cast.hpp, written separately) goes here, on g_linear beside
-  // Bullet's linear casts, once that header is on main. No row until then.
+  add("CCD/Linear/proxima_shape_cast", proxima_cast, &g_linear);
 #if PROXIMA_HAVE_BULLET
   add("CCD/Linear/bullet_subsimplex", bullet_toi, &g_linear, pb::BulletCast::Subsimplex);
   add("CCD/Linear/bullet_gjk_cast", bullet_toi, &g_linear, pb::BulletCast::Gjk);
