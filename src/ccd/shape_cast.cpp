@@ -269,10 +269,21 @@ Real segment_distance(const Vec3& p, const Vec3& a, const Vec3& b) {
   return glm::length(p - (a + u * ab));
 }
 
+// True when edge e of triangle t is shared with a coplanar triangle (a seam of a flat
+// region; `face` is t's unit normal, either orientation).
+bool flat_edge(const TriangleMesh& mesh, std::uint32_t t, int e, const Vec3& face) {
+  const std::uint32_t other = mesh.neighbors(t)[static_cast<std::size_t>(e)];
+  if (other == kNoIndex) return false;
+  const std::array<Vec3, 3> w = mesh.triangle(other);
+  const Vec3 n = glm::cross(w[1] - w[0], w[2] - w[0]);
+  const Real len = glm::length(n);
+  return len > Real(0) && std::abs(glm::dot(n / len, face)) >= Real(1) - Real(1e-4);
+}
+
 // A hit on triangle t (mesh frame: contact point `p`, normal `n` from A to the mesh) is a
 // ghost when the motion does not close it along n by more than the tolerance (a graze), or
-// when it lies on an inactive (flat or concave) edge, or on a corner whose two edges in t
-// are inactive, while A does not move into the triangle's plane: a shape sliding over a
+// when it lies on a flat seam (an inactive edge shared with a coplanar triangle), or on a
+// corner whose edges in t are such seams, while A does not move into the triangle's plane: a shape sliding over a
 // flat mesh reaches the seams between its triangles edge-on, and those are not walls (the
 // narrow phase's internal-edge rule, mesh_convex.cpp, applied to casts).
 bool ghost_contact(const Cast& c, const TriangleMesh& mesh, std::uint32_t t, const std::array<Vec3, 3>& v,
@@ -292,10 +303,10 @@ bool ghost_contact(const Cast& c, const TriangleMesh& mesh, std::uint32_t t, con
   for (int e = 0; e < 3; ++e) {
     if (segment_distance(p, v[e], v[(e + 1) % 3]) <= reach) {
       ++near;
-      real = real || ((active >> e) & 1u);
+      real = real || ((active >> e) & 1u) || !flat_edge(mesh, t, e, face);
     }
   }
-  if (near == 0 || real) return false;  // inside the face, or on an active edge or corner
+  if (near == 0 || real) return false;  // inside the face, or on an active or concave edge
   // Moving into the plane along the face normal (A to B is -face) by more than the
   // tolerance: the triangle is really in the way.
   return !(glm::dot(-face, s_local) > c.tolerance);
