@@ -15,6 +15,8 @@
 //                   orientation; the file has no case where both bodies only translate):
 //     proxima_toi     proxima::time_of_impact on the translations
 //     proxima_shape_cast  proxima::shape_cast of A along its displacement relative to B
+//   CCD/SafeStep/...  proxima::safe_time_step_from_distance (kernel) and safe_time_step (pair
+//                   form: one distance query) at the W6 start poses and velocities
 //     bullet_subsimplex, bullet_gjk_cast   Bullet's linear casts btSubsimplexConvexCast and
 //                     btGjkConvexCast
 //
@@ -32,14 +34,17 @@
 // wrong). Shapes and motions are converted to each library's types before timing.
 #include <benchmark/benchmark.h>
 
+#include <proxima/ccd/safe_step.hpp>
 #include <proxima/ccd/shape_cast.hpp>
 #include <proxima/ccd/time_of_impact.hpp>
+#include <proxima/narrowphase/narrowphase.hpp>
 
 #include <cstdint>
 #include <cstdio>
 #include <memory>
 #include <optional>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include "bench_main.hpp"
@@ -175,6 +180,42 @@ void proxima_cast(benchmark::State& state, const CaseSet* set) {
   state.counters["iterations"] = static_cast<double>(iterations) / static_cast<double>(n);
 }
 
+// Safe time steps on W6's start poses: the kernel alone (the gap along the normal already
+// known, as a world that keeps its pairs' distances has it) and the pair form (one narrow-phase
+// distance query), with each body's linear and angular velocity over the step. `kind`: 0 the
+// kernel over every case, 1 the pair form over the sphere-sphere cases, 2 over every case.
+void proxima_safe_step(benchmark::State& state, const CaseSet* set, int kind) {
+  const pb::ProximaCcdCases& p = *set->proxima;
+  std::vector<proxima::MovingBody> a, b;
+  std::vector<proxima::Real> gaps;
+  std::vector<proxima::Vec3> normals;
+  for (std::size_t k = 0; k < set->cases.size(); ++k) {
+    const bool spheres =
+        std::holds_alternative<proxima::Sphere>(p.a[k]) && std::holds_alternative<proxima::Sphere>(p.b[k]);
+    if (kind == 1 && !spheres) continue;
+    a.push_back({p.a[k], p.ma[k].start, p.ma[k].displacement(), p.ma[k].angular_velocity()});
+    b.push_back({p.b[k], p.mb[k].start, p.mb[k].displacement(), p.mb[k].angular_velocity()});
+    const proxima::DistanceResult d = proxima::distance(p.a[k], p.ma[k].start, p.b[k], p.mb[k].start);
+    gaps.push_back(d.signed_distance);
+    normals.push_back(d.normal);
+  }
+  const std::size_t n = a.size();
+  double sum = 0;
+  for (auto _ : state) {
+    sum = 0;
+    for (std::size_t k = 0; k < n; ++k) {
+      const proxima::Real dt = kind == 0 ? proxima::safe_time_step_from_distance(
+                                               gaps[k], normals[k], a[k].linear, a[k].angular, proxima::Real(1),
+                                               b[k].linear, b[k].angular, proxima::Real(1), proxima::Real(0))
+                                         : *proxima::safe_time_step(a[k], b[k]);
+      sum += dt < proxima::Real(1e30) ? double(dt) : 0.0;
+    }
+    benchmark::DoNotOptimize(sum);
+  }
+  state.counters["per_query"] = pb::time_per_item(n);
+  state.counters["pairs"] = static_cast<double>(n);
+}
+
 // -------------------------------------------------------------------------------------
 // The peers: timing, then one untimed pass judged against Proxima's bracket
 // -------------------------------------------------------------------------------------
@@ -280,6 +321,9 @@ bool register_ccd(const std::string& dir) {
 
   add("CCD/Linear/proxima_toi", proxima_toi, &g_linear);
   add("CCD/Linear/proxima_shape_cast", proxima_cast, &g_linear);
+  add("CCD/SafeStep/kernel", proxima_safe_step, &g_rotating, 0);
+  add("CCD/SafeStep/pair_spheres", proxima_safe_step, &g_rotating, 1);
+  add("CCD/SafeStep/pair_all", proxima_safe_step, &g_rotating, 2);
 #if PROXIMA_HAVE_BULLET
   add("CCD/Linear/bullet_subsimplex", bullet_toi, &g_linear, pb::BulletCast::Subsimplex);
   add("CCD/Linear/bullet_gjk_cast", bullet_toi, &g_linear, pb::BulletCast::Gjk);
