@@ -127,6 +127,16 @@ void add_contact(Json& answer, const R& r, const Shape& a, const Shape& b) {
   if (Json p = part_json(b, r.sub_b); !p.is_null()) answer["part_b"] = std::move(p);
 }
 
+// The members ToiOptions and CastOptions share: target_distance, tolerance, max_iterations.
+template <class Options>
+void read_search_options(const Json& request, Options& options) {
+  if (const Json* d = find_member(request, "target_distance")) {
+    options.target_distance = read_real(*d, "target_distance");
+  }
+  if (const Json* t = find_member(request, "tolerance")) options.tolerance = read_real(*t, "tolerance");
+  if (const Json* m = find_member(request, "max_iterations")) options.max_iterations = read_max_iterations(*m);
+}
+
 bool in_contact(CcdStatus status) { return status == CcdStatus::Hit || status == CcdStatus::InitiallyOverlapping; }
 
 }  // namespace
@@ -136,10 +146,7 @@ Json op_toi(const Json& request) {
   const MovingSide a = read_moving_side(request, "a");
   const MovingSide b = read_moving_side(request, "b");
   ToiOptions options;
-  if (const Json* d = find_member(request, "target_distance"))
-    options.target_distance = read_real(*d, "target_distance");
-  if (const Json* t = find_member(request, "tolerance")) options.tolerance = read_real(*t, "tolerance");
-  if (const Json* m = find_member(request, "max_iterations")) options.max_iterations = read_max_iterations(*m);
+  read_search_options(request, options);
   Result<ToiResult> result = time_of_impact(a.shape, a.motion, b.shape, b.motion, options);
   if (!result.ok()) {
     throw_renamed(result.error(), {{"motion_a.start", "a.pose"},
@@ -168,10 +175,7 @@ Json op_cast(const Json& request) {
   const Vec3 translation = read_vec3(require_member(request, "", "translation"), "translation");
   const PlacedShape b = read_placed_geometry(require_member(request, "", "b"), "b");
   CastOptions options;
-  if (const Json* d = find_member(request, "target_distance"))
-    options.target_distance = read_real(*d, "target_distance");
-  if (const Json* t = find_member(request, "tolerance")) options.tolerance = read_real(*t, "tolerance");
-  if (const Json* m = find_member(request, "max_iterations")) options.max_iterations = read_max_iterations(*m);
+  read_search_options(request, options);
   if (const Json* c = find_member(request, "cull_back_faces"))
     options.cull_back_faces = read_bool(*c, "cull_back_faces");
   Result<CastResult> result = shape_cast(a.shape, a.pose, translation, b.shape, b.pose, options);

@@ -63,12 +63,13 @@ struct Cast {
 
 CastResult no_hit() { return CastResult{}; }
 
-CastResult overlapping(const DistanceResult& d) {
+// An answer at t = 0 from the narrow phase's distance there.
+CastResult at_start(const DistanceResult& d, CcdStatus status) {
   CastResult r;
-  r.status = CcdStatus::InitiallyOverlapping;
+  r.status = status;
   r.t = Real(0);
   r.distance = d.signed_distance;
-  r.depth = -d.signed_distance;
+  if (status == CcdStatus::InitiallyOverlapping) r.depth = -d.signed_distance;
   r.point_a = d.point_a;
   r.point_b = d.point_b;
   r.point = (d.point_a + d.point_b) * Real(0.5);
@@ -81,21 +82,11 @@ CastResult overlapping(const DistanceResult& d) {
 // A candidate within target + tolerance at t = 0: overlap, hit at 0 when moving in, else none.
 CastResult classify_start(const Cast& c, ShapeRef b, const Transform& pose_b) {
   const DistanceResult d = distance(c.a, c.pose_a, b, pose_b);
-  if (d.signed_distance < -c.tolerance) return overlapping(d);
+  if (d.signed_distance < -c.tolerance) return at_start(d, CcdStatus::InitiallyOverlapping);
   // Moving in: the translation closes the gap along the normal by more than the tolerance
   // (a slide along the contact plane, rounding included, is no hit).
   if (d.signed_distance > c.target + c.tolerance || !(glm::dot(d.normal, c.s) > c.tolerance)) return no_hit();
-  CastResult r;
-  r.status = CcdStatus::Hit;
-  r.t = Real(0);
-  r.distance = d.signed_distance;
-  r.point_a = d.point_a;
-  r.point_b = d.point_b;
-  r.point = (d.point_a + d.point_b) * Real(0.5);
-  r.normal = d.normal;
-  r.sub_a = d.sub_a;
-  r.sub_b = d.sub_b;
-  return r;
+  return at_start(d, CcdStatus::Hit);
 }
 
 // Conservative advancement on the narrow phase's distance for the translation of A (two
@@ -106,20 +97,19 @@ CastResult cast_by_advancement(const Cast& c, ShapeRef b, const Transform& pose_
   o.tolerance = c.tolerance;
   o.max_iterations = c.max_iterations;
   const Motion ma{c.pose_a, {c.pose_a.position + c.s, c.pose_a.rotation}};
-  const ToiResult toi_result = detail::time_of_impact_unchecked(c.a, ma, b, Motion::stationary(pose_b), o, false);
-  const ToiResult* toi = &toi_result;
+  const ToiResult toi = detail::time_of_impact_unchecked(c.a, ma, b, Motion::stationary(pose_b), o, false);
   CastResult r;
-  r.status = toi->status;
-  r.t = toi->toi;
-  r.distance = toi->distance;
-  r.depth = toi->depth;
-  r.point = toi->point;
-  r.point_a = toi->point_a;
-  r.point_b = toi->point_b;
-  r.normal = toi->normal;
-  r.iterations = toi->iterations;
-  r.sub_a = toi->sub_a;
-  r.sub_b = toi->sub_b;
+  r.status = toi.status;
+  r.t = toi.toi;
+  r.distance = toi.distance;
+  r.depth = toi.depth;
+  r.point = toi.point;
+  r.point_a = toi.point_a;
+  r.point_b = toi.point_b;
+  r.normal = toi.normal;
+  r.iterations = toi.iterations;
+  r.sub_a = toi.sub_a;
+  r.sub_b = toi.sub_b;
   return r;
 }
 
@@ -256,7 +246,7 @@ CastResult deepest_overlap(const Cast& c, const CastResult& found, ShapeRef b, c
   if (found.status != CcdStatus::InitiallyOverlapping) return found;
   const DistanceResult d = distance(c.a, c.pose_a, b, pose_b);
   if (!(d.signed_distance < Real(0))) return found;
-  CastResult r = overlapping(d);
+  CastResult r = at_start(d, CcdStatus::InitiallyOverlapping);
   r.iterations = found.iterations;
   return r;
 }

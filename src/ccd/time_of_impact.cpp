@@ -126,6 +126,16 @@ Real rotational(const Vec3& w, Real radius) {
   return speed > Real(0) ? speed * radius : Real(0);
 }
 
+// Closing speed bound along n at the contact (<= 0: the pair cannot approach along n).
+Real closing_speed(const Pair& p, const Vec3& n) {
+  if (p.ra.halfspace || p.rb.halfspace) {
+    // A half-space's normal turns with it: only its translation is directional.
+    if (glm::length(p.wa) > Real(0) || glm::length(p.wb) > Real(0)) return kInfinity;
+    return glm::dot(n, p.va - p.vb);
+  }
+  return directional_speed_bound(n, p.va - p.vb, p.wa, p.ra.core) + glm::length(glm::cross(n, p.wb)) * p.rb.core;
+}
+
 // How far past t the gap is proved to stay above the target (0: no progress proved).
 Real certified_step(const Pair& p, const DistanceResult& d, const Transform& pa, const Transform& pb) {
   const Vec3 n = d.normal;
@@ -138,22 +148,10 @@ Real certified_step(const Pair& p, const DistanceResult& d, const Transform& pa,
   // Directional bound (two bounded convex shapes).
   if (p.ra.convex && p.rb.convex) {
     const Real g = glm::dot(n, detail::world_support(p.b, pb, -n)) - glm::dot(n, detail::world_support(p.a, pa, n));
-    const Real mu =
-        directional_speed_bound(n, p.va - p.vb, p.wa, p.ra.core) +
-        (glm::length(glm::cross(n, p.wb)) > Real(0) ? glm::length(glm::cross(n, p.wb)) * p.rb.core : Real(0));
+    const Real mu = closing_speed(p, n);
     if (g > p.target) step = std::max(step, mu > Real(0) ? (g - p.target) / mu : kInfinity);
   }
   return step;
-}
-
-// Closing speed bound along n at the contact (<= 0: the pair cannot approach along n).
-Real closing_speed(const Pair& p, const Vec3& n) {
-  if (p.ra.halfspace || p.rb.halfspace) {
-    // A half-space's normal turns with it: only its translation is directional.
-    if (glm::length(p.wa) > Real(0) || glm::length(p.wb) > Real(0)) return kInfinity;
-    return glm::dot(n, p.va - p.vb);
-  }
-  return directional_speed_bound(n, p.va - p.vb, p.wa, p.ra.core) + glm::length(glm::cross(n, p.wb)) * p.rb.core;
 }
 
 void fill_contact(ToiResult& r, const DistanceResult& d, const Vec3& origin) {

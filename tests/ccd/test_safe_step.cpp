@@ -29,12 +29,16 @@
 #include <variant>
 #include <vector>
 
+#include "ccd/case_text.hpp"
 #include "support/random.hpp"
 #include "support/solid_test_meshes.hpp"
 #include "sweep_size.hpp"
 
 namespace proxima {
 namespace test_safe_step {
+
+using test::num;
+using test::text;
 
 constexpr bool kFloat = sizeof(Real) == 4;
 constexpr Real kInf = std::numeric_limits<Real>::infinity();
@@ -90,21 +94,6 @@ Real gap_at(const MovingBody& a, const MovingBody& b, Real t) {
   return distance(a.shape, at_time(a, t), b.shape, at_time(b, t)).signed_distance;
 }
 
-std::string num(Real x) {
-  char buffer[40];
-  std::snprintf(buffer, sizeof(buffer), "%.*g", std::numeric_limits<Real>::max_digits10, double(x));
-  return buffer;
-}
-std::string text(const Vec3& v) {
-  std::string out(1, '(');
-  out += num(v.x);
-  out += ", ";
-  out += num(v.y);
-  out += ", ";
-  out += num(v.z);
-  out += ')';
-  return out;
-}
 std::string text(const MovingBody& body) {
   const Quat& q = body.pose.rotation;
   std::string out = to_string(body.shape.type());

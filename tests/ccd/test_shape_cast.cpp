@@ -45,12 +45,16 @@
 #include <string>
 #include <vector>
 
+#include "ccd/case_text.hpp"
 #include "support/random.hpp"
 #include "support/solid_test_meshes.hpp"
 #include "sweep_size.hpp"
 
 namespace proxima {
 namespace test_shape_cast {
+
+using test::num;
+using test::text;
 
 constexpr bool kFloat = sizeof(Real) == 4;
 constexpr double kInf = std::numeric_limits<double>::infinity();
@@ -95,24 +99,6 @@ Shape random_convex(test::Random& rng, ShapeType kind, Real size) {
       }
     default: return Point::create().value();
   }
-}
-
-// A number with the digits that give back the same Real (9 in float, 17 in double).
-std::string num(Real x) {
-  char buffer[40];
-  std::snprintf(buffer, sizeof(buffer), "%.*g", std::numeric_limits<Real>::max_digits10, double(x));
-  return buffer;
-}
-
-std::string text(const Vec3& v) {
-  std::string out(1, '(');
-  out += num(v.x);
-  out += ", ";
-  out += num(v.y);
-  out += ", ";
-  out += num(v.z);
-  out += ')';
-  return out;
 }
 
 std::string text(const Transform& t) {

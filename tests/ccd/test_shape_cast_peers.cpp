@@ -30,11 +30,15 @@
 #include <string>
 #include <vector>
 
+#include "ccd/case_text.hpp"
 #include "support/random.hpp"
 #include "sweep_size.hpp"
 
 namespace proxima {
 namespace test_shape_cast_peers {
+
+using test::num;
+using test::text;
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 using D3 = glm::dvec3;
@@ -64,23 +68,6 @@ btTransform bullet_transform(const Transform& t) {
   return btTransform(
       btQuaternion(btScalar(t.rotation.x), btScalar(t.rotation.y), btScalar(t.rotation.z), btScalar(t.rotation.w)),
       btVector3(btScalar(t.position.x), btScalar(t.position.y), btScalar(t.position.z)));
-}
-
-std::string num(Real x) {
-  char buffer[40];
-  std::snprintf(buffer, sizeof(buffer), "%.*g", std::numeric_limits<Real>::max_digits10, double(x));
-  return buffer;
-}
-
-std::string text(const Vec3& v) {
-  std::string out(1, '(');
-  out += num(v.x);
-  out += ", ";
-  out += num(v.y);
-  out += ", ";
-  out += num(v.z);
-  out += ')';
-  return out;
 }
 
 // A shape and its pose, to reproduce a case.
@@ -318,7 +305,4 @@ TEST(ShapeCastPeers, BulletConvexCastsAgainstTheReference) {
 }  // namespace test_shape_cast_peers
 }  // namespace proxima
 
-#else
-// Built without Bullet: nothing to compare against, said as a skip rather than hidden.
-TEST(ShapeCastPeers, NeedsBullet) { GTEST_SKIP() << "Bullet not built in"; }
 #endif
