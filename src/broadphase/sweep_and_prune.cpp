@@ -457,12 +457,15 @@ void MultiBoxPruning::find_pairs(std::vector<ProxyPair>& out, Executor& executor
   const int g = static_cast<int>(std::clamp(std::min(by_size, by_count), 1.0, 64.0));
   const double inv_b = span_b > 0 ? g / span_b : 0.0;
   const double inv_c = span_c > 0 ? g / span_c : 0.0;
-  // Monotone cell index of a coordinate (clamped), the same for assignment and ownership.
+  // Monotone cell index of a coordinate (clamped before the conversion to int, so that
+  // boxes reaching kMaxCoordinate, such as a half-space's, stay defined), the same for
+  // assignment and ownership.
+  const double last = static_cast<double>(g - 1);
   auto cell_b = [&](Real x) {
-    return std::clamp(static_cast<int>(std::floor((static_cast<double>(x) - lo_b) * inv_b)), 0, g - 1);
+    return static_cast<int>(std::clamp(std::floor((static_cast<double>(x) - lo_b) * inv_b), 0.0, last));
   };
   auto cell_c = [&](Real x) {
-    return std::clamp(static_cast<int>(std::floor((static_cast<double>(x) - lo_c) * inv_c)), 0, g - 1);
+    return static_cast<int>(std::clamp(std::floor((static_cast<double>(x) - lo_c) * inv_c), 0.0, last));
   };
   const std::size_t cells = static_cast<std::size_t>(g) * static_cast<std::size_t>(g);
   cell_moving_.resize(cells);

@@ -7,6 +7,7 @@
 
 #include <proxima/broadphase/any_broadphase.hpp>
 #include <proxima/broadphase/brute_force.hpp>
+#include <proxima/core/tolerance.hpp>
 
 #include <set>
 #include <string>
@@ -47,6 +48,29 @@ TEST(AnyBroadPhase, EveryRegisteredStructureOnEveryScene) {
       std::unique_ptr<AnyBroadPhase> bp = std::move(made).value();
       EXPECT_TRUE(test::run_differential(*bp, scene, 5)) << name << " on " << scene.name;
     }
+  }
+}
+
+// Named regression: multi-box pruning converted cell coordinates of a box reaching
+// kMaxCoordinate (a half-space's box in a collision world) to int before clamping them
+// (undefined, a floating-point trap under the test main).
+TEST(AnyBroadPhase, BoxesReachingTheCoordinateLimitPairLikeTheBruteForce) {
+  const Real m = kMaxCoordinate;
+  for (std::string_view name : broadphase_names()) {
+    std::unique_ptr<AnyBroadPhase> bp = std::move(make_broadphase(name)).value();
+    BruteForceBroadPhase reference;
+    const Aabb ground{Vec3(-m, -m, -m), Vec3(m, m, Real(-6.5))};
+    ASSERT_EQ(bp->insert(0, ground, ProxyKind::Static), BroadPhaseStatus::Ok) << name;
+    reference.insert(0, ground, ProxyKind::Static);
+    for (ProxyId i = 1; i < 50; ++i) {
+      const Vec3 lo(Real(i % 7) - 3, Real(i % 5) - 2, Real(i % 11) - 7);
+      ASSERT_EQ(bp->insert(i, Aabb{lo, lo + Vec3(1)}, ProxyKind::Moving), BroadPhaseStatus::Ok) << name;
+      reference.insert(i, Aabb{lo, lo + Vec3(1)}, ProxyKind::Moving);
+    }
+    std::vector<ProxyPair> got, want;
+    bp->find_pairs(got);
+    reference.find_pairs(want);
+    EXPECT_EQ(got, want) << name;
   }
 }
 
