@@ -1,0 +1,214 @@
+#pragma once
+/// @file collision_world.hpp
+/// CollisionWorld: the collision module's own state (only collision geometry, no dynamics),
+/// one step that finds every contact and reports it through event arrays and callbacks,
+/// continuous detection for fast objects, and scene queries over all objects.
+///
+/// A frame of a game loop:
+///   world.move(handle, pose) for every object that moved (or move(batch));
+///   world.step(dt);                     // broad phase, narrow phase, events, callbacks
+///   read world.events() and world.contacts(), or react in the listeners.
+///
+/// Objects (object_desc.hpp) are named by handles (object_handle.hpp); a stale or foreign
+/// handle is rejected. Every changing call validates its arguments and either applies
+/// completely or returns an Error naming the argument and changes nothing (state_hash()
+/// proves it in the tests). add / remove / move / set_* cost O(log n) (one broad-phase
+/// update), plus the object's attached subtree for move.
+///
+/// The step (step(), world_step.cpp):
+///   1. broad phase: the structure's pairs of boxes (one proxy per attachment tree: a whole
+///      tree is rejected by one box), expanded to object pairs and filtered (layers, groups,
+///      exclusions, the pair callback); objects of one attachment tree never pair;
+///   2. narrow phase on each candidate pair (on the executor): a contact manifold within the
+///      contact distance, warm-started from the pair's cache of the last step; sensors test
+///      overlap only;
+///   3. persistent manifolds: points matched to the previous step's by feature id and parts,
+///      keeping their ids and user slots; on_pre_contact may edit or veto each pair;
+///   4. events: begin / persist / end and sensor enter / exit from the touching pairs of this
+///      step and the previous one (an ended pair is reported whatever the reason: separation,
+///      filter, kind or geometry change, removal);
+///   5. continuous detection: each fast object (CcdMode Auto or Bullet) is swept from its
+///      pose at the previous step to its pose now against the objects its swept box meets
+///      (static ones; also moving ones for Bullet, with their motions), by the certified time
+///      of impact; the first impact is reported, and a sensor it crosses reports enter and
+///      exit even when neither pose overlaps it;
+///   6. callbacks, in event order (world_listener.hpp).
+/// Poses given by move() between two steps are the motion of the next step: the object
+/// moves from its pose at the last step to the last pose given (linearly, and rotating about
+/// one axis: ccd/motion.hpp).
+///
+/// Determinism: the same calls in the same order give bit-identical events, contacts and
+/// state hashes, whatever the executor and its thread count.
+///
+/// Thread safety: const members (queries) may run concurrently with each other; nothing may
+/// run concurrently with a changing call or step().
+#include <proxima/core/executor.hpp>
+#include <proxima/core/result.hpp>
+#include <proxima/core/transform.hpp>
+#include <proxima/geometry/aabb.hpp>
+#include <proxima/geometry/ray.hpp>
+#include <proxima/shapes/shape.hpp>
+#include <proxima/shapes/shape_ref.hpp>
+#include <proxima/world/collision_filter.hpp>
+#include <proxima/world/object_desc.hpp>
+#include <proxima/world/object_handle.hpp>
+#include <proxima/world/scene_query.hpp>
+#include <proxima/world/world_events.hpp>
+#include <proxima/world/world_listener.hpp>
+#include <proxima/world/world_settings.hpp>
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <span>
+#include <vector>
+
+namespace proxima {
+
+/// One entry of a batch move: the object and its new world pose.
+struct ObjectMove {
+  ObjectHandle object;  ///< the object to move
+  Transform pose;       ///< its new pose (local -> world)
+};
+
+/// The collision world (see the file comment). Movable, not copyable.
+class CollisionWorld {
+ public:
+  /// A world with `settings`; an Error naming the bad field (validate_world_settings, or
+  /// "settings.broadphase" for an unknown structure, listing the names).
+  static Result<CollisionWorld> create(const WorldSettings& settings = {});
+
+  CollisionWorld(CollisionWorld&&) noexcept;
+  CollisionWorld& operator=(CollisionWorld&&) noexcept;
+  CollisionWorld(const CollisionWorld&) = delete;
+  CollisionWorld& operator=(const CollisionWorld&) = delete;
+  ~CollisionWorld();
+
+  /// The settings given to create().
+  const WorldSettings& settings() const;
+
+  // ---- objects ----------------------------------------------------------------------
+
+  /// Adds an object. Errors name the field: "desc.pose" (not finite or not unit),
+  /// "desc.geometry" (a half-space or an empty mesh that is not Static, a compound
+  /// holding nothing), "desc.filter" (a layer or mask with no bits), "desc.parent" (stale or
+  /// unknown), "desc.local_pose". An attached object takes the kind of its tree's root.
+  Result<ObjectHandle> add(const ObjectDesc& desc);
+  /// Removes an object and every object attached below it; their pairs end at the next
+  /// step. Error: "object" (stale or unknown handle).
+  std::optional<Error> remove(ObjectHandle object);
+  /// Sets an object's world pose (an attached object: its local pose follows from its
+  /// parent's); the objects attached below it follow. Errors: "object", "pose".
+  std::optional<Error> move(ObjectHandle object, const Transform& pose);
+  /// Moves many objects; all or nothing (the first bad entry is named: "moves[3].pose").
+  std::optional<Error> move(std::span<const ObjectMove> moves);
+  /// Replaces an object's geometry (its pairs are re-tested at the next step; a pair that no
+  /// longer touches ends). Errors: "object", "geometry" (as for add).
+  std::optional<Error> set_geometry(ObjectHandle object, const Shape& geometry);
+  /// Replaces an object's filter. Errors: "object", "filter".
+  std::optional<Error> set_filter(ObjectHandle object, const CollisionFilter& filter);
+  /// Changes the kind of an object that is not attached (its tree follows). Errors:
+  /// "object", "kind" (an attached object, or a half-space or mesh made Moving).
+  std::optional<Error> set_kind(ObjectHandle object, ObjectKind kind);
+  /// Sets an object's continuous-detection mode. Error: "object".
+  std::optional<Error> set_ccd(ObjectHandle object, CcdMode mode);
+  /// Sets an object's user data. Error: "object".
+  std::optional<Error> set_user_data(ObjectHandle object, std::uint64_t user_data);
+  /// Attaches `object` to `parent` at `local_pose` (parent = default handle: detaches it,
+  /// keeping its world pose). Errors: "object", "parent" (stale, or `object` itself or one
+  /// of its descendants), "local_pose".
+  std::optional<Error> attach(ObjectHandle object, ObjectHandle parent, const Transform& local_pose);
+  /// Excludes the pair (a, b) from colliding (parts of one ragdoll), or allows it again.
+  /// Errors: "a", "b" (stale handles, or a == b).
+  std::optional<Error> set_pair_excluded(ObjectHandle a, ObjectHandle b, bool excluded);
+
+  /// True when `object` names a live object of this world.
+  bool contains(ObjectHandle object) const;
+  /// Number of live objects.
+  std::size_t size() const;
+  /// Every live object's handle, by index.
+  std::vector<ObjectHandle> objects() const;
+  /// The object's description as it is now (pose = its world pose); nothing for a stale handle.
+  std::optional<ObjectDesc> object(ObjectHandle object) const;
+  /// The object's world pose (identity for a stale handle).
+  Transform pose(ObjectHandle object) const;
+  /// The object's world box (an empty box for a stale handle).
+  Aabb bounds(ObjectHandle object) const;
+
+  // ---- callbacks ---------------------------------------------------------------------
+
+  /// The world listener (not owned; nullptr: none). See world_listener.hpp.
+  void set_listener(WorldListener* listener);
+  /// A listener for the events of one object (not owned; nullptr removes it); dropped when
+  /// the object is removed. Error: "object".
+  std::optional<Error> set_object_listener(ObjectHandle object, WorldListener* listener);
+  /// The custom pair filter (not owned; nullptr: none).
+  void set_pair_filter(PairFilterCallback* filter);
+
+  // ---- the step ----------------------------------------------------------------------
+
+  /// Runs one step (see the file comment): `dt` is the step's duration (seconds, > 0, used
+  /// for nothing but the validation of velocities and reported back); the narrow phase runs
+  /// on `executor`. Error: "dt" (not finite or <= 0), or a step called from a callback.
+  std::optional<Error> step(Real dt, Executor& executor = serial_executor());
+  /// The events of the last step.
+  const StepEvents& events() const;
+  /// The manifolds of the pairs touching after the last step, sorted by pair.
+  std::span<const WorldManifold> contacts() const;
+  /// The manifold of a touching pair (either order; the normal points from the lower handle
+  /// to the higher), or nothing.
+  const WorldManifold* contact(ObjectHandle a, ObjectHandle b) const;
+  /// Mutable access to the user slots of a touching pair's points (for a solver).
+  WorldManifold* contact(ObjectHandle a, ObjectHandle b);
+  /// Number of steps run.
+  std::uint64_t step_count() const;
+
+  // ---- scene queries -----------------------------------------------------------------
+  // Each query sees the objects `filter` accepts (collision_filter.hpp) and collects per
+  // `mode` (scene_query.hpp). Errors name the argument: a non-finite or out-of-range ray,
+  // point, box, pose, translation or distance; a sweep of a geometry that is not convex.
+
+  /// Objects hit by the world-frame ray within [0, max_t] (t in units of the direction's
+  /// length; the direction need not be unit, but not zero).
+  Result<std::vector<WorldHit>> raycast(const Ray& ray, Real max_t, const QueryFilter& filter = {},
+                                        QueryMode mode = QueryMode::Closest) const;
+  /// True when nothing that `filter` sees touches the segment from `from` to `to` (AI
+  /// visibility); from == to tests the point.
+  Result<bool> line_of_sight(const Vec3& from, const Vec3& to, const QueryFilter& filter = {}) const;
+  /// Objects that `geometry` placed at `pose` touches or overlaps.
+  Result<std::vector<WorldOverlap>> overlap(ShapeRef geometry, const Transform& pose, const QueryFilter& filter = {},
+                                            QueryMode mode = QueryMode::All) const;
+  /// Objects whose geometry meets the closed world-frame box.
+  Result<std::vector<WorldOverlap>> overlap_box(const Aabb& box, const QueryFilter& filter = {},
+                                                QueryMode mode = QueryMode::All) const;
+  /// Objects whose geometry contains or touches the world-frame point (meshes are surfaces).
+  Result<std::vector<WorldOverlap>> overlap_point(const Vec3& point, const QueryFilter& filter = {},
+                                                  QueryMode mode = QueryMode::All) const;
+  /// Objects hit by the convex `geometry` at `pose` translated by `translation` (t is the
+  /// fraction of it); an object it overlaps at the start is hit at t = 0 with the push-out
+  /// normal (ccd/shape_cast.hpp's contract).
+  Result<std::vector<WorldHit>> sweep(ShapeRef geometry, const Transform& pose, const Vec3& translation,
+                                      const QueryFilter& filter = {}, QueryMode mode = QueryMode::Closest) const;
+  /// The object nearest the point within `max_distance` (>= 0; signed: negative inside a
+  /// solid), or nothing.
+  Result<std::optional<WorldClosest>> closest_point(const Vec3& point, Real max_distance,
+                                                    const QueryFilter& filter = {}) const;
+  /// The object nearest `geometry` at `pose` within `max_distance` (>= 0), or nothing.
+  Result<std::optional<WorldClosest>> closest(ShapeRef geometry, const Transform& pose, Real max_distance,
+                                              const QueryFilter& filter = {}) const;
+
+  // ---- state -------------------------------------------------------------------------
+
+  /// A hash of the whole state (objects, poses, filters, modes, attachments, exclusions,
+  /// touching pairs and their manifolds, step count): equal hashes mean equal worlds.
+  std::uint64_t state_hash() const;
+
+  /// Internal state (src/world/world_state.hpp).
+  struct Impl;
+
+ private:
+  explicit CollisionWorld(std::unique_ptr<Impl> impl);
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace proxima
