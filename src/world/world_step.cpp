@@ -68,8 +68,11 @@ void sensor_events(const PairState& s, std::vector<SensorEvent>& out) {
   if ((s.sensor & 2u) != 0) out.push_back({hi, lo, s.user_hi, s.user_lo});
 }
 
-/// The end event of a pair that touched before this step and does not now.
-void end_pair(const PairState& s, StepEvents& ev) {
+/// The end event of a pair that touched before this step and does not now, with the
+/// objects' user data of now (as last seen for a removed object).
+void end_pair(const Impl& w, PairState s, StepEvents& ev) {
+  if (const ObjectSlot* a = w.find({s.lo, s.gen_lo})) s.user_lo = a->user_data;
+  if (const ObjectSlot* b = w.find({s.hi, s.gen_hi})) s.user_hi = b->user_data;
   if (s.sensor)
     sensor_events(s, ev.sensor_exit);
   else
@@ -85,7 +88,7 @@ std::vector<PairState> merge_pairs(Impl& w, const std::vector<ProxyPair>& candid
   for (const ProxyPair& c : candidates) {
     const std::uint64_t key = (std::uint64_t(c.lo) << 32) | c.hi;
     while (o < old.size() && old[o].key() < key) {
-      if (old[o].touching) end_pair(old[o], w.events);
+      if (old[o].touching) end_pair(w, old[o], w.events);
       ++o;
     }
     const ObjectSlot& a = w.slots[c.lo];
@@ -95,7 +98,7 @@ std::vector<PairState> merge_pairs(Impl& w, const std::vector<ProxyPair>& candid
       s = old[o];
       if (a.geometry_changed || b.geometry_changed) s.cache = PairCache{};
     } else {
-      if (o < old.size() && old[o].key() == key && old[o].touching) end_pair(old[o], w.events);
+      if (o < old.size() && old[o].key() == key && old[o].touching) end_pair(w, old[o], w.events);
       s.lo = c.lo;
       s.hi = c.hi;
       s.gen_lo = a.generation;
@@ -106,7 +109,7 @@ std::vector<PairState> merge_pairs(Impl& w, const std::vector<ProxyPair>& candid
     s.user_hi = b.user_data;
     const std::uint8_t sensor = static_cast<std::uint8_t>((a.sensor ? 1u : 0u) | (b.sensor ? 2u : 0u));
     if (sensor != s.sensor && s.touching) {  // became or stopped being a sensor pair: end the old kind
-      end_pair(s, w.events);
+      end_pair(w, s, w.events);
       s.touching = false;
       s.contact = -1;
     }
@@ -115,7 +118,7 @@ std::vector<PairState> merge_pairs(Impl& w, const std::vector<ProxyPair>& candid
     next.push_back(s);
   }
   for (; o < old.size(); ++o)
-    if (old[o].touching) end_pair(old[o], w.events);
+    if (old[o].touching) end_pair(w, old[o], w.events);
   return next;
 }
 
@@ -181,7 +184,7 @@ void derive_events(Impl& w, const CollisionWorld& world, std::vector<PairState>&
     } else if (touching) {
       if (!s.sensor) w.events.persist.push_back(contact_event(s));
     } else if (s.was_touching) {
-      end_pair(s, w.events);
+      end_pair(w, s, w.events);
     }
   }
   w.contacts = std::move(contacts);
