@@ -5,6 +5,13 @@
 // plates whose boxes meet the segment's swept box, and the first contact (smallest k, then
 // smallest s, ties to the lower plate id) must be the file's: same k and plate, s within
 // 1e-4 in float and 1e-7 in double.
+// Over all 1000 spheres (stride 1, not run by default): double matches every one (largest
+// |s - s_file| 5e-10, the file's 9 decimals); float matches 999. Sphere 455 (interval 14,
+// plate 1078) grazes the plate's edge (deepest penetration 1.6e-4, distance falling at 0.16
+// per unit s): float's answer s = 0.687184 is where the sphere is 1.7e-5 from the plate
+// (within the float precision floor of time_of_impact, 64 epsilon times the pair's scale),
+// 1.06e-4 before the file's s = 0.687290364, which an independent double computation
+// (distance to the box along the segment, bisection) confirms to 1e-10.
 #include <gtest/gtest.h>
 
 #include <proxima/ccd/shape_cast.hpp>

@@ -177,6 +177,9 @@ struct WorldCase {
   const char* manifest_name;
 };
 
+/// gtest's text of a case (its file name, not the struct's bytes).
+void PrintTo(const WorldCase& c, std::ostream* os) { *os << c.file; }
+
 class WorldPairs : public ::testing::TestWithParam<WorldCase> {};
 
 TEST_P(WorldPairs, FramesZeroAndLastMatchTheManifest) {
