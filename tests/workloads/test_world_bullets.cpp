@@ -16,6 +16,7 @@
 
 #include <proxima/ccd/shape_cast.hpp>
 #include <proxima/ccd/time_of_impact.hpp>
+#include <proxima/world/collision_world.hpp>
 
 #include <cstdio>
 #include <optional>
@@ -143,6 +144,90 @@ TEST(WorldBullets, SampledSpheresMatchTheExpectedFirstContacts) {
         name, sampled, hits, matched, worst_s);
     EXPECT_EQ(matched, sampled);
   }
+}
+
+// The same file through the library's CollisionWorld: every sphere (continuous mode Auto) and
+// plate added, the spheres moved frame by frame, one step per frame; the first impact event
+// of each sphere must be the file's first contact: same interval and plate, and s within
+// 1e-7 in double; in float either within 1e-4 or at a fraction where the sphere is, in
+// double, within float's slack of the plate (a graze, where the distance falls so slowly
+// along the path that float's length precision becomes a larger error in s).
+TEST(WorldBullets, TheCollisionWorldReportsEveryExpectedImpact) {
+  const std::string dir = shared_dir();
+  if (dir.empty()) GTEST_SKIP() << "shared workloads not found in " << workload_dir();
+  const auto w = read_world_workload(dir, "world_bullets.txt");
+  ASSERT_TRUE(w.ok()) << w.error().what();
+  const auto expected = read_bullets_expected(workload_path(dir, "world_bullets_expected.txt"));
+  ASSERT_TRUE(expected.ok()) << expected.error().what();
+  const auto shapes = to_shapes(*w);
+  ASSERT_TRUE(shapes.ok()) << shapes.error().what();
+  const World& world = w->world;
+  WorldSettings settings;
+  if (PROXIMA_DOUBLE) settings.ccd_tolerance = Real(1e-10);
+  CollisionWorld cw = std::move(CollisionWorld::create(settings)).value();
+  for (std::uint32_t i = 0; i < world.objects.size(); ++i) {
+    const WorldObject& o = world.objects[i];
+    ObjectDesc d;
+    d.geometry = (*shapes)[i];
+    d.pose = world_transform(o, pose_at_frame(world, i, 0));
+    d.kind = o.is_static ? ObjectKind::Static : ObjectKind::Moving;
+    ASSERT_EQ(cw.add(d)->index, i);
+  }
+  ASSERT_FALSE(cw.step(Real(world.dt)).has_value());
+  std::vector<std::optional<Found>> first(world.objects.size());
+  std::vector<ObjectMove> moves;
+  for (int k = 0; k < world.frames; ++k) {
+    moves.clear();
+    for (std::uint32_t i = 0; i < world.objects.size(); ++i)
+      if (!world.objects[i].is_static)
+        moves.push_back({ObjectHandle{i, 0}, world_transform(world.objects[i], pose_at_frame(world, i, k + 1))});
+    ASSERT_FALSE(cw.move(moves).has_value());
+    ASSERT_FALSE(cw.step(Real(world.dt)).has_value());
+    for (const ImpactEvent& e : cw.events().impacts)
+      if (!first[e.a.index]) first[e.a.index] = Found{k, double(e.toi), e.b.index};
+  }
+  int hits = 0, matched = 0, grazes = 0;
+  double worst = 0;
+  for (const BulletContact& e : expected->contacts) {
+    const std::optional<Found>& found = first[e.sphere];
+    if (!e.hit) {
+      EXPECT_FALSE(found) << "sphere " << e.sphere << ": an impact the file does not have, interval " << found->interval
+                          << " s = " << found->s << " plate " << found->plate;
+      matched += found ? 0 : 1;
+      continue;
+    }
+    ++hits;
+    if (!found) {
+      ADD_FAILURE() << "sphere " << e.sphere << ": no impact; the file has interval " << e.interval << " s = " << e.s
+                    << " plate " << e.plate;
+      continue;
+    }
+    EXPECT_EQ(found->interval, e.interval) << "sphere " << e.sphere;
+    EXPECT_EQ(found->plate, e.plate) << "sphere " << e.sphere;
+    const double error = std::abs(found->s - e.s);
+    worst = std::max(worst, error);
+    bool ok = error <= (PROXIMA_DOUBLE ? 1e-7 : 1e-4);
+    if (!ok && !PROXIMA_DOUBLE && found->interval == e.interval && found->plate == e.plate) {
+      // The sphere's centre at the reported s, in double, and its gap to the plate.
+      const Pose p0 = pose_at_frame(world, e.sphere, e.interval), p1 = pose_at_frame(world, e.sphere, e.interval + 1);
+      world_ref::Convex ball{
+          {world_ref::add(p0.position, world_ref::mul(found->s, world_ref::sub(p1.position, p0.position)))},
+          world.objects[e.sphere].shape.radius};
+      const world_ref::Placed plate = world_ref::place(*w, e.plate, world.objects[e.plate].pose);
+      const double gap = world_ref::gap(ball, plate.convex);
+      ok = gap >= 0 && gap <= 2e-4;
+      grazes += ok ? 1 : 0;
+      EXPECT_TRUE(ok) << "sphere " << e.sphere << ": s = " << found->s << " against " << e.s << ", gap " << gap;
+    } else {
+      EXPECT_TRUE(ok) << "sphere " << e.sphere << ": s = " << found->s << " against " << e.s;
+    }
+    matched += ok && found->interval == e.interval && found->plate == e.plate ? 1 : 0;
+  }
+  std::printf(
+      "[ bullets  ] world: %zu spheres, %d impacts in the file, %d matched (%d float grazes), largest |s - s_file| "
+      "%.3g\n",
+      expected->contacts.size(), hits, matched, grazes, worst);
+  EXPECT_EQ(matched, int(expected->contacts.size()));
 }
 
 }  // namespace test_world_bullets

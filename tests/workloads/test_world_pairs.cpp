@@ -4,6 +4,8 @@
 //     rule and the reference);
 //   - the library (proxima::intersect over SortedSweep's pairs of world_aabb boxes, static
 //     pairs never formed) in double must give the same pair set, so MANIFEST's values;
+//   - the library's CollisionWorld (every object added at its frame-0 pose, moved to its
+//     frame-F pose, continuous detection off, one step each) must give the same pairs;
 //   - in float a pair may go either way when it is within float rounding of touching: every
 //     pair on which the library and the reference disagree must be within kFloatSlack of
 //     touching, measured in double (the reference's gap when it says apart; a plane along
@@ -13,6 +15,7 @@
 #include <proxima/broadphase/sweep_and_prune.hpp>
 #include <proxima/core/tolerance.hpp>
 #include <proxima/narrowphase/narrowphase.hpp>
+#include <proxima/world/collision_world.hpp>
 
 #include <chrono>
 #include <cstdio>
@@ -107,6 +110,39 @@ std::vector<IdPair> library_pairs(const WorldWorkload& w, const std::vector<Shap
   return out;
 }
 
+/// A CollisionWorld holding every object of `w` at its frame-0 pose (object i is handle
+/// index i), continuous detection off (a jump from frame 0 to F is not a motion).
+CollisionWorld make_collision_world(const WorldWorkload& w, const std::vector<Shape>& shapes) {
+  WorldSettings settings;
+  settings.continuous = false;
+  CollisionWorld world = std::move(CollisionWorld::create(settings)).value();
+  for (std::size_t i = 0; i < shapes.size(); ++i) {
+    const WorldObject& o = w.world.objects[i];
+    ObjectDesc d;
+    d.geometry = shapes[i];
+    d.pose = world_transform(o, pose_at_frame(w.world, i, 0));
+    d.kind = o.is_static ? ObjectKind::Static : ObjectKind::Moving;
+    const auto h = world.add(d);
+    EXPECT_TRUE(h.ok() && h->index == i) << "object " << i;
+  }
+  return world;
+}
+
+/// The touching pairs of `world` after one step with every moving object at its frame-k pose.
+std::vector<IdPair> collision_world_pairs(CollisionWorld& world, const WorldWorkload& w, int frame) {
+  std::vector<ObjectMove> moves;
+  for (std::size_t i = 0; i < w.world.objects.size(); ++i) {
+    const WorldObject& o = w.world.objects[i];
+    if (!o.is_static)
+      moves.push_back({ObjectHandle{std::uint32_t(i), 0}, world_transform(o, pose_at_frame(w.world, i, frame))});
+  }
+  EXPECT_FALSE(world.move(moves).has_value());
+  EXPECT_FALSE(world.step(Real(w.world.dt)).has_value());
+  std::vector<IdPair> out;
+  for (const WorldManifold& m : world.contacts()) out.emplace_back(m.pair.a.index, m.pair.b.index);
+  return out;
+}
+
 Vec3d to_vec3d(const Vec3& v) { return {double(v.x), double(v.y), double(v.z)}; }
 
 /// How far the pair {a, b} is from the decision that the reference did not make: the
@@ -195,6 +231,7 @@ TEST_P(WorldPairs, FramesZeroAndLastMatchTheManifest) {
   const auto shapes = to_shapes(*w);
   ASSERT_TRUE(shapes.ok()) << shapes.error().what();
   const std::uint64_t n = w->world.size();
+  CollisionWorld world = make_collision_world(*w, *shapes);
   for (const int frame : {0, w->world.frames}) {
     SCOPED_TRACE("frame " + std::to_string(frame));
     const Published expected = published(entry->second.notes, frame);
@@ -208,33 +245,36 @@ TEST_P(WorldPairs, FramesZeroAndLastMatchTheManifest) {
     for (const IdPair& p : reference) ++split[partner_kind(w->world, p)];
     EXPECT_EQ(split, expected.split);
 
-    // The library.
+    // The library: the narrow phase over a broad phase, and the collision world.
     std::vector<Transform> poses;
     const std::vector<IdPair> library = library_pairs(*w, *shapes, frame, poses);
-    std::vector<IdPair> only_library, only_reference;
-    std::set_difference(library.begin(), library.end(), reference.begin(), reference.end(),
-                        std::back_inserter(only_library));
-    std::set_difference(reference.begin(), reference.end(), library.begin(), library.end(),
-                        std::back_inserter(only_reference));
-    std::printf("[ world    ] %s frame %d: reference %s, library %s, only library %zu, only reference %zu\n",
-                c.manifest_name, frame, checksum_of(reference, n).to_string().c_str(),
-                checksum_of(library, n).to_string().c_str(), only_library.size(), only_reference.size());
-    if (PROXIMA_DOUBLE) {
-      EXPECT_EQ(checksum_of(library, n), expected.checksum);
-      EXPECT_TRUE(only_library.empty() && only_reference.empty());
-    }
-    for (const auto* list : {&only_library, &only_reference}) {
-      const bool touching = list == &only_reference;
-      for (const IdPair& p : *list) {
-        const DistanceResult d = distance((*shapes)[p.first], poses[p.first], (*shapes)[p.second], poses[p.second]);
-        const double flip = distance_to_flip(placed[p.first], placed[p.second], touching, to_vec3d(d.normal));
-        const double slack = float_slack(placed[p.first], placed[p.second]);
-        std::printf(
-            "[ world    ]   pair %u %u (%s-%s): reference %s, library distance %.3g, %.3g from the other "
-            "answer (slack %.3g)\n",
-            p.first, p.second, shape_name(w->world.objects[p.first]), shape_name(w->world.objects[p.second]),
-            touching ? "touching" : "apart", double(d.signed_distance), flip, slack);
-        EXPECT_LE(flip, slack) << "pair " << p.first << " " << p.second;
+    const std::vector<IdPair> in_world = collision_world_pairs(world, *w, frame);
+    for (const auto& [what, found] : {std::pair{"library", &library}, std::pair{"world", &in_world}}) {
+      std::vector<IdPair> only_library, only_reference;
+      std::set_difference(found->begin(), found->end(), reference.begin(), reference.end(),
+                          std::back_inserter(only_library));
+      std::set_difference(reference.begin(), reference.end(), found->begin(), found->end(),
+                          std::back_inserter(only_reference));
+      std::printf("[ world    ] %s frame %d: reference %s, %s %s, only %s %zu, only reference %zu\n", c.manifest_name,
+                  frame, checksum_of(reference, n).to_string().c_str(), what,
+                  checksum_of(*found, n).to_string().c_str(), what, only_library.size(), only_reference.size());
+      if (PROXIMA_DOUBLE) {
+        EXPECT_EQ(checksum_of(*found, n), expected.checksum) << what;
+        EXPECT_TRUE(only_library.empty() && only_reference.empty()) << what;
+      }
+      for (const auto* list : {&only_library, &only_reference}) {
+        const bool touching = list == &only_reference;
+        for (const IdPair& p : *list) {
+          const DistanceResult d = distance((*shapes)[p.first], poses[p.first], (*shapes)[p.second], poses[p.second]);
+          const double flip = distance_to_flip(placed[p.first], placed[p.second], touching, to_vec3d(d.normal));
+          const double slack = float_slack(placed[p.first], placed[p.second]);
+          std::printf(
+              "[ world    ]   %s pair %u %u (%s-%s): reference %s, library distance %.3g, %.3g from the other "
+              "answer (slack %.3g)\n",
+              what, p.first, p.second, shape_name(w->world.objects[p.first]), shape_name(w->world.objects[p.second]),
+              touching ? "touching" : "apart", double(d.signed_distance), flip, slack);
+          EXPECT_LE(flip, slack) << what << " pair " << p.first << " " << p.second;
+        }
       }
     }
   }
