@@ -58,6 +58,7 @@
 #include <proxima/world/world_settings.hpp>
 
 #include <cstdint>
+#include <iosfwd>
 #include <memory>
 #include <optional>
 #include <span>
@@ -202,6 +203,18 @@ class CollisionWorld {
   /// A hash of the whole state (objects, poses, filters, modes, attachments, exclusions,
   /// touching pairs and their manifolds, step count): equal hashes mean equal worlds.
   std::uint64_t state_hash() const;
+
+  /// Writes the whole world to `out` as a versioned binary snapshot: settings, every object
+  /// (geometry of every kind, poses, pose at the last step, filter, kind, modes, user data,
+  /// attachment), the slots' generations and free list, exclusions, the pair table with its
+  /// caches, the manifolds and the events of the last step. Listeners and the pair filter are
+  /// the caller's code and are not written. Error: "out" when the stream fails.
+  std::optional<Error> save(std::ostream& out) const;
+  /// A world read from a snapshot written by save(): its state_hash() equals the saved
+  /// world's, and the same calls then give the same events. Errors name what is wrong
+  /// ("snapshot": not a snapshot, an unsupported version, truncated or inconsistent data;
+  /// "snapshot.objects[3].geometry": a geometry that no longer validates).
+  static Result<CollisionWorld> load(std::istream& in);
 
   /// Internal state (src/world/world_state.hpp).
   struct Impl;
