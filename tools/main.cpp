@@ -3,6 +3,7 @@
 //   proxima demo [options]     the billiard-break demo (statistics + SVG picture)
 //   proxima demo-tunnelling    discrete against continuous detection of fast bullets (+ SVG)
 //   proxima query [FILE|-]     the JSON query protocol, one request per line
+//   proxima world [FILE|-]     a collision world driven by JSON requests, one per line
 //   proxima bench broadphase   one broad-phase structure on a W1 workload file
 //   proxima mesh-info FILE     validation/repair report, bounds, volume, BVH of a mesh file
 #include <proxima/core/config.hpp>
@@ -22,6 +23,7 @@
 #include "mesh_info.hpp"
 #include "query.hpp"
 #include "query_operations.hpp"
+#include "world_session.hpp"
 
 namespace {
 
@@ -54,9 +56,37 @@ int run_query(const std::string& input) {
   return proxima::tool::exit_status(proxima::tool::run_queries(file, std::cout));
 }
 
+std::string world_footer() {
+  std::string text = "\nOperations (\"op\"):\n";
+  for (const auto& op : proxima::tool::world_operations()) {
+    text += "  " + std::string(op.name) + ": " + std::string(op.synopsis) + "\n";
+  }
+  text +=
+      "Handles are the integers \"add\" answers. Shapes and poses as in `proxima query`.\n"
+      "Exit status: 0 when every line was answered, 2 when a line was rejected, 1 when the input\n"
+      "cannot be read or the options make no world. See docs/world-protocol.md.";
+  return text;
+}
+
+int run_world(const proxima::tool::WorldOptions& options, const std::string& input) {
+  auto session = proxima::tool::WorldSession::create(options);
+  if (!session.ok()) {
+    std::cerr << "proxima world: " << session.error().what() << "\n";
+    return 1;
+  }
+  if (input.empty() || input == "-") return proxima::tool::exit_status(session.value().run(std::cin, std::cout));
+  std::ifstream file(input);
+  if (!file) {
+    std::cerr << "proxima world: cannot open " << input << "\n";
+    return 1;
+  }
+  return proxima::tool::exit_status(session.value().run(file, std::cout));
+}
+
 int run(int argc, char** argv) {
   std::ios::sync_with_stdio(false);
-  CLI::App app{"proxima: collision detection from the command line (demo, JSON queries)", "proxima"};
+  CLI::App app{"proxima: collision detection from the command line (demo, JSON queries, a JSON-driven world)",
+               "proxima"};
   app.set_version_flag("--version", version_line(), "Print the version and the scalar precision, then exit");
   app.require_subcommand(0, 1);
 
@@ -97,6 +127,28 @@ int run(int argc, char** argv) {
       "query", "Answer JSON requests, one per line, from FILE or standard input; one JSON answer per line");
   query_cmd->add_option("input", query_input, "Request file; '-' or absent: standard input");
   query_cmd->footer(query_footer());
+
+  proxima::tool::WorldOptions world;
+  std::string world_input;
+  double world_contact_distance = 0.0;
+  CLI::App* world_cmd = app.add_subcommand(
+      "world",
+      "Drive a collision world with JSON requests, one per line, from FILE or standard input; one JSON answer per "
+      "line");
+  world_cmd->add_option("input", world_input, "Request file; '-' or absent: standard input");
+  world_cmd->add_option("--threads", world.threads, "Threads of the step's narrow phase (0: one per core)")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 256));
+  world_cmd->add_option("--broadphase", world.settings.broadphase, "Broad-phase structure (registry name)")
+      ->capture_default_str();
+  world_cmd
+      ->add_option("--contact-distance", world_contact_distance,
+                   "Pairs within this gap touch (length units; 0: touching or overlapping only)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 1e18));
+  world_cmd->add_flag("--sensors-sense-sensors", world.settings.sensors_sense_sensors,
+                      "Two sensors report enter / exit of each other");
+  world_cmd->footer(world_footer());
 
   proxima::tool::BenchBroadphaseOptions bench_broadphase;
   CLI::App* bench_cmd = app.add_subcommand("bench", "Benchmarks on workload files");
@@ -139,6 +191,10 @@ int run(int argc, char** argv) {
     if (demo_cmd->parsed()) return proxima::tool::run_billiards_demo(demo, std::cout, std::cerr);
     if (tunnelling_cmd->parsed()) return proxima::tool::run_tunnelling_demo(tunnelling, std::cout, std::cerr);
     if (query_cmd->parsed()) return run_query(query_input);
+    if (world_cmd->parsed()) {
+      world.settings.contact_distance = static_cast<proxima::Real>(world_contact_distance);
+      return run_world(world, world_input);
+    }
     if (mesh_info_cmd->parsed()) {
       mesh_info.repair = !mesh_info_no_repair;
       return proxima::tool::run_mesh_info(mesh_info, std::cout, std::cerr);

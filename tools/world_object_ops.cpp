@@ -1,0 +1,168 @@
+// The object operations of the world protocol: add, remove, move, set_*, attach, exclude.
+// Every handler reads and checks the whole request before it changes the world, and the
+// world's own calls apply completely or not at all, so a rejected request changes nothing.
+#include <proxima/world/object_desc.hpp>
+
+#include <algorithm>
+#include <vector>
+
+#include "json_shapes.hpp"
+#include "world_json.hpp"
+#include "world_ops.hpp"
+#include "world_session.hpp"
+
+namespace proxima::tool {
+
+namespace {
+
+Json ok() {
+  Json answer = Json::object();
+  answer["ok"] = true;
+  return answer;
+}
+
+}  // namespace
+
+Json op_world_add(WorldSession& session, const Json& request) {
+  reject_unknown_fields(
+      request, "",
+      {"id", "op", "geometry", "pose", "kind", "filter", "sensor", "ccd", "parent", "local_pose", "user_data"});
+  CollisionWorld& world = session.world();
+  ObjectDesc desc;
+  desc.geometry = read_geometry(require_member(request, "", "geometry"), "geometry");
+  const Json* parent = find_member(request, "parent");
+  if (parent != nullptr && parent->is_null()) parent = nullptr;
+  if (const Json* pose = find_member(request, "pose")) {
+    if (parent != nullptr) {
+      throw FieldError("pose", "invalid_argument", "an attached object is placed by \"local_pose\", not \"pose\"");
+    }
+    desc.pose = read_pose(*pose, "pose");
+  }
+  if (const Json* kind = find_member(request, "kind")) desc.kind = read_kind(*kind, "kind");
+  if (const Json* filter = find_member(request, "filter")) desc.filter = read_collision_filter(*filter, "filter");
+  if (const Json* sensor = find_member(request, "sensor")) desc.sensor = read_bool(*sensor, "sensor");
+  if (const Json* ccd = find_member(request, "ccd")) desc.ccd = read_ccd(*ccd, "ccd");
+  if (parent != nullptr) desc.parent = read_live_handle(*parent, "parent", world);
+  if (const Json* local = find_member(request, "local_pose")) {
+    if (parent == nullptr) {
+      throw FieldError("local_pose", "invalid_argument", "only an attached object (with a \"parent\") has one");
+    }
+    desc.local_pose = read_pose(*local, "local_pose");
+  }
+  if (const Json* user_data = find_member(request, "user_data")) desc.user_data = read_u64(*user_data, "user_data");
+  const ObjectHandle handle = unwrap_world(world.add(desc));
+  Json answer = Json::object();
+  answer["object"] = handle_to_json(handle);
+  return answer;
+}
+
+Json op_world_remove(WorldSession& session, const Json& request) {
+  reject_unknown_fields(request, "", {"id", "op", "object"});
+  CollisionWorld& world = session.world();
+  const ObjectHandle object = member_live_handle(request, "object", world);
+  const std::vector<ObjectHandle> before = world.objects();
+  check_world(world.remove(object));
+  Json removed = Json::array();
+  for (ObjectHandle h : before) {
+    if (!world.contains(h)) removed.push_back(handle_to_json(h));
+  }
+  Json answer = Json::object();
+  answer["removed"] = std::move(removed);
+  return answer;
+}
+
+Json op_world_move(WorldSession& session, const Json& request) {
+  reject_unknown_fields(request, "", {"id", "op", "object", "pose", "objects"});
+  CollisionWorld& world = session.world();
+  if (const Json* list = find_member(request, "objects")) {
+    if (find_member(request, "object") != nullptr || find_member(request, "pose") != nullptr) {
+      throw FieldError("objects", "invalid_argument", "give either \"objects\" or \"object\" and \"pose\", not both");
+    }
+    if (!list->is_array()) throw FieldError("objects", "wrong_type", "must be an array of {\"object\":…,\"pose\":…}");
+    std::vector<ObjectMove> moves;
+    moves.reserve(list->size());
+    for (std::size_t i = 0; i < list->size(); ++i) {
+      const std::string path = index_path("objects", i);
+      const Json& entry = (*list)[i];
+      require_object(entry, path);
+      reject_unknown_fields(entry, path, {"object", "pose"});
+      const ObjectHandle h = read_live_handle(require_member(entry, path, "object"), join_path(path, "object"), world);
+      moves.push_back({h, read_pose(require_member(entry, path, "pose"), join_path(path, "pose"))});
+    }
+    check_world(world.move(moves));
+    return ok();
+  }
+  const ObjectHandle object = member_live_handle(request, "object", world);
+  const Transform pose = read_pose(require_member(request, "", "pose"), "pose");
+  check_world(world.move(object, pose));
+  return ok();
+}
+
+Json op_world_set_geometry(WorldSession& session, const Json& request) {
+  reject_unknown_fields(request, "", {"id", "op", "object", "geometry"});
+  const ObjectHandle object = member_live_handle(request, "object", session.world());
+  const Shape geometry = read_geometry(require_member(request, "", "geometry"), "geometry");
+  check_world(session.world().set_geometry(object, geometry));
+  return ok();
+}
+
+Json op_world_set_filter(WorldSession& session, const Json& request) {
+  reject_unknown_fields(request, "", {"id", "op", "object", "filter"});
+  const ObjectHandle object = member_live_handle(request, "object", session.world());
+  const CollisionFilter filter = read_collision_filter(require_member(request, "", "filter"), "filter");
+  check_world(session.world().set_filter(object, filter));
+  return ok();
+}
+
+Json op_world_set_kind(WorldSession& session, const Json& request) {
+  reject_unknown_fields(request, "", {"id", "op", "object", "kind"});
+  const ObjectHandle object = member_live_handle(request, "object", session.world());
+  const ObjectKind kind = read_kind(require_member(request, "", "kind"), "kind");
+  check_world(session.world().set_kind(object, kind));
+  return ok();
+}
+
+Json op_world_set_ccd(WorldSession& session, const Json& request) {
+  reject_unknown_fields(request, "", {"id", "op", "object", "ccd"});
+  const ObjectHandle object = member_live_handle(request, "object", session.world());
+  const CcdMode mode = read_ccd(require_member(request, "", "ccd"), "ccd");
+  check_world(session.world().set_ccd(object, mode));
+  return ok();
+}
+
+Json op_world_set_user_data(WorldSession& session, const Json& request) {
+  reject_unknown_fields(request, "", {"id", "op", "object", "user_data"});
+  const ObjectHandle object = member_live_handle(request, "object", session.world());
+  const std::uint64_t user_data = read_u64(require_member(request, "", "user_data"), "user_data");
+  check_world(session.world().set_user_data(object, user_data));
+  return ok();
+}
+
+Json op_world_attach(WorldSession& session, const Json& request) {
+  reject_unknown_fields(request, "", {"id", "op", "object", "parent", "local_pose"});
+  CollisionWorld& world = session.world();
+  const ObjectHandle object = member_live_handle(request, "object", world);
+  const Json& parent_json = require_member(request, "", "parent");
+  ObjectHandle parent{};  // null: detach
+  Transform local_pose = Transform::identity();
+  if (!parent_json.is_null()) {
+    parent = read_live_handle(parent_json, "parent", world);
+    if (const Json* local = find_member(request, "local_pose")) local_pose = read_pose(*local, "local_pose");
+  } else if (find_member(request, "local_pose") != nullptr) {
+    throw FieldError("local_pose", "invalid_argument", "a detached object keeps its world pose: no \"local_pose\"");
+  }
+  check_world(world.attach(object, parent, local_pose));
+  return ok();
+}
+
+Json op_world_exclude(WorldSession& session, const Json& request) {
+  reject_unknown_fields(request, "", {"id", "op", "a", "b", "excluded"});
+  const ObjectHandle a = member_live_handle(request, "a", session.world());
+  const ObjectHandle b = member_live_handle(request, "b", session.world());
+  bool excluded = true;
+  if (const Json* e = find_member(request, "excluded")) excluded = read_bool(*e, "excluded");
+  check_world(session.world().set_pair_excluded(a, b, excluded));
+  return ok();
+}
+
+}  // namespace proxima::tool

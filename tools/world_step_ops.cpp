@@ -1,0 +1,134 @@
+// The step and state operations of the world protocol: step (events and manifolds), hash,
+// save and load (binary snapshots).
+#include <cstdio>
+#include <fstream>
+
+#include "world_json.hpp"
+#include "world_ops.hpp"
+#include "world_session.hpp"
+
+namespace proxima::tool {
+
+namespace {
+
+Json pair_to_json(ObjectHandle a, ObjectHandle b) { return Json::array({handle_to_json(a), handle_to_json(b)}); }
+
+Json contact_events(const std::vector<ContactEvent>& events) {
+  Json list = Json::array();
+  for (const ContactEvent& e : events) list.push_back(pair_to_json(e.pair.a, e.pair.b));
+  return list;
+}
+
+Json sensor_events(const std::vector<SensorEvent>& events) {
+  Json list = Json::array();
+  for (const SensorEvent& e : events) list.push_back(pair_to_json(e.sensor, e.other));
+  return list;
+}
+
+Json impact_events(const std::vector<ImpactEvent>& events) {
+  Json list = Json::array();
+  for (const ImpactEvent& e : events) {
+    Json impact = Json::object();
+    impact["a"] = handle_to_json(e.a);
+    impact["b"] = handle_to_json(e.b);
+    impact["toi"] = to_json(e.toi);
+    impact["point"] = to_json(e.point);
+    impact["normal"] = to_json(e.normal);
+    list.push_back(std::move(impact));
+  }
+  return list;
+}
+
+Json manifolds(std::span<const WorldManifold> contacts) {
+  Json list = Json::array();
+  for (const WorldManifold& m : contacts) {
+    Json manifold = Json::object();
+    manifold["a"] = handle_to_json(m.pair.a);
+    manifold["b"] = handle_to_json(m.pair.b);
+    manifold["normal"] = to_json(m.normal);
+    Json points = Json::array();
+    for (int i = 0; i < m.count; ++i) {
+      const WorldContactPoint& p = m.points[static_cast<std::size_t>(i)];
+      Json point = Json::object();
+      point["id"] = p.id;
+      point["point_a"] = to_json(p.contact.point_a);
+      point["point_b"] = to_json(p.contact.point_b);
+      point["depth"] = to_json(p.contact.depth);
+      point["persisted"] = p.persisted;
+      points.push_back(std::move(point));
+    }
+    manifold["points"] = std::move(points);
+    list.push_back(std::move(manifold));
+  }
+  return list;
+}
+
+std::string hash_text(std::uint64_t hash) {
+  char text[17];
+  std::snprintf(text, sizeof(text), "%016llx", static_cast<unsigned long long>(hash));
+  return text;
+}
+
+std::string member_file(const Json& request) { return read_string(require_member(request, "", "file"), "file"); }
+
+}  // namespace
+
+Json op_world_step(WorldSession& session, const Json& request) {
+  reject_unknown_fields(request, "", {"id", "op", "dt", "contacts"});
+  Real dt = Real(1) / Real(60);
+  if (const Json* d = find_member(request, "dt")) dt = read_real(*d, "dt");
+  bool with_contacts = false;
+  if (const Json* c = find_member(request, "contacts")) with_contacts = read_bool(*c, "contacts");
+  CollisionWorld& world = session.world();
+  check_world(world.step(dt, session.executor()));
+  const StepEvents& events = world.events();
+  Json answer = Json::object();
+  answer["begin"] = contact_events(events.begin);
+  answer["persist"] = contact_events(events.persist);
+  answer["end"] = contact_events(events.end);
+  answer["sensor_enter"] = sensor_events(events.sensor_enter);
+  answer["sensor_exit"] = sensor_events(events.sensor_exit);
+  answer["impacts"] = impact_events(events.impacts);
+  if (with_contacts) answer["contacts"] = manifolds(world.contacts());
+  return answer;
+}
+
+Json op_world_hash(WorldSession& session, const Json& request) {
+  reject_unknown_fields(request, "", {"id", "op"});
+  Json answer = Json::object();
+  answer["hash"] = hash_text(session.world().state_hash());
+  return answer;
+}
+
+Json op_world_save(WorldSession& session, const Json& request) {
+  reject_unknown_fields(request, "", {"id", "op", "file"});
+  const std::string file = member_file(request);
+  std::ofstream out(file, std::ios::binary | std::ios::trunc);
+  if (!out) throw FieldError("file", "invalid_argument", "cannot open \"" + file + "\" for writing");
+  if (const auto error = session.world().save(out)) {
+    throw FieldError("file", to_string(error->code), "writing \"" + file + "\": " + error->message);
+  }
+  out.flush();
+  if (!out) throw FieldError("file", "invalid_argument", "writing \"" + file + "\" failed");
+  Json answer = Json::object();
+  answer["bytes"] = static_cast<std::uint64_t>(out.tellp());
+  return answer;
+}
+
+Json op_world_load(WorldSession& session, const Json& request) {
+  reject_unknown_fields(request, "", {"id", "op", "file"});
+  const std::string file = member_file(request);
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw FieldError("file", "invalid_argument", "cannot open \"" + file + "\" for reading");
+  Result<CollisionWorld> loaded = CollisionWorld::load(in);
+  if (!loaded.ok()) {
+    const Error& e = loaded.error();
+    throw FieldError("file", to_string(e.code), "in \"" + file + "\": " + e.what());
+  }
+  session.replace_world(std::move(loaded).value());
+  Json answer = Json::object();
+  answer["objects"] = session.world().size();
+  return answer;
+}
+
+}  // namespace proxima::tool
