@@ -6,57 +6,15 @@
 #include <algorithm>
 #include <array>
 #include <filesystem>
-#include <fstream>
 #include <string>
 #include <vector>
 
+#include "doc_examples.hpp"
 #include "json_expect.hpp"
 #include "query.hpp"
 
 namespace proxima {
 namespace test_protocol_doc {
-
-struct Example {
-  std::string request;
-  std::string answer;
-  int line = 0;
-};
-
-// Pairs of consecutive lines starting with '{' inside ``` blocks without a language tag.
-std::vector<Example> read_examples(const std::string& path) {
-  std::ifstream in(path);
-  std::vector<Example> examples;
-  std::string line;
-  bool in_plain_block = false;
-  bool in_other_block = false;
-  std::string pending;
-  int pending_line = 0;
-  for (int number = 1; std::getline(in, line); ++number) {
-    if (line.rfind("```", 0) == 0) {
-      if (in_plain_block || in_other_block) {
-        in_plain_block = in_other_block = false;
-      } else if (line == "```") {
-        in_plain_block = true;
-      } else {
-        in_other_block = true;
-      }
-      pending.clear();
-      continue;
-    }
-    if (!in_plain_block || line.empty() || line.front() != '{') {
-      pending.clear();
-      continue;
-    }
-    if (pending.empty()) {
-      pending = line;
-      pending_line = number;
-    } else {
-      examples.push_back({pending, line, pending_line});
-      pending.clear();
-    }
-  }
-  return examples;
-}
 
 // An oriented box's axes may come in any order and with either sign: replace "axes" and
 // "half_extents" by the (half extent, axis) pairs sorted by half extent, each axis turned so
@@ -86,14 +44,14 @@ tool::Json canonical_obb(tool::Json answer) {
 }
 
 TEST(ProtocolDoc, ExamplesAreTheProgramsAnswers) {
-  const auto examples = read_examples(PROXIMA_QUERY_PROTOCOL_DOC);
+  const auto examples = test::read_doc_examples(PROXIMA_QUERY_PROTOCOL_DOC);
   ASSERT_GE(examples.size(), 25u);
   // Mesh files in the examples are named from the repository root, where the document's
   // commands are run.
   const std::filesystem::path saved = std::filesystem::current_path();
   std::filesystem::current_path(std::filesystem::path(PROXIMA_TOOLS_TEST_DATA) / ".." / ".." / "..");
   int rejected_count = 0;
-  for (const Example& e : examples) {
+  for (const test::DocExample& e : examples) {
     bool rejected = false;
     const tool::Json actual = tool::answer_line(e.request, rejected);
     const auto expected = tool::Json::parse(e.answer);
