@@ -33,7 +33,7 @@ Json op_world_exclude(WorldSession& session, const Json& request);
 Json op_world_step(WorldSession& session, const Json& request);
 /// {"op":"hash"} -> {"hash":"<16 hex digits>"}.
 Json op_world_hash(WorldSession& session, const Json& request);
-/// {"op":"save","file":F} -> {"bytes":n}.
+/// {"op":"save","file":F} -> {"ok":true}.
 Json op_world_save(WorldSession& session, const Json& request);
 /// {"op":"load","file":F} -> {"objects":n}: the session's world becomes the snapshot's.
 Json op_world_load(WorldSession& session, const Json& request);

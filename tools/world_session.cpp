@@ -33,7 +33,7 @@ const std::array kWorldOperations = {
     WorldOperation{"closest", op_world_closest,
                    "point | geometry and pose?, max_distance, filter? -> object (null: none), distance, point, normal"},
     WorldOperation{"hash", op_world_hash, "-> hash (16 hex digits of the world's state hash)"},
-    WorldOperation{"save", op_world_save, "file -> bytes (a binary snapshot of the world)"},
+    WorldOperation{"save", op_world_save, "file -> ok (writes a binary snapshot of the world)"},
     WorldOperation{"load", op_world_load, "file -> objects (the world becomes the snapshot's)"},
 };
 

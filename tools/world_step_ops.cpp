@@ -111,7 +111,7 @@ Json op_world_save(WorldSession& session, const Json& request) {
   out.flush();
   if (!out) throw FieldError("file", "invalid_argument", "writing \"" + file + "\" failed");
   Json answer = Json::object();
-  answer["bytes"] = static_cast<std::uint64_t>(out.tellp());
+  answer["ok"] = true;
   return answer;
 }
 
