@@ -54,6 +54,8 @@ std::optional<Error> check_geometry(const Shape& geometry, ObjectKind kind, bool
   return std::nullopt;
 }
 
+}  // namespace
+
 /// Farthest point of the geometry from its origin and the thinnest side of its box, from
 /// its local box (0 for unbounded geometry).
 void measure_geometry(ObjectSlot& s) {
@@ -68,8 +70,6 @@ void measure_geometry(ObjectSlot& s) {
   const Vec3 side = b.max - b.min;
   s.min_extent = std::min({side.x, side.y, side.z});
 }
-
-}  // namespace
 
 Aabb proxy_box(const Aabb& box, Real pad) {
   Aabb out{box.min - Vec3(pad), box.max + Vec3(pad)};

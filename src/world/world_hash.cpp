@@ -5,8 +5,8 @@
 // decide future handles) the generation, liveness, kind, modes, filter, user data, parent,
 // local pose, pose, step pose and the geometry (its type, local box and vertex count);
 // the free list; the exclusions in sorted order; then every pair of the pair table with its
-// touching flag and cache, and every contact manifold point by point. Each value is folded
-// in by splitmix64 (the W1 checksum's mixer) over its bytes, 8 at a time.
+// touching flag and cache (a hull's cached support vertex by its position), and every contact manifold point by point.
+// Each value is folded in by splitmix64 (the W1 checksum's mixer) over its bytes, 8 at a time.
 #include <proxima/shapes/shape_queries.hpp>
 
 #include <algorithm>
@@ -61,6 +61,16 @@ std::uint64_t vertex_count(const Shape& g) {
   return 0;
 }
 
+/// A cached support vertex: for a hull, the vertex itself (a hull rebuilt from a snapshot
+/// may number its vertices differently), else the hint as stored.
+void support_hint(Digest& d, const Shape& g, std::uint32_t hint) {
+  const auto* h = std::get_if<ConvexHull>(&g);
+  if (h != nullptr && hint < h->vertices().size())
+    d.vec(h->vertices()[hint]);
+  else
+    d.word(hint);
+}
+
 }  // namespace
 
 std::uint64_t CollisionWorld::state_hash() const {
@@ -98,7 +108,8 @@ std::uint64_t CollisionWorld::state_hash() const {
     d.word((std::uint64_t(p.touching) << 8) | p.sensor);
     d.word(p.next_point_id);
     d.vec(p.cache.axis);
-    d.word((std::uint64_t(p.cache.support_hint_a) << 32) | p.cache.support_hint_b);
+    support_hint(d, w.slots[p.lo].geometry, p.cache.support_hint_a);
+    support_hint(d, w.slots[p.hi].geometry, p.cache.support_hint_b);
     d.word((std::uint64_t(p.cache.part_a) << 32) | p.cache.part_b);
     d.word((std::uint64_t(p.cache.sat_feature) << 1) | (p.cache.valid ? 1u : 0u));
   }

@@ -140,6 +140,9 @@ struct CollisionWorld::Impl {
   void propagate_pose(std::uint32_t i);
 };
 
+/// Sets s.radius and s.min_extent from s.geometry (0 for unbounded geometry).
+void measure_geometry(ObjectSlot& s);
+
 /// The box padded by `pad` on every side and clamped to ±kMaxCoordinate (a half-space's
 /// unbounded sides), as the broad phase accepts it.
 Aabb proxy_box(const Aabb& box, Real pad);
