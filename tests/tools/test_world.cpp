@@ -128,7 +128,7 @@ TEST(WorldProtocol, RejectedRequestsNameTheFieldAndChangeNothing) {
       {R"({"op":"move","object":0})", "pose", "missing"},
       {R"({"op":"move","objects":[{"object":0,"pose":{"position":[1,0,0]}},{"object":7,"pose":{}}]})",
        "objects[1].object", "unknown_object"},
-      {R"({"op":"move","objects":[{"object":0,"pose":{"position":[1,0,0]}},{"object":1,"pose":{"position":[1e30,0,0]}}]})",
+      {R"({"op":"move","objects":[{"object":0,"pose":{"position":[1,0,0]}},{"object":1,"pose":{"position":[1e200,0,0]}}]})",
        "objects[1].pose.position.x", "out_of_range"},
       {R"({"op":"move","objects":[],"object":0})", "objects", "invalid_argument"},
       {R"({"op":"set_geometry","object":0,"geometry":{"type":"halfspace","normal":[0,0,1],"offset":0}})", "geometry",
