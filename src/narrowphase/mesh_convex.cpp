@@ -6,7 +6,8 @@
 ///  1. Map the convex shape into the mesh frame (relative pose) and take its box there,
 ///     inflated by the contact distance; walk the mesh BVH for the triangles whose node
 ///     boxes overlap it. Degenerate triangles (Triangle::create refuses them) are skipped.
-///  2. Per candidate, the narrow phase's Triangle-vs-shape routine (mesh = A), world frame.
+///  2. Per candidate, the narrow phase's Triangle-vs-shape routine (mesh = A), world frame
+///     (for a box, collide_all asks the cheap separating-axis intersect first).
 ///     Distance: the minimum over triangles, nodes visited nearer first and pruned when the
 ///     box gap is not below the best distance so far (branch and bound).
 ///  3. Internal edges (the "ghost contact" problem; ideas of Bullet's
@@ -358,7 +359,11 @@ void mesh_convex_collide_all(const TriangleMesh& mesh, const Transform& pose_mes
   sc.pending.clear();
   sc.voided.clear();
   const auto tris = mesh.triangles();
+  // Triangle-box separation is settled by 13 axes before the exact distance: ask intersect
+  // first (the same answer as an empty manifold, at a fraction of the cost).
+  const bool reject_first = convex.type() == ShapeType::Box;
   for_each_triangle_near(mesh, box, [&](std::uint32_t t, const std::array<Vec3, 3>& v, const Triangle& tri) {
+    if (reject_first && !intersect(tri, pose_mesh, convex, pose_convex, request)) return true;
     const ContactManifold m = collide(tri, pose_mesh, convex, pose_convex, request);
     if (m.count == 0) return true;
     // Face normal turned to the shape's side (the triangle is two-sided).

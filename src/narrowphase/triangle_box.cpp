@@ -12,8 +12,11 @@
 //     out by the depth along the normal (they touch there; polytope_pair_common.hpp), right
 //     for face, edge-edge and in-plane axes alike.
 //  4. Manifold: supporting faces along the normal, clipped, reduced to 4 points.
+// intersect stops after step 1 when the separation exceeds the contact distance (a lower
+// bound of the distance); a mesh's collide_all asks it first for each box-triangle pair.
 #include <proxima/geometry/closest_points.hpp>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
@@ -92,6 +95,22 @@ DistanceResult pair_distance(const Triangle& a, const Transform& pose_a, const B
 
 bool pair_intersect(const Triangle& a, const Transform& pose_a, const Box& b, const Transform& pose_b,
                     const PairRequest& request, PairCache* cache) {
+  if (!finite_poses(pose_a, pose_b)) return false;
+  // The separation along the best axis is a lower bound of the distance: beyond the
+  // contact distance the answer is no without the exact closest features (the same answer
+  // and cache as the full distance).
+  SmallPolytope pa;
+  SmallPolytope pb;
+  triangle_polytope(a, pose_a, pa);
+  box_polytope(b, pose_b, pb);
+  const SmallSat s = small_polytope_sat(pa, pb, nullptr, 0, kParallelSine);
+  if (s.separation > std::max(request.contact_distance, Real(0))) {
+    if (cache != nullptr) {
+      cache->axis = pose_a.inverse_apply_vector(s.normal);
+      cache->valid = true;
+    }
+    return false;
+  }
   return sat_pair_intersect(a, pose_a, b, pose_b, request, cache);
 }
 
