@@ -73,8 +73,15 @@ bool is_fast(const ObjectSlot& s, const Motion& motion, Real safety_factor) {
 }
 
 void continuous_pass(Impl& w, const CollisionWorld& world) {
-  std::vector<std::uint32_t> moved = w.moved;
-  std::sort(moved.begin(), moved.end());
+  // By index (the moved list is in call order; usually already sorted).
+  std::vector<std::uint32_t> sorted;
+  const std::vector<std::uint32_t>* order = &w.moved;
+  if (!std::is_sorted(w.moved.begin(), w.moved.end())) {
+    sorted = w.moved;
+    std::sort(sorted.begin(), sorted.end());
+    order = &sorted;
+  }
+  const std::vector<std::uint32_t>& moved = *order;
   ToiOptions options;
   options.target_distance = w.settings.contact_distance;
   if (w.settings.ccd_tolerance > 0) options.tolerance = w.settings.ccd_tolerance;

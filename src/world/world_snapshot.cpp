@@ -11,14 +11,19 @@
 //   a loaded world shares them as the saved one did. A hull is rebuilt from its vertices
 //   (qhull may order them differently), so the caches' support hints of top-level hulls
 //   are mapped from the saved vertex order to the rebuilt one.
+// A compound is rebuilt by Compound::create, which normalises its children's rotations again:
+//   each saved rotation is replaced by a nearby quaternion that this normalisation maps
+//   exactly onto it, so the rebuilt compound equals the saved one bit for bit.
 // Loading checks every count against what the stream holds, every index against the slot
 // table, the attachment links (parents alive, no cycle, roots consistent), and rebuilds
 // the derived state (boxes, measures, broad-phase proxies) from what it read.
 #include <proxima/core/validate.hpp>
 #include <proxima/shapes/shape_queries.hpp>
 
+#include <cmath>
 #include <cstring>
 #include <istream>
+#include <limits>
 #include <map>
 #include <ostream>
 #include <unordered_map>
@@ -449,9 +454,36 @@ class Reader {
     for (std::uint32_t n = count(), k = 0; k < n && ok(); ++k) {
       std::uint32_t ignored;
       Shape child = geometry(field, ignored, depth + 1);
-      children.push_back({std::move(child), pose()});
+      Transform pose_saved = pose();
+      pose_saved.rotation = normalisation_preimage(pose_saved.rotation);
+      children.push_back({std::move(child), pose_saved});
     }
     return made(Compound::create(std::move(children)), field);
+  }
+
+  /// A quaternion that Compound::create's normalisation maps exactly onto the saved (already
+  /// normalised) rotation `saved`: `saved` itself when normalising it changes nothing, else
+  /// the first of its neighbours within two units in the last place per component that does;
+  /// `saved` when none does (the rebuilt child then differs in the last bits).
+  static Quat normalisation_preimage(const Quat& saved) {
+    auto maps_onto = [&](const Quat& q) {
+      const Quat n = glm::normalize(q);
+      return n.w == saved.w && n.x == saved.x && n.y == saved.y && n.z == saved.z;
+    };
+    if (!std::isfinite(glm::dot(saved, saved)) || maps_onto(saved)) return saved;
+    auto step = [](Real x, int k) {
+      for (; k > 0; --k) x = std::nextafter(x, std::numeric_limits<Real>::infinity());
+      for (; k < 0; ++k) x = std::nextafter(x, -std::numeric_limits<Real>::infinity());
+      return x;
+    };
+    for (int a = -2; a <= 2; ++a)
+      for (int b = -2; b <= 2; ++b)
+        for (int c = -2; c <= 2; ++c)
+          for (int d = -2; d <= 2; ++d) {
+            const Quat q(step(saved.w, a), step(saved.x, b), step(saved.y, c), step(saved.z, d));
+            if (maps_onto(q)) return q;
+          }
+    return saved;
   }
 
   std::istream& in_;

@@ -86,8 +86,13 @@ struct CollisionWorld::Impl {
   bool in_callback = false;     ///< true while step() runs callbacks (a nested step is refused)
   bool in_pre_contact = false;  ///< true during on_pre_contact (changes are refused)
 
-  // scratch of the step
-  std::vector<ProxyPair> proxy_pairs;
+  // scratch of the step, kept so that a step allocates nothing once warmed up
+  std::vector<ProxyPair> proxy_pairs;        ///< the broad phase's pairs of trees
+  std::vector<ProxyPair> candidates;         ///< filtered object pairs
+  std::vector<PairState> next_pairs;         ///< the pair table being built (swapped with pairs)
+  std::vector<ContactManifold> manifolds;    ///< the narrow phase's answer per candidate
+  std::vector<std::uint8_t> overlaps;        ///< the narrow phase's answer per sensor candidate
+  std::vector<WorldManifold> next_contacts;  ///< the manifolds being built (swapped with contacts)
 
   // ---- helpers shared by the translation units ----
 

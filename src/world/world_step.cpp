@@ -80,8 +80,8 @@ void end_pair(const Impl& w, PairState s, StepEvents& ev) {
 }
 
 /// Step 2: the new pair table from the candidates and the old table; ended pairs reported.
-std::vector<PairState> merge_pairs(Impl& w, const std::vector<ProxyPair>& candidates) {
-  std::vector<PairState> next;
+void merge_pairs(Impl& w, const std::vector<ProxyPair>& candidates, std::vector<PairState>& next) {
+  next.clear();
   next.reserve(candidates.size());
   std::size_t o = 0;
   const std::vector<PairState>& old = w.pairs;
@@ -119,7 +119,6 @@ std::vector<PairState> merge_pairs(Impl& w, const std::vector<ProxyPair>& candid
   }
   for (; o < old.size(); ++o)
     if (old[o].touching) end_pair(w, old[o], w.events);
-  return next;
 }
 
 /// Step 3: the narrow phase of every candidate, on the executor.
@@ -151,8 +150,8 @@ void narrow_phase(Impl& w, std::vector<PairState>& pairs, std::vector<ContactMan
 /// Step 4: manifolds, pre-contact callbacks and events, in pair order.
 void derive_events(Impl& w, const CollisionWorld& world, std::vector<PairState>& pairs,
                    const std::vector<ContactManifold>& manifolds, const std::vector<std::uint8_t>& overlaps) {
-  std::vector<WorldManifold> contacts;
-  contacts.reserve(w.contacts.size() + 16);
+  std::vector<WorldManifold>& contacts = w.next_contacts;
+  contacts.clear();
   for (std::size_t k = 0; k < pairs.size(); ++k) {
     PairState& s = pairs[k];
     bool touching;
@@ -162,7 +161,7 @@ void derive_events(Impl& w, const CollisionWorld& world, std::vector<PairState>&
     } else {
       touching = manifolds[k].count > 0;
       if (touching) {
-        WorldManifold m;
+        WorldManifold& m = contacts.emplace_back();  // built in place; dropped below if vetoed
         m.pair = s.pair();
         const WorldManifold* previous = s.was_touching && s.contact >= 0 ? &w.contacts[s.contact] : nullptr;
         detail::match_contact_points(previous, manifolds[k], s.next_point_id, m);
@@ -171,7 +170,7 @@ void derive_events(Impl& w, const CollisionWorld& world, std::vector<PairState>&
           touching = w.listener->on_pre_contact(world, m) && m.count > 0;
           w.in_pre_contact = false;
         }
-        if (touching) contacts.push_back(m);
+        if (!touching) contacts.pop_back();
       }
       s.contact = touching ? static_cast<std::int32_t>(contacts.size() - 1) : -1;
     }
@@ -187,7 +186,7 @@ void derive_events(Impl& w, const CollisionWorld& world, std::vector<PairState>&
       end_pair(w, s, w.events);
     }
   }
-  w.contacts = std::move(contacts);
+  std::swap(w.contacts, w.next_contacts);
 }
 
 /// Step 6: the motion of the next step starts at the poses of now; arrays sorted.
@@ -251,14 +250,11 @@ std::optional<Error> CollisionWorld::step(Real dt, Executor& executor) {
   if (w.in_callback || w.in_pre_contact)
     return make_error(ErrorCode::InvalidArgument, "world", "step() cannot be called from a callback");
   w.events.clear();
-  std::vector<ProxyPair> candidates;
-  find_candidates(w, *this, executor, candidates);
-  std::vector<PairState> pairs = merge_pairs(w, candidates);
-  std::vector<ContactManifold> manifolds;
-  std::vector<std::uint8_t> overlaps;
-  narrow_phase(w, pairs, manifolds, overlaps, executor);
-  derive_events(w, *this, pairs, manifolds, overlaps);
-  w.pairs = std::move(pairs);
+  find_candidates(w, *this, executor, w.candidates);
+  merge_pairs(w, w.candidates, w.next_pairs);
+  narrow_phase(w, w.next_pairs, w.manifolds, w.overlaps, executor);
+  derive_events(w, *this, w.next_pairs, w.manifolds, w.overlaps);
+  std::swap(w.pairs, w.next_pairs);
   if (w.settings.continuous) detail::continuous_pass(w, *this);
   finish_step(w);
   run_callbacks(w, *this);

@@ -7,9 +7,7 @@
 #include "world/world_scene.hpp"
 
 namespace proxima::test {
-namespace {
-
-Transform at(Real x, Real y = 0, Real z = 0) { return Transform{Vec3(x, y, z), kIdentityQuat}; }
+namespace test_world_ccd {
 
 ObjectDesc bullet(const Transform& pose, Real r, CcdMode mode) {
   ObjectDesc d;
@@ -150,5 +148,5 @@ TEST(WorldCcd, FiltersApplyToContinuousDetection) {
   EXPECT_TRUE(world.events().impacts.empty());
 }
 
-}  // namespace
+}  // namespace test_world_ccd
 }  // namespace proxima::test

@@ -9,16 +9,7 @@
 #include "world/world_scene.hpp"
 
 namespace proxima::test {
-namespace {
-
-Transform at(Real x, Real y = 0, Real z = 0) { return Transform{Vec3(x, y, z), kIdentityQuat}; }
-
-ObjectDesc ball(const Transform& pose, Real r = Real(0.5)) {
-  ObjectDesc d;
-  d.geometry = *Sphere::create(r);
-  d.pose = pose;
-  return d;
-}
+namespace test_world_events {
 
 ObjectDesc sensor_box(const Transform& pose, ObjectKind kind) {
   ObjectDesc d;
@@ -173,5 +164,5 @@ TEST(WorldEvents, PreContactEditsOrVetoesAPairForTheStep) {
   EXPECT_TRUE(filter.tried_change);
 }
 
-}  // namespace
+}  // namespace test_world_events
 }  // namespace proxima::test

@@ -4,19 +4,12 @@
 // removal ending pairs at the next step.
 #include <gtest/gtest.h>
 
+#include <proxima/core/tolerance.hpp>
+
 #include "world/world_scene.hpp"
 
 namespace proxima::test {
-namespace {
-
-Transform at(Real x, Real y = 0, Real z = 0) { return Transform{Vec3(x, y, z), kIdentityQuat}; }
-
-ObjectDesc ball(const Transform& pose, Real r = Real(0.5)) {
-  ObjectDesc d;
-  d.geometry = *Sphere::create(r);
-  d.pose = pose;
-  return d;
-}
+namespace test_world_objects {
 
 ObjectDesc static_box(const Transform& pose, const Vec3& half) {
   ObjectDesc d;
@@ -94,7 +87,7 @@ TEST(WorldObjects, BadInputNamesTheFieldAndChangesNothing) {
   d.parent = a;
   d.local_pose = at(nan);
   expect_field(add_error(world, d), "desc.local_pose.position");
-  expect_field(world.move(a, at(Real(1e30))), "pose.position");
+  expect_field(world.move(a, at(Real(2) * kMaxCoordinate)), "pose.position");
   const ObjectMove moves[] = {{a, at(1)}, {s, Transform{Vec3(0), Quat(0, 0, 0, 0)}}};
   expect_field(world.move(moves), "moves[1].pose.rotation");
   const ObjectMove stale_moves[] = {{a, at(1)}, {ObjectHandle{42, 3}, at(2)}};
@@ -252,5 +245,5 @@ TEST(WorldObjects, ChangingTheGeometryRetestsItsPairs) {
   EXPECT_EQ(world.events().begin.size(), 1u);
 }
 
-}  // namespace
+}  // namespace test_world_objects
 }  // namespace proxima::test

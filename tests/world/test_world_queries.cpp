@@ -10,9 +10,7 @@
 #include "world/world_scene.hpp"
 
 namespace proxima::test {
-namespace {
-
-constexpr Real kExtent = Real(6);
+namespace test_world_queries {
 
 struct Scene {
   CollisionWorld world = make_world();
@@ -157,5 +155,5 @@ TEST(WorldQueries, FiltersMasksGroupsAndTheIgnoredObject) {
   EXPECT_NEAR(world.raycast(ray, 100)->front().t, Real(5.5), Real(1e-5));
 }
 
-}  // namespace
+}  // namespace test_world_queries
 }  // namespace proxima::test

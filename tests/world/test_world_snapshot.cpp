@@ -11,9 +11,7 @@
 #include "world/world_scene.hpp"
 
 namespace proxima::test {
-namespace {
-
-constexpr Real kExtent = Real(6);
+namespace test_world_snapshot {
 
 /// A scene with every kind of object and a few steps behind it.
 struct Saved {
@@ -126,5 +124,5 @@ TEST(WorldSnapshot, DamagedSnapshotsAreRejectedOrLoadValidWorlds) {
   }
 }
 
-}  // namespace
+}  // namespace test_world_snapshot
 }  // namespace proxima::test

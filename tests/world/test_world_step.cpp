@@ -12,9 +12,7 @@
 #include "world/world_scene.hpp"
 
 namespace proxima::test {
-namespace {
-
-constexpr Real kExtent = Real(6);
+namespace test_world_step {
 
 /// True when the pair's exact gap is within the narrow phase's tolerance of the contact
 /// distance, where touching or not is a matter of rounding.
@@ -162,5 +160,5 @@ TEST(WorldStep, NormalsAreUnitAndPointFromTheLowerHandle) {
   }
 }
 
-}  // namespace
+}  // namespace test_world_step
 }  // namespace proxima::test

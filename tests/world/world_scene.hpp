@@ -17,6 +17,20 @@
 
 namespace proxima::test {
 
+/// Half the edge of the random scenes' cube.
+inline constexpr Real kExtent = Real(6);
+
+/// The placement at (x, y, z), unrotated.
+inline Transform at(Real x, Real y = 0, Real z = 0) { return Transform{Vec3(x, y, z), kIdentityQuat}; }
+
+/// A moving sphere of radius `r` at `pose`.
+inline ObjectDesc ball(const Transform& pose, Real r = Real(0.5)) {
+  ObjectDesc d;
+  d.geometry = *Sphere::create(r);
+  d.pose = pose;
+  return d;
+}
+
 /// A new world with `settings` (which must be valid).
 inline CollisionWorld make_world(const WorldSettings& settings = {}) {
   return std::move(CollisionWorld::create(settings)).value();
