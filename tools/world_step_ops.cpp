@@ -1,7 +1,10 @@
 // The step and state operations of the world protocol: step (events and manifolds), hash,
 // save and load (binary snapshots).
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
+#include <utility>
+#include <vector>
 
 #include "world_json.hpp"
 #include "world_ops.hpp"
@@ -11,22 +14,43 @@ namespace proxima::tool {
 
 namespace {
 
-Json pair_to_json(ObjectHandle a, ObjectHandle b) { return Json::array({handle_to_json(a), handle_to_json(b)}); }
+// The protocol writes a handle as its integer (ObjectHandle::to_integer: generation in the
+// high bits) and promises pairs [Ha, Hb] with Ha < Hb as integers, each list sorted. The
+// world orders pairs by slot index, which differs once a slot has been reused, so every
+// list is re-ordered here (a manifold turned round gets its normal negated and its points
+// swapped, as the narrow phase's convention requires).
+
+using Key = std::pair<std::uint64_t, std::uint64_t>;
+
+/// Sorts (key, json) entries by key and returns the json list.
+Json sorted_list(std::vector<std::pair<Key, Json>>& entries) {
+  std::stable_sort(entries.begin(), entries.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+  Json list = Json::array();
+  for (auto& e : entries) list.push_back(std::move(e.second));
+  return list;
+}
 
 Json contact_events(const std::vector<ContactEvent>& events) {
-  Json list = Json::array();
-  for (const ContactEvent& e : events) list.push_back(pair_to_json(e.pair.a, e.pair.b));
-  return list;
+  std::vector<std::pair<Key, Json>> entries;
+  for (const ContactEvent& e : events) {
+    std::uint64_t a = e.pair.a.to_integer(), b = e.pair.b.to_integer();
+    if (a > b) std::swap(a, b);
+    entries.push_back({{a, b}, Json::array({a, b})});
+  }
+  return sorted_list(entries);
 }
 
 Json sensor_events(const std::vector<SensorEvent>& events) {
-  Json list = Json::array();
-  for (const SensorEvent& e : events) list.push_back(pair_to_json(e.sensor, e.other));
-  return list;
+  std::vector<std::pair<Key, Json>> entries;
+  for (const SensorEvent& e : events) {
+    const std::uint64_t sensor = e.sensor.to_integer(), other = e.other.to_integer();
+    entries.push_back({{sensor, other}, Json::array({sensor, other})});
+  }
+  return sorted_list(entries);
 }
 
 Json impact_events(const std::vector<ImpactEvent>& events) {
-  Json list = Json::array();
+  std::vector<std::pair<Key, Json>> entries;
   for (const ImpactEvent& e : events) {
     Json impact = Json::object();
     impact["a"] = handle_to_json(e.a);
@@ -34,33 +58,35 @@ Json impact_events(const std::vector<ImpactEvent>& events) {
     impact["toi"] = to_json(e.toi);
     impact["point"] = to_json(e.point);
     impact["normal"] = to_json(e.normal);
-    list.push_back(std::move(impact));
+    entries.push_back({{e.a.to_integer(), e.b.to_integer()}, std::move(impact)});
   }
-  return list;
+  return sorted_list(entries);
 }
 
 Json manifolds(std::span<const WorldManifold> contacts) {
-  Json list = Json::array();
+  std::vector<std::pair<Key, Json>> entries;
   for (const WorldManifold& m : contacts) {
+    const bool turn = m.pair.a.to_integer() > m.pair.b.to_integer();
+    const ObjectHandle a = turn ? m.pair.b : m.pair.a, b = turn ? m.pair.a : m.pair.b;
     Json manifold = Json::object();
-    manifold["a"] = handle_to_json(m.pair.a);
-    manifold["b"] = handle_to_json(m.pair.b);
-    manifold["normal"] = to_json(m.normal);
+    manifold["a"] = handle_to_json(a);
+    manifold["b"] = handle_to_json(b);
+    manifold["normal"] = to_json(turn ? -m.normal : m.normal);
     Json points = Json::array();
     for (int i = 0; i < m.count; ++i) {
       const WorldContactPoint& p = m.points[static_cast<std::size_t>(i)];
       Json point = Json::object();
       point["id"] = p.id;
-      point["point_a"] = to_json(p.contact.point_a);
-      point["point_b"] = to_json(p.contact.point_b);
+      point["point_a"] = to_json(turn ? p.contact.point_b : p.contact.point_a);
+      point["point_b"] = to_json(turn ? p.contact.point_a : p.contact.point_b);
       point["depth"] = to_json(p.contact.depth);
       point["persisted"] = p.persisted;
       points.push_back(std::move(point));
     }
     manifold["points"] = std::move(points);
-    list.push_back(std::move(manifold));
+    entries.push_back({{a.to_integer(), b.to_integer()}, std::move(manifold)});
   }
-  return list;
+  return sorted_list(entries);
 }
 
 std::string hash_text(std::uint64_t hash) {

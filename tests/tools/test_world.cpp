@@ -407,7 +407,19 @@ TEST(WorldProtocol, HandlesOfReusedSlots) {
   const std::uint64_t reused = w.add(R"("geometry":{"type":"sphere","radius":1})");
   EXPECT_EQ(reused, (1ull << 32) | 0u);
   EXPECT_EQ(w.ask(R"({"op":"move","object":0,"pose":{}})", false)["code"], "unknown_object");
-  EXPECT_EQ(w.ask(R"({"op":"step"})")["begin"], pairs({{reused, 1}}));
+  // Pairs are ordered by the handles' integers: the reused slot 0 (generation 1) is the
+  // larger integer, so it comes second although its index is lower.
+  const Json step = w.ask(R"({"op":"step","contacts":true})");
+  EXPECT_EQ(step["begin"], pairs({{1, reused}}));
+  // The manifold turned round with the pair: its normal points from object 1 (at x = 1) to
+  // the reused slot's sphere (at the origin).
+  ASSERT_EQ(step["contacts"].size(), 1u);
+  EXPECT_EQ(step["contacts"][0]["a"], 1u);
+  EXPECT_LT(step["contacts"][0]["normal"][0].get<double>(), -0.99);
+  // point_a is the deepest point of object 1 towards the other sphere (x = 1 - 1), point_b
+  // the other sphere's deepest point towards object 1 (x = 0 + 1).
+  EXPECT_NEAR(step["contacts"][0]["points"][0]["point_a"][0].get<double>(), 0.0, 1e-5);
+  EXPECT_NEAR(step["contacts"][0]["points"][0]["point_b"][0].get<double>(), 1.0, 1e-5);
 }
 
 // The same session on a thread pool answers exactly as on the calling thread.
