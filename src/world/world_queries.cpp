@@ -27,11 +27,6 @@ namespace {
 
 using Impl = CollisionWorld::Impl;
 
-bool boxes_meet(const Aabb& a, const Aabb& b) {
-  return a.min.x <= b.max.x && b.min.x <= a.max.x && a.min.y <= b.max.y && b.min.y <= a.max.y && a.min.z <= b.max.z &&
-         b.min.z <= a.max.z;
-}
-
 /// Calls f(index) for every live object the filter accepts whose box meets `box`, trees in
 /// index order; stops when f returns false.
 template <class F>
@@ -46,7 +41,7 @@ void for_each_object_in_box(const Impl& w, const Aabb& box, const QueryFilter& f
   for (std::uint32_t r : roots) {
     w.for_each_member(r, [&](std::uint32_t j) {
       const ObjectSlot& s = w.slots[j];
-      if (go && boxes_meet(s.box, box) && filter.accepts(s.handle(j), s.filter)) go = f(j);
+      if (go && s.box.overlaps(box) && filter.accepts(s.handle(j), s.filter)) go = f(j);
     });
     if (!go) return;
   }

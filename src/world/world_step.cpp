@@ -31,11 +31,6 @@ namespace {
 
 using Impl = CollisionWorld::Impl;
 
-bool boxes_overlap(const Aabb& a, const Aabb& b) {
-  return a.min.x <= b.max.x && b.min.x <= a.max.x && a.min.y <= b.max.y && b.min.y <= a.max.y && a.min.z <= b.max.z &&
-         b.min.z <= a.max.z;
-}
-
 /// Step 1: the filtered object pairs whose boxes overlap, sorted by (lo, hi).
 void find_candidates(Impl& w, const CollisionWorld& world, Executor& executor, std::vector<ProxyPair>& out) {
   w.broadphase->find_pairs(w.proxy_pairs, executor);
@@ -51,7 +46,7 @@ void find_candidates(Impl& w, const CollisionWorld& world, Executor& executor, s
     expanded = true;
     w.for_each_member(p.lo, [&](std::uint32_t i) {
       w.for_each_member(p.hi, [&](std::uint32_t j) {
-        if (boxes_overlap(w.slots[i].box, w.slots[j].box) && w.may_pair(world, i, j))
+        if (w.slots[i].box.overlaps(w.slots[j].box) && w.may_pair(world, i, j))
           out.push_back(i < j ? ProxyPair{i, j} : ProxyPair{j, i});
       });
     });
