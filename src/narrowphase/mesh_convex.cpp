@@ -7,7 +7,8 @@
 ///     inflated by the contact distance; walk the mesh BVH for the triangles whose node
 ///     boxes overlap it. Degenerate triangles (Triangle::create refuses them) are skipped.
 ///  2. Per candidate, the narrow phase's Triangle-vs-shape routine (mesh = A), world frame
-///     (for a box, collide_all asks the cheap separating-axis intersect first).
+///     (collide_all first drops a triangle whose plane the shape lies wholly beyond, by two
+///     support calls, and for a box asks the cheap separating-axis intersect).
 ///     Distance: the minimum over triangles, nodes visited nearer first and pruned when the
 ///     box gap is not below the best distance so far (branch and bound).
 ///  3. Internal edges (the "ghost contact" problem; ideas of Bullet's
@@ -41,6 +42,7 @@
 #include <cmath>
 #include <limits>
 
+#include "pairs_polyhedral.hpp"
 #include "shapes/shape_visit.hpp"
 
 namespace proxima::narrow {
@@ -359,11 +361,20 @@ void mesh_convex_collide_all(const TriangleMesh& mesh, const Transform& pose_mes
   sc.pending.clear();
   sc.voided.clear();
   const auto tris = mesh.triangles();
-  // Triangle-box separation is settled by 13 axes before the exact distance: ask intersect
-  // first (the same answer as an empty manifold, at a fraction of the cost).
-  const bool reject_first = convex.type() == ShapeType::Box;
+  // Cheap rejections before the triangle's contact set (each gives the answer an empty
+  // manifold would): the shape wholly on one side of the triangle's plane by more than the
+  // contact distance plus the narrow phase's tolerance (two support calls; the plane gap is a
+  // lower bound of the distance to the triangle); for a box, the 13 separating axes.
+  const bool reject_box = convex.type() == ShapeType::Box;
+  const Real plane_margin = cd + linear_tolerance(std::max(max_abs_component(box.min), max_abs_component(box.max)) +
+                                                  max_abs_component(pose_mesh.position));
   for_each_triangle_near(mesh, box, [&](std::uint32_t t, const std::array<Vec3, 3>& v, const Triangle& tri) {
-    if (reject_first && !intersect(tri, pose_mesh, convex, pose_convex, request)) return true;
+    const Vec3 plane_normal = pose_mesh.apply_vector(tri.normal());
+    const Vec3 plane_point = pose_mesh.apply(v[0]);
+    if (glm::dot(world_support(convex, pose_convex, -plane_normal) - plane_point, plane_normal) > plane_margin ||
+        glm::dot(world_support(convex, pose_convex, plane_normal) - plane_point, plane_normal) < -plane_margin)
+      return true;
+    if (reject_box && triangle_box_separated_beyond(tri, pose_mesh, convex.as<Box>(), pose_convex, cd)) return true;
     const ContactManifold m = collide(tri, pose_mesh, convex, pose_convex, request);
     if (m.count == 0) return true;
     // Face normal turned to the shape's side (the triangle is two-sided).

@@ -41,6 +41,10 @@ bool pair_intersect(const Triangle& a, const Transform& pose_a, const Box& b, co
 DistanceResult pair_distance(const Triangle& a, const Transform& pose_a, const Box& b, const Transform& pose_b,
                              const PairRequest& request, PairCache* cache);
 /// Triangle-box manifold by SAT and clipping (up to 4 points).
+/// True when the 13 separating axes of triangle a and box b already separate them by more
+/// than `beyond` (a lower bound of their distance): no contact within `beyond`. O(1).
+bool triangle_box_separated_beyond(const Triangle& a, const Transform& pose_a, const Box& b, const Transform& pose_b,
+                                   Real beyond);
 ContactManifold pair_collide(const Triangle& a, const Transform& pose_a, const Box& b, const Transform& pose_b,
                              const PairRequest& request, PairCache* cache);
 template <>

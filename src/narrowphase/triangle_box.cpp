@@ -13,7 +13,8 @@
 //     for face, edge-edge and in-plane axes alike.
 //  4. Manifold: supporting faces along the normal, clipped, reduced to 4 points.
 // intersect stops after step 1 when the separation exceeds the contact distance (a lower
-// bound of the distance); a mesh's collide_all asks it first for each box-triangle pair.
+// bound of the distance); triangle_box_separated_beyond is step 1 alone, which a mesh's
+// collide_all asks first for each box-triangle pair.
 #include <proxima/geometry/closest_points.hpp>
 
 #include <algorithm>
@@ -91,6 +92,15 @@ DistanceResult pair_distance(const Triangle& a, const Transform& pose_a, const B
     for (std::size_t k = 0; k < 8; ++k) moved[k] = pb.vertices[k] + *shift;
     return closest_triangle_box(moved, pa.vertices.data(), pose_b.position + *shift, m, b.half_extents(), on_a, on_b);
   });
+}
+
+bool triangle_box_separated_beyond(const Triangle& a, const Transform& pose_a, const Box& b, const Transform& pose_b,
+                                   Real beyond) {
+  SmallPolytope pa;
+  SmallPolytope pb;
+  triangle_polytope(a, pose_a, pa);
+  box_polytope(b, pose_b, pb);
+  return small_polytope_sat(pa, pb, nullptr, 0, kParallelSine).separation > beyond;
 }
 
 bool pair_intersect(const Triangle& a, const Transform& pose_a, const Box& b, const Transform& pose_b,
