@@ -24,14 +24,6 @@ namespace {
 
 constexpr std::uint32_t kNone = ObjectHandle::kNoObject;
 
-std::optional<Error> check_pose(const Transform& pose, const std::string& field) {
-  if (!is_acceptable(pose.position))
-    return make_error(ErrorCode::NotFinite, field + ".position", "must be finite and within kMaxCoordinate");
-  if (!is_unit(pose.rotation))
-    return make_error(ErrorCode::InvalidArgument, field + ".rotation", "must be a unit quaternion");
-  return std::nullopt;
-}
-
 std::optional<Error> check_filter(const CollisionFilter& filter, const std::string& field) {
   if (filter.layer == 0)
     return make_error(ErrorCode::InvalidArgument, field + ".layer", "has no bits: it would never collide");
@@ -69,6 +61,14 @@ void measure_geometry(ObjectSlot& s) {
   s.radius = glm::length(far);
   const Vec3 side = b.max - b.min;
   s.min_extent = std::min({side.x, side.y, side.z});
+}
+
+std::optional<Error> check_pose(const Transform& pose, const std::string& field) {
+  if (!is_acceptable(pose.position))
+    return make_error(ErrorCode::NotFinite, field + ".position", "must be finite and within kMaxCoordinate");
+  if (!is_unit(pose.rotation))
+    return make_error(ErrorCode::InvalidArgument, field + ".rotation", "must be a unit quaternion");
+  return std::nullopt;
 }
 
 Aabb proxy_box(const Aabb& box, Real pad) {
@@ -279,12 +279,12 @@ void unlink_from_parent(CollisionWorld::Impl& w, std::uint32_t i) {
 void free_slot(CollisionWorld::Impl& w, std::uint32_t i) {
   ObjectSlot& s = w.slots[i];
   if (s.exclusions != 0) {
-    std::erase_if(w.excluded, [i](std::uint64_t k) { return std::uint32_t(k >> 32) == i || std::uint32_t(k) == i; });
-    for (auto& other : w.slots) other.exclusions = 0;
-    for (std::uint64_t k : w.excluded) {
-      ++w.slots[std::uint32_t(k >> 32)].exclusions;
-      ++w.slots[std::uint32_t(k)].exclusions;
-    }
+    std::erase_if(w.excluded, [&](std::uint64_t k) {
+      const std::uint32_t lo = std::uint32_t(k >> 32), hi = std::uint32_t(k);
+      if (lo != i && hi != i) return false;
+      --w.slots[lo == i ? hi : lo].exclusions;
+      return true;
+    });
   }
   w.object_listeners.erase(i);
   w.local_poses.erase(i);

@@ -52,15 +52,6 @@ std::optional<Error> check_point(const Vec3& p, const char* field) {
   return std::nullopt;
 }
 
-std::optional<Error> check_pose(const Transform& pose, const char* field) {
-  if (!is_acceptable(pose.position))
-    return make_error(ErrorCode::NotFinite, std::string(field) + ".position",
-                      "must be finite and within kMaxCoordinate");
-  if (!is_unit(pose.rotation))
-    return make_error(ErrorCode::InvalidArgument, std::string(field) + ".rotation", "must be a unit quaternion");
-  return std::nullopt;
-}
-
 std::optional<Error> check_distance(Real d, const char* field) {
   if (!std::isfinite(d) || d < 0) return make_error(ErrorCode::Negative, field, "must be finite and >= 0");
   return std::nullopt;

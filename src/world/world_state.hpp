@@ -145,6 +145,10 @@ struct CollisionWorld::Impl {
   void propagate_pose(std::uint32_t i);
 };
 
+/// An Error naming `field`.position or `field`.rotation when the pose is not finite within
+/// kMaxCoordinate or its rotation not unit; nothing otherwise.
+std::optional<Error> check_pose(const Transform& pose, const std::string& field);
+
 /// Sets s.radius and s.min_extent from s.geometry (0 for unbounded geometry).
 void measure_geometry(ObjectSlot& s);
 

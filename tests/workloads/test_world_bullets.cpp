@@ -259,18 +259,6 @@ std::array<Vec3d, 3> matrix(const Quatd& q) {
           Vec3d{2 * (x * z + w * y), 2 * (y * z - w * x), 1 - 2 * (x * x + y * y)}};
 }
 
-/// exp(w t / 2) * q, normalised (the W8 rule).
-Quatd turned(const Quatd& q, const Vec3d& w, double t) {
-  const double n = std::sqrt(w.x * w.x + w.y * w.y + w.z * w.z);
-  if (n == 0) return q;
-  const double h = 0.5 * n * t, s = std::sin(h);
-  const Quatd d{std::cos(h), s * w.x / n, s * w.y / n, s * w.z / n};
-  Quatd r{d.w * q.w - d.x * q.x - d.y * q.y - d.z * q.z, d.w * q.x + d.x * q.w + d.y * q.z - d.z * q.y,
-          d.w * q.y - d.x * q.z + d.y * q.w + d.z * q.x, d.w * q.z + d.x * q.y - d.y * q.x + d.z * q.w};
-  const double len = std::sqrt(r.w * r.w + r.x * r.x + r.y * r.y + r.z * r.z);
-  return {r.w / len, r.x / len, r.y / len, r.z / len};
-}
-
 /// Gap between a sphere (centre p, radius r) and a box (centre c, rotation q, half extents h).
 double sphere_box_gap(const Vec3d& p, double r, const Vec3d& c, const Quatd& q, const Vec3d& h) {
   const std::array<Vec3d, 3> m = matrix(q);
@@ -293,7 +281,7 @@ struct Contact {
 
 TEST(WorldBullets, TurningPlatesAgainstAnIndependentReference) {
   const std::string dir = test_util::shared_dir();
-  if (dir.empty()) GTEST_SKIP() << "shared workloads not found";
+  if (dir.empty()) GTEST_SKIP() << "shared workloads not found in " << workload_dir();
   auto read = read_world_workload(dir, "world_bullets.txt");
   ASSERT_TRUE(read.ok()) << read.error().what();
   WorldWorkload workload = *read;
@@ -331,7 +319,6 @@ TEST(WorldBullets, TurningPlatesAgainstAnIndependentReference) {
         const double reach = std::sqrt(world_ref::dot(h, h)) + r;
         const double seg = test_util::segment_distance(c0, c1, c, c);
         if (seg > reach) continue;
-        const Quatd qk = pose_at_frame(world, p, k).rotation;
         const Vec3d& om = plate.angular_velocity;
         const double far = std::max(std::sqrt(world_ref::dot(world_ref::sub(c0, c), world_ref::sub(c0, c))),
                                     std::sqrt(world_ref::dot(world_ref::sub(c1, c), world_ref::sub(c1, c))));
@@ -339,7 +326,8 @@ TEST(WorldBullets, TurningPlatesAgainstAnIndependentReference) {
         double s = 0;
         int steps = 0;
         for (; s <= 1 && steps < 200000; ++steps) {
-          const double gap = sphere_box_gap(world_ref::add(c0, world_ref::mul(s, dc)), r, c, turned(qk, om, s * dt), h);
+          const Quatd turned = pose_at_time(plate, frame_time(k, dt) + s * dt, world.lo, world.hi).rotation;
+          const double gap = sphere_box_gap(world_ref::add(c0, world_ref::mul(s, dc)), r, c, turned, h);
           if (gap <= 1e-10) break;
           s += gap / lipschitz;
         }
@@ -396,11 +384,10 @@ TEST(WorldBullets, TurningPlatesAgainstAnIndependentReference) {
       const WorldObject& plate = world.objects[c.plate];
       const Vec3d c0 = pose_at_frame(world, std::size_t(i), c.interval).position;
       const Vec3d c1 = pose_at_frame(world, std::size_t(i), c.interval + 1).position;
-      return sphere_box_gap(
-          world_ref::add(c0, world_ref::mul(c.s, world_ref::sub(c1, c0))), world.objects[std::size_t(i)].shape.radius,
-          plate.pose.position,
-          turned(pose_at_frame(world, c.plate, c.interval).rotation, plate.angular_velocity, c.s * dt),
-          plate.shape.half_extents);
+      return sphere_box_gap(world_ref::add(c0, world_ref::mul(c.s, world_ref::sub(c1, c0))),
+                            world.objects[std::size_t(i)].shape.radius, plate.pose.position,
+                            pose_at_time(plate, frame_time(c.interval, dt) + c.s * dt, world.lo, world.hi).rotation,
+                            plate.shape.half_extents);
     };
     if (want && got && got->interval == want->interval && got->plate == want->plate &&
         std::abs(got->s - want->s) <= s_tolerance) {

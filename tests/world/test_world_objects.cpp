@@ -159,6 +159,21 @@ TEST(WorldObjects, SixtyFourBitLayersGroupsExclusionsAndThePairCallback) {
   EXPECT_EQ(world.events().begin.size(), 1u);
 }
 
+TEST(WorldObjects, RemovingAnObjectDropsItsExclusions) {
+  CollisionWorld world = make_world();
+  const ObjectHandle a = *world.add(ball(at(0)));
+  const ObjectHandle b = *world.add(ball(at(Real(0.9))));
+  const ObjectHandle c = *world.add(ball(at(Real(-0.9))));
+  ASSERT_FALSE(world.set_pair_excluded(a, b, true).has_value());
+  ASSERT_FALSE(world.set_pair_excluded(a, c, true).has_value());
+  ASSERT_FALSE(world.remove(b).has_value());
+  const ObjectHandle reused = *world.add(ball(at(Real(0.9))));  // b's slot, no exclusion
+  ASSERT_EQ(reused.index, b.index);
+  ASSERT_FALSE(world.step(Real(0.1)).has_value());
+  ASSERT_EQ(world.events().begin.size(), 1u);  // a-reused; a-c stays excluded
+  EXPECT_EQ(world.events().begin[0].pair, (ObjectPair{a, reused}));
+}
+
 TEST(WorldObjects, StaticObjectsNeverPairWithEachOther) {
   CollisionWorld world = make_world();
   const ObjectHandle a = *world.add(static_box(at(0), Vec3(1)));
