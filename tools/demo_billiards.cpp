@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <memory>
 #include <ostream>
+#include <stdexcept>
 #include <string>
 
 #include "svg_writer.hpp"
@@ -23,10 +25,6 @@ std::string format(const char* pattern, double a) {
   char buffer[64];
   std::snprintf(buffer, sizeof(buffer), pattern, a);
   return buffer;
-}
-
-double percent(std::uint64_t part, std::uint64_t whole) {
-  return whole == 0 ? 0.0 : 100.0 * static_cast<double>(part) / static_cast<double>(whole);
 }
 
 }  // namespace
@@ -93,19 +91,27 @@ std::string render_billiards_svg(const BilliardTable& table) {
   const BilliardStats& s = table.stats();
   const double bottom = 2.0 * (margin + rail) + width * scale;
   svg.text(margin, bottom + 18.0,
-           "Proxima billiard break: " + std::to_string(BilliardTable::kBallCount) + " balls, " +
+           "Proxima billiard break on the collision world: " + std::to_string(BilliardTable::kBallCount) + " balls, " +
                std::to_string(s.frames) + " frames at " + format("%g", c.frame_rate) + " Hz, seed " +
                std::to_string(c.seed),
            14.0, "#222222");
   svg.text(margin, bottom + 36.0,
-           std::to_string(s.ball_collisions) + " ball-ball contacts (white), " + std::to_string(s.cushion_collisions) +
-               " cushion contacts (yellow); faint circles: start, numbered circles: end",
+           std::to_string(s.ball_collisions) + " ball-ball collisions (white), " +
+               std::to_string(s.cushion_collisions) + " cushion collisions (yellow), " + std::to_string(s.impacts) +
+               " impacts and " + std::to_string(s.begin_events) + " begin events from the collision world",
            12.0, "#444444");
   return svg.str();
 }
 
 int run_billiards_demo(const DemoOptions& options, std::ostream& out, std::ostream& err) {
-  BilliardTable table(options.config);
+  std::unique_ptr<BilliardTable> owned;
+  try {
+    owned = std::make_unique<BilliardTable>(options.config);
+  } catch (const std::invalid_argument& e) {
+    err << "proxima demo: " << e.what() << "\n";
+    return 2;
+  }
+  BilliardTable& table = *owned;
   const double energy_start = table.kinetic_energy();
   double total_ms = 0.0;
   double max_ms = 0.0;
@@ -120,45 +126,31 @@ int run_billiards_demo(const DemoOptions& options, std::ostream& out, std::ostre
 
   const BilliardStats& s = table.stats();
   if (!options.quiet) {
-    const std::uint64_t brute = s.brute_ball_pairs + s.brute_cushion_pairs;
-    const std::uint64_t candidates = s.candidate_ball_pairs + s.candidate_cushion_pairs;
-    const std::uint64_t collisions = s.ball_collisions + s.cushion_collisions;
     const double frames = static_cast<double>(std::max<std::uint64_t>(s.frames, 1));
+    const auto count = [](std::uint64_t n) { return static_cast<unsigned long long>(n); };
     char line[256];
     std::snprintf(line, sizeof(line),
                   "proxima demo: billiard break, %d balls, %d cushions, %llu frames at %g Hz (%.2f s), seed %llu\n",
-                  BilliardTable::kBallCount, BilliardTable::kCushionCount, static_cast<unsigned long long>(s.frames),
-                  options.config.frame_rate, static_cast<double>(s.frames) / options.config.frame_rate,
-                  static_cast<unsigned long long>(options.config.seed));
-    out << line;
-    out << "broad phase: the library's incremental sweep-and-prune (SweepAndPrune) over the balls' swept AABBs\n";
-    std::snprintf(line, sizeof(line),
-                  "brute-force pair tests: %llu (%llu ball-ball = %d per frame, %llu ball-cushion = %d per frame)\n",
-                  static_cast<unsigned long long>(brute), static_cast<unsigned long long>(s.brute_ball_pairs),
-                  BilliardTable::kBallCount * (BilliardTable::kBallCount - 1) / 2,
-                  static_cast<unsigned long long>(s.brute_cushion_pairs),
-                  BilliardTable::kBallCount * BilliardTable::kCushionCount);
+                  BilliardTable::kBallCount, BilliardTable::kCushionCount, count(s.frames), options.config.frame_rate,
+                  static_cast<double>(s.frames) / options.config.frame_rate, count(options.config.seed));
     out << line;
     std::snprintf(line, sizeof(line),
-                  "broad-phase candidates: %llu (%.2f%% of brute force; %llu ball-ball, %llu ball-cushion)\n",
-                  static_cast<unsigned long long>(candidates), percent(candidates, brute),
-                  static_cast<unsigned long long>(s.candidate_ball_pairs),
-                  static_cast<unsigned long long>(s.candidate_cushion_pairs));
+                  "collision world: %zu objects (balls: moving spheres, ccd bullet; cushions: static half-spaces), "
+                  "broad phase \"%s\", %llu steps (%d per frame)\n",
+                  table.world().size(), options.config.broadphase.c_str(), count(s.steps), options.config.substeps);
     out << line;
-    std::snprintf(line, sizeof(line), "collisions: %llu (%.2f%% of candidates; %llu ball-ball, %llu ball-cushion)\n",
-                  static_cast<unsigned long long>(collisions), percent(collisions, candidates),
-                  static_cast<unsigned long long>(s.ball_collisions),
-                  static_cast<unsigned long long>(s.cushion_collisions));
+    std::snprintf(
+        line, sizeof(line), "events: %llu impacts (continuous), %llu begin, %llu persist, %llu end; %llu callbacks\n",
+        count(s.impacts), count(s.begin_events), count(s.persist_events), count(s.end_events), count(s.callbacks));
     out << line;
-    std::snprintf(line, sizeof(line), "time per frame: mean %.4f ms, max %.4f ms (%llu sweeps)\n", total_ms / frames,
-                  max_ms, static_cast<unsigned long long>(s.broad_phase_passes));
+    std::snprintf(line, sizeof(line), "collisions resolved: %llu ball-ball, %llu ball-cushion\n",
+                  count(s.ball_collisions), count(s.cushion_collisions));
+    out << line;
+    std::snprintf(line, sizeof(line), "time per frame: mean %.4f ms (world steps %.4f ms), max %.4f ms\n",
+                  total_ms / frames, 1e3 * s.step_seconds / frames, max_ms);
     out << line;
     std::snprintf(line, sizeof(line), "kinetic energy: %.4f -> %.4f J/kg\n", energy_start, table.kinetic_energy());
     out << line;
-    if (s.capped_frames > 0) {
-      out << "warning: " << s.capped_frames << " frames reached the cap of " << options.config.max_events_per_frame
-          << " collisions\n";
-    }
   }
   if (!options.svg_path.empty()) {
     if (!write_file(options.svg_path, render_billiards_svg(table))) {

@@ -91,8 +91,10 @@ int run(int argc, char** argv) {
   app.require_subcommand(0, 1);
 
   proxima::tool::DemoOptions demo;
-  CLI::App* demo_cmd =
-      app.add_subcommand("demo", "Billiard break: 16 balls, 10 s at 60 Hz; prints detection statistics, draws an SVG");
+  CLI::App* demo_cmd = app.add_subcommand(
+      "demo",
+      "Billiard break on the collision world: 16 balls, 10 s at 60 Hz; prints the world's events and "
+      "statistics, draws an SVG");
   demo_cmd->add_option("--frames", demo.config.frames, "Frames to simulate at 60 Hz")
       ->capture_default_str()
       ->check(CLI::Range(0, 1000000));
@@ -103,6 +105,11 @@ int run(int argc, char** argv) {
   demo_cmd->add_option("--speed", demo.config.cue_speed, "Speed of the cue ball, m/s")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 1000.0));
+  demo_cmd->add_option("--substeps", demo.config.substeps, "World steps per frame")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 1000));
+  demo_cmd->add_option("--broadphase", demo.config.broadphase, "The world's broad-phase structure, by name")
+      ->capture_default_str();
   demo_cmd->add_flag("--quiet,-q", demo.quiet, "Print nothing (still writes the SVG)");
 
   proxima::tool::TunnellingDemoOptions tunnelling;

@@ -337,6 +337,17 @@ std::optional<Error> CollisionWorld::move(ObjectHandle object, const Transform& 
   return std::nullopt;
 }
 
+std::optional<Error> CollisionWorld::teleport(ObjectHandle object, const Transform& pose) {
+  Impl& w = *impl_;
+  if (auto e = check_not_in_pre_contact(w)) return e;
+  if (w.find(object) == nullptr) return stale("object");
+  if (auto e = check_pose(pose, "pose")) return e;
+  place(w, object.index, pose);
+  w.for_each_member(object.index, [&](std::uint32_t m) { w.slots[m].step_pose = w.slots[m].pose; });
+  w.refresh_proxy(w.slots[object.index].root);
+  return std::nullopt;
+}
+
 std::optional<Error> CollisionWorld::move(std::span<const ObjectMove> moves) {
   Impl& w = *impl_;
   if (auto e = check_not_in_pre_contact(w)) return e;

@@ -122,14 +122,10 @@ TEST(CliDemo, PrintsStatisticsAndWritesSvg) {
   ASSERT_EQ(run.status, 0) << run.output;
   const std::string& out = run.output;
   EXPECT_NE(out.find("16 balls, 4 cushions, 600 frames at 60 Hz (10.00 s)"), std::string::npos) << out;
-  EXPECT_NE(out.find("incremental sweep-and-prune"), std::string::npos) << out;
-  // Brute force: 16*15/2 = 120 ball pairs and 16*4 = 64 ball-cushion pairs per frame.
-  EXPECT_NE(out.find("brute-force pair tests: 110400 (72000 ball-ball = 120 per frame, 38400 ball-cushion = 64 "
-                     "per frame)"),
-            std::string::npos)
-      << out;
-  EXPECT_NE(out.find("broad-phase candidates: "), std::string::npos) << out;
-  EXPECT_NE(out.find("collisions: "), std::string::npos) << out;
+  EXPECT_NE(out.find("collision world: 20 objects"), std::string::npos) << out;
+  EXPECT_NE(out.find("broad phase \"tree\", 2400 steps (4 per frame)"), std::string::npos) << out;
+  EXPECT_NE(out.find("events: "), std::string::npos) << out;
+  EXPECT_NE(out.find("collisions resolved: "), std::string::npos) << out;
   EXPECT_NE(out.find("time per frame: mean "), std::string::npos) << out;
   EXPECT_NE(out.find("picture: " + svg_path.string()), std::string::npos) << out;
   EXPECT_EQ(out.find("warning"), std::string::npos) << out;
@@ -158,7 +154,10 @@ TEST(CliDemo, OptionsFramesQuietSeed) {
   const CliRun short_run = run_cli("demo --frames 12 --svg ''");
   EXPECT_EQ(short_run.status, 0);
   EXPECT_NE(short_run.output.find("12 frames at 60 Hz"), std::string::npos) << short_run.output;
-  EXPECT_NE(short_run.output.find("brute-force pair tests: 2208 (1440 ball-ball"), std::string::npos);
+  EXPECT_NE(short_run.output.find("48 steps (4 per frame)"), std::string::npos) << short_run.output;
+  const CliRun sap = run_cli("demo --frames 12 --svg '' --broadphase sap --substeps 2");
+  EXPECT_EQ(sap.status, 0);
+  EXPECT_NE(sap.output.find("broad phase \"sap\", 24 steps (2 per frame)"), std::string::npos) << sap.output;
   EXPECT_EQ(short_run.output.find("picture:"), std::string::npos);
 }
 
@@ -170,6 +169,8 @@ TEST(CliDemo, UnwritableSvgFails) {
 TEST(CliDemo, BadOptionsAreRejected) {
   EXPECT_NE(run_cli("demo --frames -3 2>/dev/null").status, 0);
   EXPECT_NE(run_cli("demo --frames many 2>/dev/null").status, 0);
+  EXPECT_NE(run_cli("demo --substeps 0 2>/dev/null").status, 0);
+  EXPECT_EQ(run_cli("demo --broadphase nothing 2>/dev/null").status, 2);
 }
 
 // The answers to a file of requests, line by line, against the expected file.

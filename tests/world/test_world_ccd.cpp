@@ -73,6 +73,37 @@ TEST(WorldCcd, OffAndSlowObjectsReportNoImpact) {
   EXPECT_TRUE(quiet.events().impacts.empty());
 }
 
+// teleport() sets a pose with no motion: a bullet teleported across the plate is swept
+// from its new pose only; a move() after the teleport is swept from the teleported pose. Its
+// attached child follows with no motion either; bad calls change nothing.
+TEST(WorldCcd, ATeleportIsNotSwept) {
+  CollisionWorld world = make_world();
+  const ObjectHandle p = *world.add(plate(at(0)));
+  const ObjectHandle b = *world.add(bullet(at(-5), Real(0.05), CcdMode::Bullet));
+  ObjectDesc child_desc = bullet(at(0), Real(0.05), CcdMode::Bullet);
+  child_desc.parent = b;
+  child_desc.local_pose = Transform{Vec3(0, Real(0.5), 0), kIdentityQuat};
+  const ObjectHandle child = *world.add(child_desc);
+  ASSERT_FALSE(world.step(Real(0.1)).has_value());
+  ASSERT_FALSE(world.teleport(b, at(5)).has_value());
+  EXPECT_EQ(world.pose(child).position, Vec3(5, Real(0.5), 0));
+  ASSERT_FALSE(world.step(Real(0.1)).has_value());
+  EXPECT_TRUE(world.events().impacts.empty());
+  EXPECT_TRUE(world.contacts().empty());
+
+  ASSERT_FALSE(world.teleport(b, at(-5)).has_value());
+  ASSERT_FALSE(world.move(b, at(4)).has_value());  // swept from -5 (the teleport), not from 5
+  ASSERT_FALSE(world.step(Real(0.1)).has_value());
+  ASSERT_EQ(world.events().impacts.size(), 2u);  // the bullet and its child, each against the plate
+  EXPECT_EQ(world.events().impacts[0].b, p);
+  EXPECT_NEAR(world.events().impacts[0].toi, (Real(4.94) / Real(9)), Real(2e-4));
+
+  const std::uint64_t hash = world.state_hash();
+  EXPECT_EQ(world.teleport(ObjectHandle{}, at(0))->field, "object");
+  EXPECT_EQ(world.teleport(b, Transform{Vec3(std::nan(""), 0, 0), kIdentityQuat})->field, "pose.position");
+  EXPECT_EQ(world.state_hash(), hash);
+}
+
 TEST(WorldCcd, ASpinningPaddleHitsABallBesideIt) {
   CollisionWorld world = make_world();
   ObjectDesc ball;

@@ -103,6 +103,11 @@ class CollisionWorld {
   std::optional<Error> move(ObjectHandle object, const Transform& pose);
   /// Moves many objects; all or nothing (the first bad entry is named: "moves[3].pose").
   std::optional<Error> move(std::span<const ObjectMove> moves);
+  /// Sets an object's world pose with no motion (a warp, like Box2D's b2Body_SetTransform or
+  /// Jolt's SetPosition beside MoveKinematic): the next step's motion of the object and of
+  /// its attached subtree starts at this pose, so continuous detection sweeps nothing up to
+  /// it; contacts are re-tested at the next step. Errors: "object", "pose".
+  std::optional<Error> teleport(ObjectHandle object, const Transform& pose);
   /// Replaces an object's geometry (its pairs are re-tested at the next step; a pair that no
   /// longer touches ends). Errors: "object", "geometry" (as for add).
   std::optional<Error> set_geometry(ObjectHandle object, const Shape& geometry);
