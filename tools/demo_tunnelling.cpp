@@ -183,8 +183,8 @@ std::string render_tunnelling_svg(const TunnellingScene& scene) {
   // Left: the discrete run.
   svg.begin_group("discrete panel");
   PanelDrawer left(svg, scene, margin, top, scale);
-  left.background("discrete: intersect at each frame's poses - " + std::to_string(discrete_hits) + " hits, " +
-                  std::to_string(tunnelled) + " tunnelled");
+  left.background("discrete (world, ccd off): contacts at each frame's poses - " + std::to_string(discrete_hits) +
+                  " hits, " + std::to_string(tunnelled) + " tunnelled");
   for (int i = 0; i < n; ++i) {
     const BulletOutcome& d = scene.discrete()[static_cast<std::size_t>(i)];
     const BulletOutcome& cc = scene.continuous()[static_cast<std::size_t>(i)];
@@ -218,8 +218,8 @@ std::string render_tunnelling_svg(const TunnellingScene& scene) {
   // Right: the continuous run.
   svg.begin_group("continuous panel");
   PanelDrawer right(svg, scene, margin + panel_width + gap, top, scale);
-  right.background("continuous: time_of_impact over each frame's motion - " + std::to_string(continuous_hits) +
-                   " hits");
+  right.background("continuous (world, ccd bullet): impacts over each frame's motion - " +
+                   std::to_string(continuous_hits) + " hits");
   for (int i = 0; i < n; ++i) {
     const BulletOutcome& cc = scene.continuous()[static_cast<std::size_t>(i)];
     if (cc.hit) right.plate(cc.plate, cc.time, kContinuousColour, 0.25);
@@ -270,9 +270,10 @@ std::string tunnelling_report(const TunnellingScene& scene) {
   const TunnellingConfig& c = scene.config();
   const DetectorStats& d = scene.discrete_stats();
   const DetectorStats& cc = scene.continuous_stats();
-  auto per_query_us = [](const DetectorStats& s) {
-    return s.queries == 0 ? 0.0 : 1e6 * s.seconds / static_cast<double>(s.queries);
+  auto per_step_us = [](const DetectorStats& s) {
+    return s.steps == 0 ? 0.0 : 1e6 * s.seconds / static_cast<double>(s.steps);
   };
+  const auto count = [](std::uint64_t v) { return static_cast<unsigned long long>(v); };
   std::string text;
   char line[320];
   std::snprintf(line, sizeof(line),
@@ -281,42 +282,28 @@ std::string tunnelling_report(const TunnellingScene& scene) {
                 scene.bullets().size(), static_cast<double>(c.min_radius), static_cast<double>(c.max_radius),
                 static_cast<double>(c.min_speed), static_cast<double>(c.max_speed), scene.plates().size(),
                 static_cast<double>(c.plate_half_thickness), c.frames, c.frame_rate,
-                static_cast<double>(c.frames) / c.frame_rate, static_cast<unsigned long long>(c.seed));
+                static_cast<double>(c.frames) / c.frame_rate, count(c.seed));
   text += line;
   std::snprintf(line, sizeof(line),
-                "discrete (intersect at each frame's poses): %llu hits, %llu queries, %.3f us per query\n",
-                static_cast<unsigned long long>(d.hits), static_cast<unsigned long long>(d.queries), per_query_us(d));
+                "discrete (collision world, ccd off: contacts at each frame's poses): %llu hits, %llu begin events, "
+                "%llu steps, %.3f us per step\n",
+                count(d.hits), count(d.begin_events), count(d.steps), per_step_us(d));
   text += line;
   std::snprintf(line, sizeof(line),
-                "continuous (time_of_impact over each frame's motion): %llu hits, %llu queries, mean %.2f iterations, "
-                "%.3f us per query\n",
-                static_cast<unsigned long long>(cc.hits), static_cast<unsigned long long>(cc.queries),
-                cc.queries == 0 ? 0.0 : static_cast<double>(cc.iterations) / static_cast<double>(cc.queries),
-                per_query_us(cc));
+                "continuous (collision world, ccd bullet: impacts over each frame's motion): %llu hits, %llu impacts, "
+                "%llu steps, %.3f us per step\n",
+                count(cc.hits), count(cc.impacts), count(cc.steps), per_step_us(cc));
   text += line;
   std::snprintf(line, sizeof(line), "tunnelled (caught only by the continuous detector): %d\n",
                 scene.tunnelled_count());
   text += line;
-  text += "time_of_impact answers:";
-  bool first = true;
-  for (std::size_t s = 0; s < cc.statuses.size(); ++s) {
-    if (cc.statuses[s] == 0) continue;
-    text +=
-        std::string(first ? " " : ", ") + std::to_string(cc.statuses[s]) + " " + to_string(static_cast<CcdStatus>(s));
-    first = false;
-  }
-  if (first) text += " none";
-  text += "\n";
-  if (cc.errors > 0) text += "warning: " + std::to_string(cc.errors) + " time_of_impact calls returned an error\n";
-  const std::uint64_t odd = cc.statuses[static_cast<std::size_t>(CcdStatus::MaxIterations)] +
-                            cc.statuses[static_cast<std::size_t>(CcdStatus::Failed)] +
-                            cc.statuses[static_cast<std::size_t>(CcdStatus::InitiallyOverlapping)];
-  if (odd > 0) {
-    text += "warning: " + std::to_string(odd) + " time_of_impact answers were neither hit nor separated\n";
+  if (cc.late_hits > 0) {
+    text += "warning: " + std::to_string(cc.late_hits) +
+            " bullets stopped by a contact at a frame's end with no impact event before it\n";
   }
   if (scene.discrete_only_count() > 0) {
     text += "warning: " + std::to_string(scene.discrete_only_count()) +
-            " bullets stopped by the discrete detector only (an overlap that time_of_impact missed)\n";
+            " bullets stopped by the discrete detector only (an overlap that continuous detection missed)\n";
   }
   return text;
 }

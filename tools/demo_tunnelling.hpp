@@ -1,7 +1,8 @@
 #pragma once
-// `proxima demo-tunnelling`: fires fast bullets at thin spinning plates, detects the hits
-// discretely (intersect at the frame poses) and continuously (time_of_impact over each
-// frame's motion), prints the statistics and draws both runs side by side as an SVG.
+// `proxima demo-tunnelling`: fires fast bullets at thin spinning plates in two collision
+// worlds, one detecting the hits discretely (contacts at the frame poses: CcdMode::Off), one
+// continuously (impacts over each frame's motion: CcdMode::Bullet), prints the statistics
+// and draws both runs side by side as an SVG.
 #include <iosfwd>
 #include <string>
 
@@ -23,8 +24,8 @@ struct TunnellingDemoOptions {
 /// a legend with the counts.
 std::string render_tunnelling_svg(const TunnellingScene& scene);
 
-/// The statistics lines: the scene, each detector's hits, queries and time per query, the
-/// mean time_of_impact iterations, the tunnelled count; warnings for unexpected answers.
+/// The statistics lines: the scene, each detector's hits, events, steps and time per step,
+/// the tunnelled count; warnings for unexpected answers.
 std::string tunnelling_report(const TunnellingScene& scene);
 
 /// Runs the demo: simulates, writes the statistics to `out` (unless quiet) and the SVG.

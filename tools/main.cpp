@@ -113,10 +113,10 @@ int run(int argc, char** argv) {
   demo_cmd->add_flag("--quiet,-q", demo.quiet, "Print nothing (still writes the SVG)");
 
   proxima::tool::TunnellingDemoOptions tunnelling;
-  CLI::App* tunnelling_cmd = app.add_subcommand(
-      "demo-tunnelling",
-      "Fast bullets at thin spinning plates: discrete (intersect per frame) against continuous (time_of_impact) "
-      "detection; prints statistics, draws both runs side by side as an SVG");
+  CLI::App* tunnelling_cmd = app.add_subcommand("demo-tunnelling",
+                                                "Fast bullets at thin spinning plates in two collision worlds: "
+                                                "discrete (ccd off) against continuous (ccd bullet) "
+                                                "detection; prints statistics, draws both runs side by side as an SVG");
   tunnelling_cmd->add_option("--frames", tunnelling.config.frames, "Frames to simulate at 60 Hz")
       ->capture_default_str()
       ->check(CLI::Range(0, 100000));

@@ -1,7 +1,7 @@
 #include "tunnelling_scene.hpp"
 
-#include <proxima/ccd/motion.hpp>
-#include <proxima/narrowphase/narrowphase.hpp>
+#include <proxima/core/assert.hpp>
+#include <proxima/world/collision_world.hpp>
 
 #include <algorithm>
 #include <chrono>
@@ -99,105 +99,113 @@ bool TunnellingScene::outside_field(const Vec3& centre, Real r) const {
 }
 
 void TunnellingScene::run() {
+  run_detector(CcdMode::Off, discrete_, discrete_stats_);
+  run_detector(CcdMode::Bullet, continuous_, continuous_stats_);
+}
+
+namespace {
+
+constexpr std::uint64_t kPlateLayer = 1;
+constexpr std::uint64_t kBulletLayer = 2;
+constexpr std::uint64_t kPlateUserData = 1u << 20;  // user data of plate k: kPlateUserData + k; bullet i: i
+
+void check(const std::optional<Error>& error) {
+  PROXIMA_ASSERT(!error);
+  static_cast<void>(error);
+}
+
+}  // namespace
+
+// One detector: the whole run in a world whose bullets have continuous-detection `mode`.
+// Each frame: the plates and the flying bullets are moved to their poses at the frame's end
+// (a bullet fired this frame is added at its start first), the world steps, and its events
+// stop the bullets: an impact (continuous) at its time of impact, else a begun contact at
+// the frame's end; stopped bullets and those that left the field are removed.
+void TunnellingScene::run_detector(CcdMode mode, std::vector<BulletOutcome>& outcomes, DetectorStats& stats) const {
   const std::size_t n = bullets_.size();
-  discrete_.assign(n, BulletOutcome{});
-  continuous_.assign(n, BulletOutcome{});
-  discrete_stats_ = DetectorStats{};
-  continuous_stats_ = DetectorStats{};
+  outcomes.assign(n, BulletOutcome{});
+  stats = DetectorStats{};
+  CollisionWorld world = CollisionWorld::create().value();
+  std::vector<ObjectHandle> plate(plates_.size());
+  for (std::size_t k = 0; k < plates_.size(); ++k) {
+    ObjectDesc desc;
+    desc.geometry = plates_[k].box;
+    desc.pose = plates_[k].pose_at(0.0);
+    desc.ccd = CcdMode::Off;
+    desc.filter = CollisionFilter{kPlateLayer, kBulletLayer, 0};
+    desc.user_data = kPlateUserData + k;
+    plate[k] = world.add(desc).value();
+  }
+  std::vector<ObjectHandle> bullet(n);
+  std::vector<char> flying(n, 0);
   const double dt = frame_time();
-  std::vector<Motion> plate_motion(plates_.size());
-  std::vector<Transform> plate_end(plates_.size());
+  std::vector<ObjectMove> moves;
   for (int f = 0; f < config_.frames; ++f) {
-    const double t0 = static_cast<double>(f) * dt;
-    for (std::size_t k = 0; k < plates_.size(); ++k) {
-      // The frame's motion: constant angular velocity about z from the frame's start pose.
-      plate_motion[k] =
-          Motion::from_velocity(plates_[k].pose_at(t0), Vec3(Real(0)),
-                                Vec3(Real(0), Real(0), static_cast<Real>(plates_[k].spin)), static_cast<Real>(dt));
-      plate_end[k] = plates_[k].pose_at(t0 + dt);
+    const double t0 = static_cast<double>(f) * dt, t1 = t0 + dt;
+    moves.clear();
+    for (std::size_t k = 0; k < plates_.size(); ++k) moves.push_back({plate[k], plates_[k].pose_at(t1)});
+    for (std::size_t i = 0; i < n; ++i) {
+      if (bullets_[i].fire_frame == f) {
+        ObjectDesc desc;
+        desc.geometry = bullets_[i].sphere;
+        desc.pose = at(bullets_[i].start);
+        desc.ccd = mode;
+        desc.filter = CollisionFilter{kBulletLayer, kPlateLayer, 0};
+        desc.user_data = i;
+        bullet[i] = world.add(desc).value();
+        flying[i] = 1;
+        outcomes[i].frame_positions.push_back(bullets_[i].start);
+      }
+      if (flying[i]) moves.push_back({bullet[i], at(bullets_[i].position_at(t1, config_.frame_rate))});
+    }
+    check(world.move(moves));
+    const auto clock = std::chrono::steady_clock::now();
+    check(world.step(static_cast<Real>(dt)));
+    stats.seconds += seconds_since(clock);
+    ++stats.steps;
+    const StepEvents& events = world.events();
+    stats.impacts += events.impacts.size();
+    stats.begin_events += events.begin.size();
+    for (const ImpactEvent& e : events.impacts) {  // a is the fast bullet, b the plate
+      BulletOutcome& out = outcomes[e.user_data_a];
+      out.hit = true;
+      out.plate = static_cast<int>(e.user_data_b - kPlateUserData);
+      out.frame = f;
+      out.toi = e.toi;
+      out.time = t0 + static_cast<double>(e.toi) * dt;
+      out.stop = bullets_[e.user_data_a].position_at(out.time, config_.frame_rate);
+      out.point = e.point;
+      ++stats.hits;
+    }
+    for (const ContactEvent& e : events.begin) {  // (plate, bullet): plates were added first
+      BulletOutcome& out = outcomes[e.user_data_b];
+      if (out.hit) continue;  // its impact, or a lower plate's contact, came first
+      out.hit = true;
+      out.plate = static_cast<int>(e.user_data_a - kPlateUserData);
+      out.frame = f;
+      out.time = t1;
+      out.stop = bullets_[e.user_data_b].position_at(t1, config_.frame_rate);
+      out.point = out.stop;
+      out.frame_positions.push_back(out.stop);
+      ++stats.hits;
+      if (mode != CcdMode::Off) ++stats.late_hits;
     }
     for (std::size_t i = 0; i < n; ++i) {
-      if (bullets_[i].fire_frame > f) continue;
-      if (bullets_[i].fire_frame == f) {
-        discrete_[i].frame_positions.push_back(bullets_[i].start);
-        continuous_[i].frame_positions.push_back(bullets_[i].start);
+      if (!flying[i]) continue;
+      BulletOutcome& out = outcomes[i];
+      if (!out.hit) {
+        out.frame = f;
+        out.time = t1;
+        out.stop = bullets_[i].position_at(t1, config_.frame_rate);
+        out.frame_positions.push_back(out.stop);
+        out.left_field = outside_field(out.stop, bullets_[i].sphere.radius());
       }
-      step_continuous(f, static_cast<int>(i), plate_motion);
-      step_discrete(f, static_cast<int>(i), plate_end);
+      if (out.hit || out.left_field) {
+        check(world.remove(bullet[i]));
+        flying[i] = 0;
+      }
     }
   }
-}
-
-void TunnellingScene::step_continuous(int f, int i, const std::vector<Motion>& plate_motion) {
-  BulletOutcome& out = continuous_[static_cast<std::size_t>(i)];
-  if (out.hit || out.left_field) return;
-  const TunnellingBullet& bullet = bullets_[static_cast<std::size_t>(i)];
-  const double dt = frame_time();
-  const double t0 = static_cast<double>(f) * dt;
-  const Motion motion = Motion::from_velocity(at(bullet.position_at(t0, config_.frame_rate)), bullet.velocity,
-                                              Vec3(Real(0)), static_cast<Real>(dt));
-  ToiResult first;
-  int first_plate = -1;
-  const auto clock = std::chrono::steady_clock::now();
-  for (std::size_t k = 0; k < plates_.size(); ++k) {
-    const Result<ToiResult> r = time_of_impact(bullet.sphere, motion, plates_[k].box, plate_motion[k]);
-    ++continuous_stats_.queries;
-    if (!r) {
-      ++continuous_stats_.errors;
-      continue;
-    }
-    const ToiResult& toi = r.value();
-    continuous_stats_.iterations += static_cast<std::uint64_t>(toi.iterations);
-    ++continuous_stats_.statuses[static_cast<std::size_t>(toi.status)];
-    const bool contact = toi.status == CcdStatus::Hit || toi.status == CcdStatus::InitiallyOverlapping;
-    if (contact && (first_plate < 0 || toi.toi < first.toi)) {
-      first = toi;
-      first_plate = static_cast<int>(k);
-    }
-  }
-  continuous_stats_.seconds += seconds_since(clock);
-  out.frame = f;
-  if (first_plate >= 0) {
-    out.hit = true;
-    out.plate = first_plate;
-    out.toi = first.toi;
-    out.time = t0 + static_cast<double>(first.toi) * dt;
-    out.stop = motion.at(first.toi).position;
-    out.point = first.point;
-    ++continuous_stats_.hits;
-    return;
-  }
-  out.stop = motion.end.position;
-  out.time = t0 + dt;
-  out.frame_positions.push_back(out.stop);
-  out.left_field = outside_field(out.stop, bullet.sphere.radius());
-}
-
-void TunnellingScene::step_discrete(int f, int i, const std::vector<Transform>& plate_end) {
-  BulletOutcome& out = discrete_[static_cast<std::size_t>(i)];
-  if (out.hit || out.left_field) return;
-  const TunnellingBullet& bullet = bullets_[static_cast<std::size_t>(i)];
-  const double t1 = static_cast<double>(f + 1) * frame_time();
-  const Vec3 centre = bullet.position_at(t1, config_.frame_rate);
-  int plate = -1;
-  const auto clock = std::chrono::steady_clock::now();
-  for (std::size_t k = 0; k < plates_.size() && plate < 0; ++k) {
-    ++discrete_stats_.queries;
-    if (intersect(bullet.sphere, at(centre), plates_[k].box, plate_end[k])) plate = static_cast<int>(k);
-  }
-  discrete_stats_.seconds += seconds_since(clock);
-  out.frame = f;
-  out.time = t1;
-  out.stop = centre;
-  out.frame_positions.push_back(centre);
-  if (plate >= 0) {
-    out.hit = true;
-    out.plate = plate;
-    out.point = centre;
-    ++discrete_stats_.hits;
-    return;
-  }
-  out.left_field = outside_field(centre, bullet.sphere.radius());
 }
 
 bool TunnellingScene::tunnelled(int i) const {

@@ -1,18 +1,21 @@
 #pragma once
 // The scene of `proxima demo-tunnelling`: fast small bullets (library Spheres) fired across a
 // field of thin spinning plates (library Boxes turning at constant angular velocity about the
-// vertical axis), simulated at a fixed frame rate under two detectors:
-//   - discrete: at the end of each frame, the narrow phase's `intersect` at the frame's poses
-//     only; a bullet that crosses a plate between two frames is never seen (tunnelling);
-//   - continuous: `time_of_impact` over each frame's motion, bullet and plate both moving;
-//     the bullet stops at its first contact, at the time of impact.
-// Bullets fly straight at constant velocity until a detector stops them (no response: the
-// demo is about detection). Everything is seeded (SplitMix64) and built in.
-#include <proxima/ccd/time_of_impact.hpp>
+// vertical axis), simulated at a fixed frame rate in two collision worlds that differ only in
+// the bullets' continuous-detection mode:
+//   - discrete (CcdMode::Off): a contact begins when a bullet overlaps a plate at a frame's
+//     poses; a bullet that crosses a plate between two frames is never seen (tunnelling);
+//   - continuous (CcdMode::Bullet): the world's impact event, the certified time of impact
+//     over each frame's motion, bullet and plate both moving; the bullet stops there.
+// Plates and bullets are moving objects; layers keep bullets from pairing with bullets and
+// plates with plates. A stopped bullet (or one that left the field) is removed from its
+// world. Bullets fly straight at constant velocity until a detector stops them (no response:
+// the demo is about detection). Everything is seeded (SplitMix64) and built in.
 #include <proxima/core/math.hpp>
 #include <proxima/core/transform.hpp>
 #include <proxima/shapes/box.hpp>
 #include <proxima/shapes/sphere.hpp>
+#include <proxima/world/object_desc.hpp>
 
 #include <array>
 #include <cstdint>
@@ -64,20 +67,20 @@ struct BulletOutcome {
   int frame = -1;                     ///< hit: the frame of the hit; else the last frame it flew in
   double time = 0.0;                  ///< hit: time of the contact (continuous) or of the frame pose (discrete), s
   Vec3 stop{Real(0)};                 ///< centre where it stopped (hit) or was last seen
-  Vec3 point{Real(0)};                ///< hit: contact point (continuous: time_of_impact's point; discrete: the centre)
+  Vec3 point{Real(0)};                ///< hit: contact point (continuous: the impact's point; discrete: the centre)
   Real toi = Real(0);                 ///< continuous hit: time of impact within the frame, [0, 1]
   bool left_field = false;            ///< flew out of the field
   std::vector<Vec3> frame_positions;  ///< centre at every frame pose it was seen at (firing included)
 };
 
-/// Counters of one detector, summed over the run.
+/// Counters of one detector (one collision world), summed over the run.
 struct DetectorStats {
-  std::uint64_t queries = 0;                ///< intersect or time_of_impact calls
-  std::uint64_t hits = 0;                   ///< bullets stopped
-  double seconds = 0.0;                     ///< wall-clock time spent in the queries
-  std::uint64_t iterations = 0;             ///< time_of_impact: distance queries, summed
-  std::array<std::uint64_t, 5> statuses{};  ///< time_of_impact: answers by CcdStatus
-  std::uint64_t errors = 0;                 ///< time_of_impact: Result errors (never expected)
+  std::uint64_t steps = 0;         ///< CollisionWorld::step calls (one per frame)
+  std::uint64_t hits = 0;          ///< bullets stopped
+  std::uint64_t impacts = 0;       ///< impact events (continuous detection)
+  std::uint64_t begin_events = 0;  ///< contact begin events
+  std::uint64_t late_hits = 0;     ///< continuous world: hits seen as a contact only, no impact (never expected)
+  double seconds = 0.0;            ///< wall-clock time inside CollisionWorld::step
 };
 
 /// The scene and both runs.
@@ -105,7 +108,7 @@ class TunnellingScene {
   /// Number of tunnelled bullets.
   int tunnelled_count() const;
   /// Bullets the discrete detector stopped and the continuous one did not (never expected:
-  /// an overlap at a frame pose implies a contact at or before it).
+  /// an overlap at a frame pose implies an impact at or before it).
   int discrete_only_count() const;
   /// Seconds per frame.
   double frame_time() const { return 1.0 / config_.frame_rate; }
@@ -113,8 +116,7 @@ class TunnellingScene {
   bool outside_field(const Vec3& centre, Real r) const;
 
  private:
-  void step_continuous(int f, int i, const std::vector<Motion>& plate_motion);
-  void step_discrete(int f, int i, const std::vector<Transform>& plate_end);
+  void run_detector(CcdMode mode, std::vector<BulletOutcome>& outcomes, DetectorStats& stats) const;
 
   TunnellingConfig config_;
   std::vector<TunnellingPlate> plates_;
