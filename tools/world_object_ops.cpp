@@ -72,11 +72,14 @@ Json op_world_remove(WorldSession& session, const Json& request) {
 }
 
 Json op_world_move(WorldSession& session, const Json& request) {
-  reject_unknown_fields(request, "", {"id", "op", "object", "pose", "objects"});
+  reject_unknown_fields(request, "", {"id", "op", "object", "pose", "objects", "teleport"});
   CollisionWorld& world = session.world();
   if (const Json* list = find_member(request, "objects")) {
     if (find_member(request, "object") != nullptr || find_member(request, "pose") != nullptr) {
       throw FieldError("objects", "invalid_argument", "give either \"objects\" or \"object\" and \"pose\", not both");
+    }
+    if (find_member(request, "teleport") != nullptr) {
+      throw FieldError("teleport", "invalid_argument", "only with \"object\" and \"pose\" (one object)");
     }
     if (!list->is_array()) throw FieldError("objects", "wrong_type", "must be an array of {\"object\":…,\"pose\":…}");
     std::vector<ObjectMove> moves;
@@ -94,7 +97,9 @@ Json op_world_move(WorldSession& session, const Json& request) {
   }
   const ObjectHandle object = member_live_handle(request, "object", world);
   const Transform pose = read_pose(require_member(request, "", "pose"), "pose");
-  check_world(world.move(object, pose));
+  const Json* teleport = find_member(request, "teleport");
+  const bool warp = teleport != nullptr && read_bool(*teleport, "teleport");
+  check_world(warp ? world.teleport(object, pose) : world.move(object, pose));
   return ok();
 }
 

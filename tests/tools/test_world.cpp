@@ -131,6 +131,8 @@ TEST(WorldProtocol, RejectedRequestsNameTheFieldAndChangeNothing) {
       {R"({"op":"move","objects":[{"object":0,"pose":{"position":[1,0,0]}},{"object":1,"pose":{"position":[1e200,0,0]}}]})",
        "objects[1].pose.position.x", "out_of_range"},
       {R"({"op":"move","objects":[],"object":0})", "objects", "invalid_argument"},
+      {R"({"op":"move","objects":[],"teleport":true})", "teleport", "invalid_argument"},
+      {R"({"op":"move","object":0,"pose":{},"teleport":1})", "teleport", "wrong_type"},
       {R"({"op":"set_geometry","object":0,"geometry":{"type":"halfspace","normal":[0,0,1],"offset":0}})", "geometry",
        "invalid_argument"},
       {R"({"op":"set_filter","object":0,"filter":{"mask":0}})", "filter.mask", "invalid_argument"},
