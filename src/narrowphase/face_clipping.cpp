@@ -207,19 +207,17 @@ bool clip_features(const SupportingFace& fa, const SupportingFace& fb, const Vec
   return true;
 }
 
-bool clipped_manifold(const SupportingFace& fa, const SupportingFace& fb, const Vec3& normal,
-                      const PairRequest& request, ContactManifold& m, const ContactPoint* witness) {
-  CandidateSet set;
-  if (!clip_candidates(fa, fb, normal, request.contact_distance, set) || set.count == 0) return false;
-  if (witness != nullptr) {
-    // Keep the pair's own closest (deepest) point when clipping measured every point as
-    // shallower (tilted reference face): it then becomes the first point of the reduction.
-    Real deepest = set.points[0].depth;
-    for (int i = 1; i < set.count; ++i) deepest = std::max(deepest, set.points[i].depth);
-    if (deepest < witness->depth) {
-      set.points[set.count++] = Candidate{witness->point_a, witness->point_b, witness->depth, witness->feature_id};
-    }
-  }
+namespace {
+
+Real deepest_candidate(const CandidateSet& set) {
+  Real deepest = set.points[0].depth;
+  for (int i = 1; i < set.count; ++i) deepest = std::max(deepest, set.points[i].depth);
+  return deepest;
+}
+
+// The candidates reduced to request.max_contacts (the deepest first, then the largest area)
+// and written to m.
+bool reduce_into(const CandidateSet& set, const Vec3& normal, const PairRequest& request, ContactManifold& m) {
   const int k = std::clamp(request.max_contacts, 1, kMaxContactPoints);
   std::array<int, 4> chosen;
   const int n = select_contacts(
@@ -231,6 +229,28 @@ bool clipped_manifold(const SupportingFace& fa, const SupportingFace& fb, const 
   }
   m.count = n;
   return n > 0;
+}
+
+}  // namespace
+
+bool clipped_manifold(const SupportingFace& fa, const SupportingFace& fb, const Vec3& normal,
+                      const PairRequest& request, ContactManifold& m, const ContactPoint* witness) {
+  CandidateSet set;
+  if (!clip_candidates(fa, fb, normal, request.contact_distance, set) || set.count == 0) return false;
+  // Keep the pair's own closest (deepest) point when clipping measured every point as
+  // shallower (tilted reference face): it then becomes the first point of the reduction.
+  if (witness != nullptr && deepest_candidate(set) < witness->depth) {
+    set.points[set.count++] = Candidate{witness->point_a, witness->point_b, witness->depth, witness->feature_id};
+  }
+  return reduce_into(set, normal, request, m);
+}
+
+bool deep_clipped_manifold(const SupportingFace& fa, const SupportingFace& fb, const Vec3& normal,
+                           const PairRequest& request, Real witness_depth, ContactManifold& m) {
+  CandidateSet set;
+  if (!clip_candidates(fa, fb, normal, request.contact_distance, set) || set.count == 0) return false;
+  if (deepest_candidate(set) < witness_depth) return false;
+  return reduce_into(set, normal, request, m);
 }
 
 }  // namespace proxima::narrow

@@ -48,4 +48,11 @@ bool clip_features(const SupportingFace& fa, const SupportingFace& fb, const Vec
 bool clipped_manifold(const SupportingFace& fa, const SupportingFace& fb, const Vec3& normal,
                       const PairRequest& request, ContactManifold& m, const ContactPoint* witness = nullptr);
 
+/// clipped_manifold when no witness of depth `witness_depth` would be added: writes the
+/// manifold and returns true when clipping keeps a point at least that deep; returns false,
+/// leaving `m` untouched, when the caller needs the witness (clipping failed, or every point
+/// is shallower). Lets a pair skip computing its closest features.
+bool deep_clipped_manifold(const SupportingFace& fa, const SupportingFace& fb, const Vec3& normal,
+                           const PairRequest& request, Real witness_depth, ContactManifold& m);
+
 }  // namespace proxima::narrow

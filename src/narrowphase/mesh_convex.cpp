@@ -24,7 +24,8 @@
 ///     normal from the Minkowski difference by conservative advancement (the signed
 ///     distance is 1-Lipschitz in the translation) and bisection, bracketed above by the
 ///     plane depth and by depth / cos(angle to the narrow phase's normal), one value per
-///     triangle (a few narrow-phase distance calls, only on inactive features); the corrected contact
+///     triangle (a few narrow-phase distance calls, only on inactive features; for a box, exact
+///     in closed form over the 13 separating axes); the corrected contact
 ///     is dropped when a neighbouring triangle sharing its feature's vertices already gave a
 ///     face contact (that triangle holds the same support), or when the corrected gap
 ///     exceeds the contact distance.
@@ -428,9 +429,13 @@ void mesh_convex_collide_all(const TriangleMesh& mesh, const Transform& pose_mes
         }
         Real sd0 = kInf;
         for (int j = 0; j < m.count; ++j) sd0 = std::min(sd0, -m.points[j].depth);
-        ghost_sd = plane_sd > cd ? plane_sd
-                                 : directional_signed_distance(tri, pose_mesh, convex, pose_convex, request, ghost_n,
-                                                               sd0, m.normal, plane_sd, cd);
+        if (plane_sd > cd)
+          ghost_sd = plane_sd;
+        else if (reject_box)  // exact over the 13 axes
+          ghost_sd = triangle_box_directional_signed_distance(tri, pose_mesh, convex.as<Box>(), pose_convex, ghost_n);
+        else
+          ghost_sd = directional_signed_distance(tri, pose_mesh, convex, pose_convex, request, ghost_n, sd0, m.normal,
+                                                 plane_sd, cd);
       }
       const Vec3 fw = ghost_n;
       const Real sd = ghost_sd;

@@ -45,6 +45,13 @@ DistanceResult pair_distance(const Triangle& a, const Transform& pose_a, const B
 /// than `beyond` (a lower bound of their distance): no contact within `beyond`. O(1).
 bool triangle_box_separated_beyond(const Triangle& a, const Transform& pose_a, const Box& b, const Transform& pose_b,
                                    Real beyond);
+/// Signed distance of box b from triangle a along the unit world direction n: for an
+/// overlapping or touching pair, minus the smallest t >= 0 such that b moved by t n no longer
+/// overlaps a; for a separated pair, the smallest t >= 0 such that b moved by -t n touches a;
+/// +infinity when no such t exists. Exact over the 13 separating axes (the translation
+/// interval of small_polytope_sat.hpp). O(1).
+Real triangle_box_directional_signed_distance(const Triangle& a, const Transform& pose_a, const Box& b,
+                                              const Transform& pose_b, const Vec3& n);
 ContactManifold pair_collide(const Triangle& a, const Transform& pose_a, const Box& b, const Transform& pose_b,
                              const PairRequest& request, PairCache* cache);
 template <>

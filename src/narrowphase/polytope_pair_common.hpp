@@ -66,6 +66,34 @@ DistanceResult sat_distance_result(const SmallSat& s, const Transform& pose_a, R
   return r;
 }
 
+/// pair_collide of a SAT pair from its SAT `s` (the other arguments as sat_distance_result):
+/// manifold_of(sat_distance_result(...)), tagged PairMethod::Sat. A penetration whose clipped
+/// supporting faces keep a point as deep as the SAT depth skips the closest features
+/// (`closest` is not called): the witness would not enter the manifold.
+template <class A, class B, class ClosestFn>
+ContactManifold sat_collide_result(const A& a, const Transform& pose_a, const B& b, const Transform& pose_b,
+                                   const SmallSat& s, Real tol, const PairRequest& request, PairCache* cache,
+                                   ClosestFn closest) {
+  if (s.separation <= Real(0) && s.separation <= request.contact_distance && request.max_contacts >= 2) {
+    const SupportingFace fa = supporting_face(a, pose_a, s.normal);
+    const SupportingFace fb = supporting_face(b, pose_b, -s.normal);
+    ContactManifold m;
+    if (fa.count >= 2 && fb.count >= 2 && deep_clipped_manifold(fa, fb, s.normal, request, -s.separation, m)) {
+      m.normal = s.normal;
+      m.status = status_from_distance(s.separation, tol);
+      m.method = PairMethod::Sat;
+      if (cache != nullptr) {
+        cache->axis = pose_a.inverse_apply_vector(s.normal);
+        cache->valid = true;
+      }
+      return m;
+    }
+  }
+  ContactManifold m = manifold_of(a, pose_a, b, pose_b, sat_distance_result(s, pose_a, tol, cache, closest), request);
+  m.method = PairMethod::Sat;
+  return m;
+}
+
 /// pair_intersect of a SAT pair (contract in pair_support.hpp): its pair_distance within
 /// max(request.contact_distance, 0).
 template <class A, class B>

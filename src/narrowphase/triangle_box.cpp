@@ -11,7 +11,9 @@
 //  3. Witnesses of a penetration: the closest features of the triangle and the box moved
 //     out by the depth along the normal (they touch there; polytope_pair_common.hpp), right
 //     for face, edge-edge and in-plane axes alike.
-//  4. Manifold: supporting faces along the normal, clipped, reduced to 4 points.
+//  4. Manifold: supporting faces along the normal, clipped, reduced to 4 points; a
+//     penetration whose clipped points reach the SAT depth skips step 3 (the witness would
+//     not enter the manifold: sat_collide_result).
 // intersect stops after step 1 when the separation exceeds the contact distance (a lower
 // bound of the distance); triangle_box_separated_beyond is step 1 alone, which a mesh's
 // collide_all asks first for each box-triangle pair.
@@ -69,29 +71,45 @@ Real closest_triangle_box(const std::array<Vec3, 8>& c, const Vec3* t, const Vec
   return best;
 }
 
+// The pair's polytopes, SAT, tolerance and closest-features function (shared by
+// pair_distance and pair_collide).
+struct TriangleBoxSat {
+  SmallPolytope pa;
+  SmallPolytope pb;
+  SmallSat s;
+  Real tol = Real(0);
+
+  TriangleBoxSat(const Triangle& a, const Transform& pose_a, const Box& b, const Transform& pose_b,
+                 const PairRequest& request) {
+    triangle_polytope(a, pose_a, pa);
+    box_polytope(b, pose_b, pb);
+    s = small_polytope_sat(pa, pb, nullptr, 0, kParallelSine);
+    Real scale = max_abs_component(b.half_extents());
+    for (int i = 0; i < 8; ++i) scale = std::max(scale, max_abs_component(pb.vertices[i]));
+    for (int i = 0; i < 3; ++i) scale = std::max(scale, max_abs_component(pa.vertices[i]));
+    tol = resolve_tolerance(request, scale);
+  }
+
+  auto closest(const Box& b, const Transform& pose_b) const {
+    return [this, &b, &pose_b](const Vec3* shift, Vec3& on_a, Vec3& on_b) {
+      const Mat3 m = pose_b.rotation_matrix();
+      if (shift == nullptr) {
+        return closest_triangle_box(pb.vertices, pa.vertices.data(), pose_b.position, m, b.half_extents(), on_a, on_b);
+      }
+      std::array<Vec3, 8> moved;
+      for (std::size_t k = 0; k < 8; ++k) moved[k] = pb.vertices[k] + *shift;
+      return closest_triangle_box(moved, pa.vertices.data(), pose_b.position + *shift, m, b.half_extents(), on_a, on_b);
+    };
+  }
+};
+
 }  // namespace
 
 DistanceResult pair_distance(const Triangle& a, const Transform& pose_a, const Box& b, const Transform& pose_b,
                              const PairRequest& request, PairCache* cache) {
   if (!finite_poses(pose_a, pose_b)) return invalid_distance();
-  SmallPolytope pa;
-  SmallPolytope pb;
-  triangle_polytope(a, pose_a, pa);
-  box_polytope(b, pose_b, pb);
-  const SmallSat s = small_polytope_sat(pa, pb, nullptr, 0, kParallelSine);
-  Real scale = max_abs_component(b.half_extents());
-  for (int i = 0; i < 8; ++i) scale = std::max(scale, max_abs_component(pb.vertices[i]));
-  for (int i = 0; i < 3; ++i) scale = std::max(scale, max_abs_component(pa.vertices[i]));
-  const Real tol = resolve_tolerance(request, scale);
-  const Mat3 m = pose_b.rotation_matrix();
-  return sat_distance_result(s, pose_a, tol, cache, [&](const Vec3* shift, Vec3& on_a, Vec3& on_b) {
-    if (shift == nullptr) {
-      return closest_triangle_box(pb.vertices, pa.vertices.data(), pose_b.position, m, b.half_extents(), on_a, on_b);
-    }
-    std::array<Vec3, 8> moved;
-    for (std::size_t k = 0; k < 8; ++k) moved[k] = pb.vertices[k] + *shift;
-    return closest_triangle_box(moved, pa.vertices.data(), pose_b.position + *shift, m, b.half_extents(), on_a, on_b);
-  });
+  const TriangleBoxSat sat(a, pose_a, b, pose_b, request);
+  return sat_distance_result(sat.s, pose_a, sat.tol, cache, sat.closest(b, pose_b));
 }
 
 bool triangle_box_separated_beyond(const Triangle& a, const Transform& pose_a, const Box& b, const Transform& pose_b,
@@ -101,6 +119,17 @@ bool triangle_box_separated_beyond(const Triangle& a, const Transform& pose_a, c
   triangle_polytope(a, pose_a, pa);
   box_polytope(b, pose_b, pb);
   return small_polytope_sat(pa, pb, nullptr, 0, kParallelSine).separation > beyond;
+}
+
+Real triangle_box_directional_signed_distance(const Triangle& a, const Transform& pose_a, const Box& b,
+                                              const Transform& pose_b, const Vec3& n) {
+  SmallPolytope pa;
+  SmallPolytope pb;
+  triangle_polytope(a, pose_a, pa);
+  box_polytope(b, pose_b, pb);
+  const TranslationInterval t = small_polytope_translation_interval(pa, pb, n, kParallelSine);
+  if (t.lo > t.hi || t.lo > Real(0)) return std::numeric_limits<Real>::infinity();
+  return -t.hi;
 }
 
 bool pair_intersect(const Triangle& a, const Transform& pose_a, const Box& b, const Transform& pose_b,
@@ -126,7 +155,9 @@ bool pair_intersect(const Triangle& a, const Transform& pose_a, const Box& b, co
 
 ContactManifold pair_collide(const Triangle& a, const Transform& pose_a, const Box& b, const Transform& pose_b,
                              const PairRequest& request, PairCache* cache) {
-  return sat_pair_collide(a, pose_a, b, pose_b, request, cache);
+  if (!finite_poses(pose_a, pose_b)) return invalid_manifold();
+  const TriangleBoxSat sat(a, pose_a, b, pose_b, request);
+  return sat_collide_result(a, pose_a, b, pose_b, sat.s, sat.tol, request, cache, sat.closest(b, pose_b));
 }
 
 }  // namespace proxima::narrow

@@ -352,9 +352,11 @@ std::optional<Error> CollisionWorld::move(std::span<const ObjectMove> moves) {
   Impl& w = *impl_;
   if (auto e = check_not_in_pre_contact(w)) return e;
   for (std::size_t k = 0; k < moves.size(); ++k) {
-    const std::string field = "moves[" + std::to_string(k) + "]";
-    if (w.find(moves[k].object) == nullptr) return stale(field + ".object");
-    if (auto e = check_pose(moves[k].pose, field + ".pose")) return e;
+    const bool live = w.find(moves[k].object) != nullptr;
+    if (live && is_acceptable(moves[k].pose.position) && is_unit(moves[k].pose.rotation)) continue;
+    const std::string field = "moves[" + std::to_string(k) + "]";  // built only for the error
+    if (!live) return stale(field + ".object");
+    return check_pose(moves[k].pose, field + ".pose");
   }
   std::vector<std::uint32_t> roots;
   roots.reserve(moves.size());

@@ -176,6 +176,44 @@ TEST(TrianglePairs, TriangleBoxSweep) {
   EXPECT_GT(dense_checked, 50);
 }
 
+// The exact directional signed distance of a box from a triangle (the ghost-contact
+// correction of a mesh against a box) against the pair's exact distance: at the answer's
+// translation the two touch; a little farther along they are apart (and, for a separated
+// pair, halfway there too); with no answer, every sampled translation leaves them apart.
+TEST(TrianglePairs, TriangleBoxDirectionalSignedDistance) {
+  Random rng(406);
+  const Real tol = kFloat ? Real(2e-4) : Real(1e-9);
+  int overlapping = 0, separated = 0, never = 0;
+  for (int k = 0; k < 2000; ++k) {
+    const Triangle a = random_triangle(rng, Real(1.5));
+    const Box b = Box::create(rng.vec3(Real(0.1), Real(1.2))).value();
+    const Transform pa = rng.pose(Real(1));
+    const Transform pb = rng.pose(Real(1));
+    const Vec3 n = glm::normalize(rng.vec3(Real(-1), Real(1)));
+    SCOPED_TRACE(k);
+    const auto moved = [&](Real t) { return Transform{pb.position + t * n, pb.rotation}; };
+    const auto sd_at = [&](Real t) { return narrow::pair_distance(a, pa, b, moved(t), {}, nullptr).signed_distance; };
+    const Real r = narrow::triangle_box_directional_signed_distance(a, pa, b, pb, n);
+    if (!std::isfinite(r)) {
+      ++never;
+      for (int i = 0; i <= 40; ++i) EXPECT_GT(sd_at(-Real(i) * Real(0.25)), Real(0)) << "t = " << -i * 0.25;
+      continue;
+    }
+    (r <= Real(0) ? overlapping : separated)++;
+    EXPECT_NEAR(sd_at(-r), Real(0), tol) << "touching at the answer";
+    EXPECT_GT(sd_at(-r + Real(0.01)), Real(0)) << "apart beyond it";
+    if (r > Real(0)) {
+      EXPECT_GT(sd_at(Real(-0.5) * r), Real(0)) << "apart on the way";
+    }
+    if (r < Real(-0.02)) {
+      EXPECT_LT(sd_at(-r - Real(0.01)), Real(0)) << "overlapping before it";
+    }
+  }
+  EXPECT_GT(overlapping, 100);
+  EXPECT_GT(separated, 100);
+  EXPECT_GT(never, 100);
+}
+
 TEST(TrianglePairs, TriangleTriangleSweep) {
   Random rng(405);
   const Real tol = kFloat ? Real(5e-4) : Real(1e-9);
