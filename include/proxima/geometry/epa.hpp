@@ -357,8 +357,12 @@ inline Vec3 barycentric(const Polytope& p, const Face& f) {
 /// The Minkowski difference of polytopes has flat faces that the polytope splits into
 /// coplanar triangles: when the origin's projection falls outside `nearest`, the live face
 /// within `slack` of it whose coordinates are least negative. Writes that face and its
-/// coordinates.
-inline void face_holding_projection(const Polytope& p, const Face& nearest, Real slack, Face& f, Vec3& lam) {
+/// coordinates. The other face must also be turned from `nearest` by no more than the
+/// larger of `slack` and sqrt(eps) times D's radius (about `extent`) moves a plane across
+/// D: a face merely close to the origin but turned away (a curved pair far from the world
+/// origin, whose slack is loose) would answer with a normal that nothing certified.
+inline void face_holding_projection(const Polytope& p, const Face& nearest, Real slack, Real extent, Face& f,
+                                    Vec3& lam) {
   f = nearest;
   lam = barycentric(p, f);
   const Real inside = -Real(64) * kEpsilon;
@@ -366,6 +370,7 @@ inline void face_holding_projection(const Polytope& p, const Face& nearest, Real
   for (int g = 0; g < p.nf; ++g) {
     const Face& other = p.faces[static_cast<std::size_t>(g)];
     if (!other.alive || other.d > nearest.d + slack) continue;
+    if (Real(2) * extent * glm::length(other.n - nearest.n) > std::max(slack, kSqrtEpsilon * extent)) continue;
     const Vec3 l = barycentric(p, other);
     if (std::min({l.x, l.y, l.z}) > std::min({lam.x, lam.y, lam.z})) {
       lam = l;
@@ -381,7 +386,8 @@ inline Outcome extract_answer(const Polytope& p, const Face& nearest, Status sta
                               const UpperBound& upper, const Thresholds& th, const Settings& settings) {
   Face f;
   Vec3 lam;
-  face_holding_projection(p, nearest, std::max(Real(64) * kEpsilon * th.scale, settings.abs_tolerance), f, lam);
+  face_holding_projection(p, nearest, std::max(Real(64) * kEpsilon * th.scale, settings.abs_tolerance), th.scale, f,
+                          lam);
   Real la = std::clamp(lam.x, Real(0), Real(1));
   Real lb = std::clamp(lam.y, Real(0), Real(1));
   Real lc = std::clamp(lam.z, Real(0), Real(1));
