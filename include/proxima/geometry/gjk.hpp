@@ -26,14 +26,19 @@
 /// of A and of B that made each vertex. Everything is header-only and templated on the two
 /// support functors: no virtual call, no allocation, no exception, never NaN.
 ///
-/// Precision: the support points are Real, but the simplex arithmetic (the vertices w = a - b,
-/// v, the sub-simplex solves, the duality gap) runs in `Wide` = double in both builds. v is a
-/// combination of vertices as far from the origin as the sets are large, so in float its
-/// direction carries an error of about eps |w| / |v|: near contact (|v| under a thousandth
-/// of the size) the support along -v then jumps between the ends of a ruled side (a
-/// cylinder's or cone's generator), the simplex turns into a sliver and the iteration stalls
-/// up to 1e-4 of the size above the distance. In double the direction follows the exact
-/// points and GJK converges to the rounding of the supports, as the double build does.
+/// Precision: the support points are Real, but in distance mode the simplex arithmetic (the
+/// vertices w = a - b, v, the sub-simplex solves, the duality gap) runs in `Wide` = double.
+/// v is a combination of vertices as far from the origin as the sets are large, so in float
+/// its direction carries an error of about eps |w| / |v|: near contact (|v| under a
+/// thousandth of the size) the support along -v then jumps between the ends of a ruled side
+/// (a cylinder's or cone's generator), the simplex turns into a sliver and the iteration
+/// stalls up to 1e-4 of the size above the distance. In Wide the direction follows the exact
+/// points and GJK converges to the rounding of the supports, as the double build does (where
+/// Real is Wide and nothing changes). Boolean mode (margin >= 0) stays in Real: its answer
+/// is a comparison with the margin, and it is the broad phase's hot path (in Wide it cost 8 %
+/// more instructions on the W2 hulls). Running distance mode in Real while |v| > |w| / 64
+/// and in Wide below was tried: the float phase still stalled (errors to 5e-5) and built
+/// other start simplices for EPA, where the curved-shape witness cases failed again.
 
 #include <proxima/core/math.hpp>
 #include <proxima/core/tolerance.hpp>
@@ -307,7 +312,8 @@ glm::vec<3, T, glm::defaultp> combine(const BasicSimplex<T>& s, int which) {
 }
 
 /// The simplex in Real (w rounded: a - b as Real arithmetic gives it).
-inline Simplex narrowed(const WideSimplex& s) {
+template <class T>
+Simplex narrowed(const BasicSimplex<T>& s) {
   Simplex r;
   r.size = s.size;
   for (std::size_t i = 0; i < 4; ++i) {
@@ -319,147 +325,161 @@ inline Simplex narrowed(const WideSimplex& s) {
   return r;
 }
 
-/// The simplex in Wide (w recomputed exactly from the support points).
-inline WideSimplex widened(const Simplex& s) {
-  WideSimplex r;
-  r.size = s.size;
-  for (std::size_t i = 0; i < 4; ++i) {
-    r.v[i].w = WideVec3(s.v[i].a) - WideVec3(s.v[i].b);
-    r.v[i].a = s.v[i].a;
-    r.v[i].b = s.v[i].b;
-    r.lambda[i] = Wide(s.lambda[i]);
-  }
-  return r;
-}
+namespace detail {
 
-/// Distance between convex sets A and B given their support functors in a common frame:
-/// `support_a(d)` and `support_b(d)` return a farthest point in direction d (any non-zero
-/// vector, not necessarily unit). `initial_direction` is a guess of the direction from A to
-/// B (any non-zero vector; the warm-start axis). O(iterations x support cost).
-template <class SupportA, class SupportB>
-Outcome distance(SupportA& support_a, SupportB& support_b, const Vec3& initial_direction, const Settings& settings) {
-  Outcome r;
-  using W = Wide;
-  using WVec3 = WideVec3;
-  const auto make_vertex = [&](const WVec3& d) {  // support of D = A - B in direction d
-    BasicVertex<W> x;
+/// The state of GJK's main loop in scalar T (the simplex, v, the bounds).
+template <class T>
+struct Loop {
+  BasicSimplex<T> s;                               ///< the simplex, newest vertex first
+  glm::vec<3, T, glm::defaultp> v{T(0)};           ///< its point nearest the origin
+  T vv = T(0);                                     ///< |v|^2
+  T scale2 = T(0);                                 ///< largest |w|^2 seen: the noise level of the dot products
+  T lower = T(0);                                  ///< proven lower bound of the distance
+  BasicVertex<T> last;                             ///< the last vertex added (Nesterov's momentum)
+  glm::vec<3, T, glm::defaultp> separating{T(0)};  ///< EarlyExit: the separating direction
+  bool momentum = false;                           ///< Nesterov steps still on
+  int k = 0;                                       ///< iterations done
+  Status status = Status::MaxIterations;           ///< how it stopped
+};
+
+/// Steps 2-4 in scalar T from the state `l` until it stops.
+template <class T, class SupportA, class SupportB>
+void iterate(Loop<T>& l, SupportA& support_a, SupportB& support_b, const Settings& settings) {
+  using V3 = glm::vec<3, T, glm::defaultp>;
+  const auto make_vertex = [&](const V3& d) {  // support of D = A - B in direction d
+    BasicVertex<T> x;
     const Vec3 dr(d);
     x.a = support_a(dr);
     x.b = support_b(-dr);
-    x.w = WVec3(x.a) - WVec3(x.b);  // exact: the difference of two Reals fits in a Wide
+    x.w = V3(x.a) - V3(x.b);  // in Wide: exact, the difference of two Reals
     return x;
   };
-  // The supports' own rounding (Real) sets the noise level; the simplex's arithmetic is Wide.
-  const W eps = W(kEpsilon);
-  const W margin = W(settings.margin);
-  WVec3 d0(initial_direction);
-  if (!(glm::dot(d0, d0) > W(0))) d0 = WVec3(W(1), W(0), W(0));
-  WideSimplex s;
-  s.v[0] = make_vertex(d0);
-  s.lambda[0] = W(1);
-  s.size = 1;
-  WVec3 v = s.v[0].w;
-  W vv = glm::dot(v, v);
-  W scale2 = vv;  // largest |w|^2 seen: the noise level of the dot products
-  // The first vertex is the support of D along d0: its plane bounds the distance below
-  // already, so a good axis (the cached separating axis of a coherent pair, or the line
-  // between the centres) ends a boolean query after one pair of support calls.
-  W lower = std::max(-glm::dot(d0, s.v[0].w) / std::sqrt(glm::dot(d0, d0)), W(0));
-  if (margin >= W(0) && lower > margin) {
-    r.status = Status::EarlyExit;
-    r.simplex = narrowed(s);
-    r.v = Vec3(v);
-    r.distance = Real(std::sqrt(vv));
-    r.point_a = s.v[0].a;
-    r.point_b = s.v[0].b;
-    r.lower_bound = std::min(Real(lower), r.distance);
-    r.separating_axis = Vec3(d0);
-    return r;
-  }
-  Status status = Status::MaxIterations;
-  BasicVertex<W> last = s.v[0];
-  bool momentum = settings.variant == Variant::Nesterov;
-  int k = 0;
-  for (; k < settings.max_iterations; ++k) {
+  // The supports' own rounding (Real) sets the noise level.
+  const T eps = T(kEpsilon);
+  const T margin = T(settings.margin);
+  BasicSimplex<T>& s = l.s;
+  for (; l.k < settings.max_iterations; ++l.k) {
+    const int k = l.k;
     // Overlap: v is at the origin within the rounding of the vertices.
-    if (vv <= W(64) * eps * eps * scale2 || !(vv > W(0))) {
-      status = Status::Overlapping;
-      break;
+    if (l.vv <= T(64) * eps * eps * l.scale2 || !(l.vv > T(0))) {
+      l.status = Status::Overlapping;
+      return;
     }
-    if (margin >= W(0) && vv <= margin * margin) {
-      status = Status::Separated;  // distance <= margin proven by the upper bound |v|
-      break;
+    if (margin >= T(0) && l.vv <= margin * margin) {
+      l.status = Status::Separated;  // distance <= margin proven by the upper bound |v|
+      return;
     }
-    WVec3 dir = v;
-    if (momentum) {
-      const W delta = W(k + 1) / W(k + 3);
-      const WVec3 y = delta * v + (W(1) - delta) * last.w;
+    V3 dir = l.v;
+    if (l.momentum) {
+      const T delta = T(k + 1) / T(k + 3);
+      const V3 y = delta * l.v + (T(1) - delta) * l.last.w;
       dir = y;
     }
-    if (!(glm::dot(dir, dir) > W(0))) dir = v;
-    const BasicVertex<W> w = make_vertex(-dir);
-    const W vw = glm::dot(v, w.w);
-    scale2 = std::max(scale2, glm::dot(w.w, w.w));
-    const W vn = std::sqrt(vv);
+    if (!(glm::dot(dir, dir) > T(0))) dir = l.v;
+    const BasicVertex<T> w = make_vertex(-dir);
+    const T vw = glm::dot(l.v, w.w);
+    l.scale2 = std::max(l.scale2, glm::dot(w.w, w.w));
+    const T vn = std::sqrt(l.vv);
     // Lower bound from the supporting plane of D along v (valid only for dir = v; with
     // momentum, any direction gives a valid bound dir.w/|dir|).
-    const W dn = std::sqrt(glm::dot(dir, dir));
-    const W lb = glm::dot(dir, w.w) / dn;
-    if (lb > lower) lower = lb;
-    if (margin >= W(0) && lower > margin) {
-      status = Status::EarlyExit;
-      r.separating_axis = Vec3(-dir);
-      break;
+    const T dn = std::sqrt(glm::dot(dir, dir));
+    const T lb = glm::dot(dir, w.w) / dn;
+    if (lb > l.lower) l.lower = lb;
+    if (margin >= T(0) && l.lower > margin) {
+      l.status = Status::EarlyExit;
+      l.separating = -dir;
+      return;
     }
     // Duality gap of v: |v| - v.w/|v| (only meaningful with the support at -v).
-    const W gap_tol = std::max(W(settings.abs_tolerance), W(settings.rel_tolerance) * vn);
-    const W noise = W(8) * eps * std::sqrt(scale2);
+    const T gap_tol = std::max(T(settings.abs_tolerance), T(settings.rel_tolerance) * vn);
+    const T noise = T(8) * eps * std::sqrt(l.scale2);
     bool repeated = false;
     for (int i = 0; i < s.size; ++i)
       if (s.v[i].w == w.w) repeated = true;
-    if (momentum) {
-      const W gap_m = vn - lower;
+    if (l.momentum) {
+      const T gap_m = vn - l.lower;
       if (repeated || gap_m <= std::max(gap_tol, noise)) {
-        momentum = false;  // restart: finish with plain steps and the true duality gap
+        l.momentum = false;  // restart: finish with plain steps and the true duality gap
         continue;
       }
     } else {
       if (vn - vw / vn <= std::max(gap_tol, noise) || repeated) {
-        status = Status::Separated;
-        break;
+        l.status = Status::Separated;
+        return;
       }
     }
-    last = w;
-    const WideSimplex previous = s;
+    l.last = w;
+    const BasicSimplex<T> previous = s;
     // Newest first.
     for (int i = s.size; i > 0; --i) s.v[i] = s.v[i - 1];
     s.v[0] = w;
     ++s.size;
-    const W nvv = detail::reduce(s);
+    const T nvv = reduce(s);
     if (s.size == 4) {
-      vv = W(0);
-      v = WVec3(W(0));
-      status = Status::Overlapping;
-      ++k;
-      break;
+      l.vv = T(0);
+      l.v = V3(T(0));
+      l.status = Status::Overlapping;
+      ++l.k;
+      return;
     }
-    if (!(nvv < vv)) {
+    if (!(nvv < l.vv)) {
       // No progress (rounding): keep the previous simplex, whose v is as good.
-      if (!momentum) {
+      if (!l.momentum) {
         s = previous;
-        status = Status::Separated;
-        ++k;
-        break;
+        l.status = Status::Separated;
+        ++l.k;
+        return;
       }
-      momentum = false;
+      l.momentum = false;
     }
-    vv = nvv;
-    v = combine(s, 0);
+    l.vv = nvv;
+    l.v = combine(s, 0);
   }
-  r.iterations = k;
-  r.status = status;
+  l.status = Status::MaxIterations;
+}
+
+/// Step 1, the loop in scalar T, and the answer in Real.
+template <class T, class SupportA, class SupportB>
+Outcome run(SupportA& support_a, SupportB& support_b, const Vec3& initial_direction, const Settings& settings) {
+  using V3 = glm::vec<3, T, glm::defaultp>;
+  Outcome r;
+  Loop<T> l;
+  V3 d0(initial_direction);
+  if (!(glm::dot(d0, d0) > T(0))) d0 = V3(T(1), T(0), T(0));
+  BasicVertex<T>& first = l.s.v[0];
+  first.a = support_a(Vec3(d0));
+  first.b = support_b(-Vec3(d0));
+  first.w = V3(first.a) - V3(first.b);
+  l.s.lambda[0] = T(1);
+  l.s.size = 1;
+  l.v = first.w;
+  l.vv = glm::dot(l.v, l.v);
+  l.scale2 = l.vv;
+  // The first vertex is the support of D along d0: its plane bounds the distance below
+  // already, so a good axis (the cached separating axis of a coherent pair, or the line
+  // between the centres) ends a boolean query after one pair of support calls.
+  l.lower = std::max(-glm::dot(d0, first.w) / std::sqrt(glm::dot(d0, d0)), T(0));
+  const T margin = T(settings.margin);
+  if (margin >= T(0) && l.lower > margin) {
+    r.status = Status::EarlyExit;
+    r.simplex = narrowed(l.s);
+    r.v = Vec3(l.v);
+    r.distance = Real(std::sqrt(l.vv));
+    r.point_a = first.a;
+    r.point_b = first.b;
+    r.lower_bound = std::min(Real(l.lower), r.distance);
+    r.separating_axis = Vec3(d0);
+    return r;
+  }
+  l.last = first;
+  l.momentum = settings.variant == Variant::Nesterov;
+  iterate(l, support_a, support_b, settings);
+  const BasicSimplex<T>& s = l.s;
+  r.iterations = l.k;
+  r.status = l.status;
   r.simplex = narrowed(s);
-  if (status == Status::Overlapping) {
+  if (r.status == Status::EarlyExit) r.separating_axis = Vec3(l.separating);
+  if (r.status == Status::Overlapping) {
     r.distance = Real(0);
     r.v = Vec3(Real(0));
     r.point_a = Vec3(combine(s, 1));
@@ -467,13 +487,27 @@ Outcome distance(SupportA& support_a, SupportB& support_b, const Vec3& initial_d
     r.lower_bound = Real(0);
     return r;
   }
-  const WVec3 vf = combine(s, 0);
+  const V3 vf = combine(s, 0);
   r.v = Vec3(vf);
   r.distance = Real(std::sqrt(glm::dot(vf, vf)));
   r.point_a = Vec3(combine(s, 1));
   r.point_b = Vec3(combine(s, 2));
-  r.lower_bound = std::min(Real(std::max(lower, W(0))), r.distance);
+  r.lower_bound = std::min(Real(std::max(l.lower, T(0))), r.distance);
   return r;
+}
+
+}  // namespace detail
+
+/// Distance between convex sets A and B given their support functors in a common frame:
+/// `support_a(d)` and `support_b(d)` return a farthest point in direction d (any non-zero
+/// vector, not necessarily unit). `initial_direction` is a guess of the direction from A to
+/// B (any non-zero vector; the warm-start axis). O(iterations x support cost).
+template <class SupportA, class SupportB>
+Outcome distance(SupportA& support_a, SupportB& support_b, const Vec3& initial_direction, const Settings& settings) {
+  // Boolean mode decides distance <= margin within the tolerance: Real suffices, and it is
+  // the hot path of the broad phase's pairs. Distances run in Wide (see the file comment).
+  if (settings.margin >= Real(0)) return detail::run<Real>(support_a, support_b, initial_direction, settings);
+  return detail::run<Wide>(support_a, support_b, initial_direction, settings);
 }
 
 }  // namespace proxima::gjk
