@@ -36,9 +36,11 @@
 /// points and GJK converges to the rounding of the supports, as the double build does (where
 /// Real is Wide and nothing changes). Boolean mode (margin >= 0) stays in Real: its answer
 /// is a comparison with the margin, and it is the broad phase's hot path (in Wide it cost 8 %
-/// more instructions on the W2 hulls). Running distance mode in Real while |v| > |w| / 64
-/// and in Wide below was tried: the float phase still stalled (errors to 5e-5) and built
-/// other start simplices for EPA, where the curved-shape witness cases failed again.
+/// more instructions on the W2 hulls). So do polytope pairs when the caller says so
+/// (Settings::wide; 6 % on the W2 hull distances): a finite vertex set ends the iteration on
+/// a repeated vertex. Running distance mode in Real while |v| > |w| / 64 and in Wide below
+/// was tried: the float phase still stalled (errors to 5e-5) and built other start
+/// simplices for EPA, where the curved-shape witness cases failed again.
 
 #include <proxima/core/math.hpp>
 #include <proxima/core/tolerance.hpp>
@@ -99,6 +101,10 @@ struct Settings {
   /// distance <= margin is proven (Overlapping-or-Separated with distance <= margin).
   Real margin = Real(-1);
   Variant variant = Variant::Plain;  ///< plain or Nesterov-accelerated iteration (gjk_variant.hpp)
+  /// Distance mode: the simplex arithmetic in Wide (see the file comment). Off, it runs in
+  /// Real, which suffices for polytopes: their finite vertex sets end the iteration on a
+  /// repeated vertex, where a curved side offers a new point along every rounded direction.
+  bool wide = true;
 };
 
 /// What gjk::distance found: how it stopped, the distance, witnesses and final simplex.
@@ -505,8 +511,10 @@ Outcome run(SupportA& support_a, SupportB& support_b, const Vec3& initial_direct
 template <class SupportA, class SupportB>
 Outcome distance(SupportA& support_a, SupportB& support_b, const Vec3& initial_direction, const Settings& settings) {
   // Boolean mode decides distance <= margin within the tolerance: Real suffices, and it is
-  // the hot path of the broad phase's pairs. Distances run in Wide (see the file comment).
-  if (settings.margin >= Real(0)) return detail::run<Real>(support_a, support_b, initial_direction, settings);
+  // the hot path of the broad phase's pairs. Distances run in Wide unless the caller knows
+  // both sets are polytopes (see the file comment).
+  if (settings.margin >= Real(0) || !settings.wide)
+    return detail::run<Real>(support_a, support_b, initial_direction, settings);
   return detail::run<Wide>(support_a, support_b, initial_direction, settings);
 }
 
