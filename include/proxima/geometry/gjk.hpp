@@ -52,6 +52,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <type_traits>
 
 namespace proxima::gjk {
 
@@ -333,24 +334,11 @@ Simplex narrowed(const BasicSimplex<T>& s) {
 
 namespace detail {
 
-/// The state of GJK's main loop in scalar T (the simplex, v, the bounds).
-template <class T>
-struct Loop {
-  BasicSimplex<T> s;                               ///< the simplex, newest vertex first
-  glm::vec<3, T, glm::defaultp> v{T(0)};           ///< its point nearest the origin
-  T vv = T(0);                                     ///< |v|^2
-  T scale2 = T(0);                                 ///< largest |w|^2 seen: the noise level of the dot products
-  T lower = T(0);                                  ///< proven lower bound of the distance
-  BasicVertex<T> last;                             ///< the last vertex added (Nesterov's momentum)
-  glm::vec<3, T, glm::defaultp> separating{T(0)};  ///< EarlyExit: the separating direction
-  bool momentum = false;                           ///< Nesterov steps still on
-  int k = 0;                                       ///< iterations done
-  Status status = Status::MaxIterations;           ///< how it stopped
-};
-
-/// Steps 2-4 in scalar T from the state `l` until it stops.
+/// Steps 1-4 in scalar T, and the answer in Real. One function with the state in locals,
+/// as GCC keeps it in registers (split over a state struct, the boolean queries cost 5 %
+/// more instructions).
 template <class T, class SupportA, class SupportB>
-void iterate(Loop<T>& l, SupportA& support_a, SupportB& support_b, const Settings& settings) {
+Outcome run(SupportA& support_a, SupportB& support_b, const Vec3& initial_direction, const Settings& settings) {
   using V3 = glm::vec<3, T, glm::defaultp>;
   const auto make_vertex = [&](const V3& d) {  // support of D = A - B in direction d
     BasicVertex<T> x;
@@ -363,58 +351,93 @@ void iterate(Loop<T>& l, SupportA& support_a, SupportB& support_b, const Setting
   // The supports' own rounding (Real) sets the noise level.
   const T eps = T(kEpsilon);
   const T margin = T(settings.margin);
-  BasicSimplex<T>& s = l.s;
-  for (; l.k < settings.max_iterations; ++l.k) {
-    const int k = l.k;
+  Outcome r;
+  V3 d0(initial_direction);
+  if (!(glm::dot(d0, d0) > T(0))) d0 = V3(T(1), T(0), T(0));
+  // In Real the simplex is built in place in the answer, as before; in Wide, beside it.
+  BasicSimplex<T> wide_simplex;
+  BasicSimplex<T>& s = [&]() -> BasicSimplex<T>& {
+    if constexpr (std::is_same_v<T, Real>)
+      return r.simplex;
+    else
+      return wide_simplex;
+  }();
+  s.v[0] = make_vertex(d0);
+  s.lambda[0] = T(1);
+  s.size = 1;
+  V3 v = s.v[0].w;
+  T vv = glm::dot(v, v);
+  T scale2 = vv;  // largest |w|^2 seen: the noise level of the dot products
+  // The first vertex is the support of D along d0: its plane bounds the distance below
+  // already, so a good axis (the cached separating axis of a coherent pair, or the line
+  // between the centres) ends a boolean query after one pair of support calls.
+  T lower = std::max(-glm::dot(d0, s.v[0].w) / std::sqrt(glm::dot(d0, d0)), T(0));
+  if (margin >= T(0) && lower > margin) {
+    r.status = Status::EarlyExit;
+    if constexpr (!std::is_same_v<T, Real>) r.simplex = narrowed(s);
+    r.v = Vec3(v);
+    r.distance = Real(std::sqrt(vv));
+    r.point_a = s.v[0].a;
+    r.point_b = s.v[0].b;
+    r.lower_bound = std::min(Real(lower), r.distance);
+    r.separating_axis = Vec3(d0);
+    return r;
+  }
+  Status status = Status::MaxIterations;
+  BasicVertex<T> last = s.v[0];
+  bool momentum = settings.variant == Variant::Nesterov;
+  V3 separating(T(0));
+  int k = 0;
+  for (; k < settings.max_iterations; ++k) {
     // Overlap: v is at the origin within the rounding of the vertices.
-    if (l.vv <= T(64) * eps * eps * l.scale2 || !(l.vv > T(0))) {
-      l.status = Status::Overlapping;
-      return;
+    if (vv <= T(64) * eps * eps * scale2 || !(vv > T(0))) {
+      status = Status::Overlapping;
+      break;
     }
-    if (margin >= T(0) && l.vv <= margin * margin) {
-      l.status = Status::Separated;  // distance <= margin proven by the upper bound |v|
-      return;
+    if (margin >= T(0) && vv <= margin * margin) {
+      status = Status::Separated;  // distance <= margin proven by the upper bound |v|
+      break;
     }
-    V3 dir = l.v;
-    if (l.momentum) {
+    V3 dir = v;
+    if (momentum) {
       const T delta = T(k + 1) / T(k + 3);
-      const V3 y = delta * l.v + (T(1) - delta) * l.last.w;
+      const V3 y = delta * v + (T(1) - delta) * last.w;
       dir = y;
     }
-    if (!(glm::dot(dir, dir) > T(0))) dir = l.v;
+    if (!(glm::dot(dir, dir) > T(0))) dir = v;
     const BasicVertex<T> w = make_vertex(-dir);
-    const T vw = glm::dot(l.v, w.w);
-    l.scale2 = std::max(l.scale2, glm::dot(w.w, w.w));
-    const T vn = std::sqrt(l.vv);
+    const T vw = glm::dot(v, w.w);
+    scale2 = std::max(scale2, glm::dot(w.w, w.w));
+    const T vn = std::sqrt(vv);
     // Lower bound from the supporting plane of D along v (valid only for dir = v; with
     // momentum, any direction gives a valid bound dir.w/|dir|).
     const T dn = std::sqrt(glm::dot(dir, dir));
     const T lb = glm::dot(dir, w.w) / dn;
-    if (lb > l.lower) l.lower = lb;
-    if (margin >= T(0) && l.lower > margin) {
-      l.status = Status::EarlyExit;
-      l.separating = -dir;
-      return;
+    if (lb > lower) lower = lb;
+    if (margin >= T(0) && lower > margin) {
+      status = Status::EarlyExit;
+      separating = -dir;
+      break;
     }
     // Duality gap of v: |v| - v.w/|v| (only meaningful with the support at -v).
     const T gap_tol = std::max(T(settings.abs_tolerance), T(settings.rel_tolerance) * vn);
-    const T noise = T(8) * eps * std::sqrt(l.scale2);
+    const T noise = T(8) * eps * std::sqrt(scale2);
     bool repeated = false;
     for (int i = 0; i < s.size; ++i)
       if (s.v[i].w == w.w) repeated = true;
-    if (l.momentum) {
-      const T gap_m = vn - l.lower;
+    if (momentum) {
+      const T gap_m = vn - lower;
       if (repeated || gap_m <= std::max(gap_tol, noise)) {
-        l.momentum = false;  // restart: finish with plain steps and the true duality gap
+        momentum = false;  // restart: finish with plain steps and the true duality gap
         continue;
       }
     } else {
       if (vn - vw / vn <= std::max(gap_tol, noise) || repeated) {
-        l.status = Status::Separated;
-        return;
+        status = Status::Separated;
+        break;
       }
     }
-    l.last = w;
+    last = w;
     const BasicSimplex<T> previous = s;
     // Newest first.
     for (int i = s.size; i > 0; --i) s.v[i] = s.v[i - 1];
@@ -422,70 +445,30 @@ void iterate(Loop<T>& l, SupportA& support_a, SupportB& support_b, const Setting
     ++s.size;
     const T nvv = reduce(s);
     if (s.size == 4) {
-      l.vv = T(0);
-      l.v = V3(T(0));
-      l.status = Status::Overlapping;
-      ++l.k;
-      return;
+      vv = T(0);
+      v = V3(T(0));
+      status = Status::Overlapping;
+      ++k;
+      break;
     }
-    if (!(nvv < l.vv)) {
+    if (!(nvv < vv)) {
       // No progress (rounding): keep the previous simplex, whose v is as good.
-      if (!l.momentum) {
+      if (!momentum) {
         s = previous;
-        l.status = Status::Separated;
-        ++l.k;
-        return;
+        status = Status::Separated;
+        ++k;
+        break;
       }
-      l.momentum = false;
+      momentum = false;
     }
-    l.vv = nvv;
-    l.v = combine(s, 0);
+    vv = nvv;
+    v = combine(s, 0);
   }
-  l.status = Status::MaxIterations;
-}
-
-/// Step 1, the loop in scalar T, and the answer in Real.
-template <class T, class SupportA, class SupportB>
-Outcome run(SupportA& support_a, SupportB& support_b, const Vec3& initial_direction, const Settings& settings) {
-  using V3 = glm::vec<3, T, glm::defaultp>;
-  Outcome r;
-  Loop<T> l;
-  V3 d0(initial_direction);
-  if (!(glm::dot(d0, d0) > T(0))) d0 = V3(T(1), T(0), T(0));
-  BasicVertex<T>& first = l.s.v[0];
-  first.a = support_a(Vec3(d0));
-  first.b = support_b(-Vec3(d0));
-  first.w = V3(first.a) - V3(first.b);
-  l.s.lambda[0] = T(1);
-  l.s.size = 1;
-  l.v = first.w;
-  l.vv = glm::dot(l.v, l.v);
-  l.scale2 = l.vv;
-  // The first vertex is the support of D along d0: its plane bounds the distance below
-  // already, so a good axis (the cached separating axis of a coherent pair, or the line
-  // between the centres) ends a boolean query after one pair of support calls.
-  l.lower = std::max(-glm::dot(d0, first.w) / std::sqrt(glm::dot(d0, d0)), T(0));
-  const T margin = T(settings.margin);
-  if (margin >= T(0) && l.lower > margin) {
-    r.status = Status::EarlyExit;
-    r.simplex = narrowed(l.s);
-    r.v = Vec3(l.v);
-    r.distance = Real(std::sqrt(l.vv));
-    r.point_a = first.a;
-    r.point_b = first.b;
-    r.lower_bound = std::min(Real(l.lower), r.distance);
-    r.separating_axis = Vec3(d0);
-    return r;
-  }
-  l.last = first;
-  l.momentum = settings.variant == Variant::Nesterov;
-  iterate(l, support_a, support_b, settings);
-  const BasicSimplex<T>& s = l.s;
-  r.iterations = l.k;
-  r.status = l.status;
-  r.simplex = narrowed(s);
-  if (r.status == Status::EarlyExit) r.separating_axis = Vec3(l.separating);
-  if (r.status == Status::Overlapping) {
+  r.iterations = k;
+  r.status = status;
+  if constexpr (!std::is_same_v<T, Real>) r.simplex = narrowed(s);
+  if (status == Status::EarlyExit) r.separating_axis = Vec3(separating);
+  if (status == Status::Overlapping) {
     r.distance = Real(0);
     r.v = Vec3(Real(0));
     r.point_a = Vec3(combine(s, 1));
@@ -498,7 +481,7 @@ Outcome run(SupportA& support_a, SupportB& support_b, const Vec3& initial_direct
   r.distance = Real(std::sqrt(glm::dot(vf, vf)));
   r.point_a = Vec3(combine(s, 1));
   r.point_b = Vec3(combine(s, 2));
-  r.lower_bound = std::min(Real(std::max(l.lower, T(0))), r.distance);
+  r.lower_bound = std::min(Real(std::max(lower, T(0))), r.distance);
   return r;
 }
 
