@@ -3,7 +3,8 @@
 /// The generic narrow phase for any pair of convex shapes without a closed-form routine:
 ///   1. B's pose relative to A; B's core support mapped into A's local frame once;
 ///   2. GJK (plain or Nesterov, PairRequest::gjk) between the cores, warm-started from the
-///      PairCache (axis in A's frame, hull support hints); the radii are added after:
+///      PairCache (axis in A's frame, hull support hints), its simplex arithmetic in double
+///      unless both shapes are polytopes (gjk::Settings::wide); the radii are added after:
 ///      distance = |v| - r_A - r_B, witnesses moved by the radii along the normal;
 ///   3. a ladder of stages, the first that answers wins (GenericStage names it):
 ///      a. SatAtGjkCap: polytopes whose GJK hit its cap: the SAT, when it proves an overlap;
@@ -117,6 +118,7 @@ struct PairSetup {
     s.max_iterations = std::max(request.max_iterations, 1);
     s.abs_tolerance = Real(0.01) * tolerance;
     s.variant = request.gjk;
+    s.wide = !(kIsPolytope<A> && kIsPolytope<B>);  // curved sides need GJK's simplex in double
     return s;
   }
 

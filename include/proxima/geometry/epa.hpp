@@ -20,7 +20,8 @@
 ///      within a loose tolerance (4096 eps x scale), else MaxIterations (its distance is a
 ///      lower bound of the depth, the support along its normal an upper bound);
 ///   4. extract the answer (extract_answer): barycentric coordinates of the origin's
-///      projection on the final face applied to the support points of A and B.
+///      projection on the final face applied to the support points of A and B (those of
+///      the face's point nearest the origin when rounding left the projection outside it).
 /// No allocation (fixed storage), never NaN. On curved supports EPA converges only linearly:
 /// epa::refine (epa_refine.hpp), a separate algorithm, polishes its normal.
 
@@ -357,8 +358,12 @@ inline Vec3 barycentric(const Polytope& p, const Face& f) {
 /// The Minkowski difference of polytopes has flat faces that the polytope splits into
 /// coplanar triangles: when the origin's projection falls outside `nearest`, the live face
 /// within `slack` of it whose coordinates are least negative. Writes that face and its
-/// coordinates.
-inline void face_holding_projection(const Polytope& p, const Face& nearest, Real slack, Face& f, Vec3& lam) {
+/// coordinates. The other face must also be turned from `nearest` by no more than the
+/// larger of `slack` and sqrt(eps) times D's radius (about `extent`) moves a plane across
+/// D: a face merely close to the origin but turned away (a curved pair far from the world
+/// origin, whose slack is loose) would answer with a normal that nothing certified.
+inline void face_holding_projection(const Polytope& p, const Face& nearest, Real slack, Real extent, Face& f,
+                                    Vec3& lam) {
   f = nearest;
   lam = barycentric(p, f);
   const Real inside = -Real(64) * kEpsilon;
@@ -366,6 +371,7 @@ inline void face_holding_projection(const Polytope& p, const Face& nearest, Real
   for (int g = 0; g < p.nf; ++g) {
     const Face& other = p.faces[static_cast<std::size_t>(g)];
     if (!other.alive || other.d > nearest.d + slack) continue;
+    if (Real(2) * extent * glm::length(other.n - nearest.n) > std::max(slack, kSqrtEpsilon * extent)) continue;
     const Vec3 l = barycentric(p, other);
     if (std::min({l.x, l.y, l.z}) > std::min({lam.x, lam.y, lam.z})) {
       lam = l;
@@ -374,14 +380,39 @@ inline void face_holding_projection(const Polytope& p, const Face& nearest, Real
   }
 }
 
+/// Coordinates of the point of face f nearest the origin (gjk's triangle solver in
+/// gjk::Wide on the exact vertices a - b): the witnesses of a face that does not hold the
+/// origin's projection. Clamping the projection's coordinates instead would slide the point
+/// along a sliver face (a cylinder's generator against a short chord) by up to the
+/// sliver's length, though the projection lies a rounding-sized step outside it.
+inline Vec3 nearest_point_coordinates(const Polytope& p, const Face& f) {
+  std::array<gjk::BasicVertex<gjk::Wide>, 3> v;
+  for (std::size_t i = 0; i < 3; ++i) {
+    const PolyVertex& x = p.verts[f.v[i]];
+    v[i].w = gjk::WideVec3(x.a) - gjk::WideVec3(x.b);
+    v[i].a = Vec3(Real(i));  // a tag: which face vertex the solver kept
+  }
+  gjk::WideSimplex s;
+  gjk::detail::solve_2d(v[0], v[1], v[2], s);
+  Vec3 lam(Real(0));
+  for (int k = 0; k < s.size; ++k) {
+    const auto i = static_cast<int>(s.v[static_cast<std::size_t>(k)].a.x);
+    lam[i] = Real(s.lambda[static_cast<std::size_t>(k)]);
+  }
+  return lam;
+}
+
 /// Step 3: the answer from the nearest face: depth and normal, and witnesses from the
-/// clamped, normalised coordinates of the origin's projection applied to A's and B's
-/// support points.
+/// coordinates of the origin's projection applied to A's and B's support points: clamped
+/// and normalised when the projection is inside the face within rounding, else those of
+/// the face's point nearest the origin.
 inline Outcome extract_answer(const Polytope& p, const Face& nearest, Status status, int iterations,
                               const UpperBound& upper, const Thresholds& th, const Settings& settings) {
   Face f;
   Vec3 lam;
-  face_holding_projection(p, nearest, std::max(Real(64) * kEpsilon * th.scale, settings.abs_tolerance), f, lam);
+  face_holding_projection(p, nearest, std::max(Real(64) * kEpsilon * th.scale, settings.abs_tolerance), th.scale, f,
+                          lam);
+  if (std::min({lam.x, lam.y, lam.z}) < -Real(64) * kEpsilon) lam = nearest_point_coordinates(p, f);
   Real la = std::clamp(lam.x, Real(0), Real(1));
   Real lb = std::clamp(lam.y, Real(0), Real(1));
   Real lc = std::clamp(lam.z, Real(0), Real(1));

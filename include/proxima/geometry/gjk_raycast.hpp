@@ -13,8 +13,14 @@
 ///   3. w = support of D(lambda) along -v. When v.w > margin |v|, the plane of normal v
 ///      keeps D at more than `margin` from the origin: advance lambda until it does not
 ///      (v.w(lambda') = margin |v|), or report a miss when s does not close that plane
-///      (v.s >= 0) or when lambda passes 1. The plane's normal is the hit normal.
+///      (v.s >= 0, and the plane clears the margin by more than the supports' rounding) or
+///      when lambda passes 1. The plane's normal is the hit normal.
 ///   4. Add w, reduce the simplex (gjk.hpp's signed-volume solver) and repeat.
+/// As in gjk.hpp, the simplex arithmetic (w, v, lambda, the plane tests) runs in gjk::Wide
+/// on the Real support points, so that near contact v follows the exact points rather than
+/// float's rounding of a combination of points as far apart as the pair is large. The
+/// rounding of the support points themselves remains: a plane within it of the origin
+/// proves nothing (a touching pair moving in was reported as a miss).
 /// Header-only, templated on the support functors: no allocation, no exception, never NaN.
 #include <proxima/core/math.hpp>
 #include <proxima/core/tolerance.hpp>
@@ -49,43 +55,55 @@ template <class SupportA, class SupportB>
 CastOutcome cast(SupportA& support_a, SupportB& support_b, const Vec3& s, Real margin, Real tolerance,
                  int max_iterations) {
   CastOutcome r;
-  Simplex simplex;
-  Real lambda = Real(0);
-  Vec3 normal(Real(0));
+  using W = Wide;
+  using WVec3 = WideVec3;
+  WideSimplex simplex;
+  const WVec3 sw(s);
+  W lambda = W(0);
+  WVec3 normal(W(0));
   // A first vertex along the motion: the support pair most likely to face each other.
-  Vec3 dir = glm::dot(s, s) > Real(0) ? -s : Vec3(Real(1), Real(0), Real(0));
-  Vec3 v = support_a(-dir) - support_b(dir);
-  Real scale2 = glm::dot(v, v);
+  const Vec3 dir = glm::dot(s, s) > Real(0) ? -s : Vec3(Real(1), Real(0), Real(0));
+  WVec3 v = WVec3(support_a(-dir)) - WVec3(support_b(dir));
+  W scale2 = glm::dot(v, v);
+  const W wmargin = W(margin);
+  const W wtolerance = W(tolerance);
   for (int k = 0; k < max_iterations; ++k) {
     r.iterations = k + 1;
-    const Real vv = glm::dot(v, v);
-    const Real vn = std::sqrt(vv);
-    if (vn <= margin + tolerance) {
+    const W vv = glm::dot(v, v);
+    const W vn = std::sqrt(vv);
+    if (vn <= wmargin + wtolerance) {
       r.hit = true;
       break;
     }
-    Vertex w;
-    w.a = support_a(-v);
-    w.b = support_b(v);
-    w.w = w.a + lambda * s - w.b;
+    BasicVertex<W> w;
+    const Vec3 vr(v);
+    w.a = support_a(-vr);
+    w.b = support_b(vr);
+    w.w = WVec3(w.a) + lambda * sw - WVec3(w.b);
     scale2 = std::max(scale2, glm::dot(w.w, w.w));
-    const Real vw = glm::dot(v, w.w);
+    const W vw = glm::dot(v, w.w);
     bool moved = false;
-    if (vw > margin * vn) {
-      const Real vs = glm::dot(v, s);
-      if (!(vs < Real(0))) return r;  // s does not close the separating plane: miss
-      lambda -= (vw - margin * vn) / vs;
-      if (!(lambda <= Real(1))) return r;
-      normal = (Vec3(Real(0)) - v) / vn;
+    const W vs = glm::dot(v, sw);
+    // A plane that s does not close proves a miss only when it clears the margin by more
+    // than the supports' rounding: touching sets have planes of nearly every direction
+    // within rounding of the origin, most of them opening along s. Below that, w joins the
+    // simplex without an advance.
+    const bool opening = !(vs < W(0));
+    if (vw > wmargin * vn && !(opening && vw - wmargin * vn <= W(8) * W(kEpsilon) * std::sqrt(scale2) * vn)) {
+      if (opening) return r;  // s does not close the separating plane: miss
+      lambda -= (vw - wmargin * vn) / vs;
+      if (!(lambda <= W(1))) return r;
+      normal = (WVec3(W(0)) - v) / vn;
       r.advanced = moved = true;
-      for (int i = 0; i < simplex.size; ++i) simplex.v[i].w = simplex.v[i].a + lambda * s - simplex.v[i].b;
-      w.w = w.a + lambda * s - w.b;
+      for (int i = 0; i < simplex.size; ++i)
+        simplex.v[i].w = WVec3(simplex.v[i].a) + lambda * sw - WVec3(simplex.v[i].b);
+      w.w = WVec3(w.a) + lambda * sw - WVec3(w.b);
     }
     bool repeated = false;
     for (int i = 0; i < simplex.size; ++i) repeated = repeated || (simplex.v[i].a == w.a && simplex.v[i].b == w.b);
     if (repeated && !moved) {
       // No new support point and no advance: the distance is |v| within rounding.
-      r.hit = vn <= margin + tolerance + Real(8) * kEpsilon * std::sqrt(scale2);
+      r.hit = vn <= wmargin + wtolerance + W(8) * W(kEpsilon) * std::sqrt(scale2);
       if (!r.hit) {
         r.stalled = true;
         return r;
@@ -99,7 +117,7 @@ CastOutcome cast(SupportA& support_a, SupportB& support_b, const Vec3& s, Real m
     }
     detail::reduce(simplex);
     if (simplex.size == 4) {
-      v = Vec3(Real(0));  // the origin is inside: the sets overlap at lambda
+      v = WVec3(W(0));  // the origin is inside: the sets overlap at lambda
       r.hit = true;
       break;
     }
@@ -109,15 +127,16 @@ CastOutcome cast(SupportA& support_a, SupportB& support_b, const Vec3& s, Real m
     r.capped = true;
     return r;
   }
-  r.lambda = lambda;
-  r.distance = simplex.size == 4 ? Real(0) : glm::length(v);
-  r.point_a = simplex.size > 0 ? combine(simplex, 1) + lambda * s : support_a(-dir) + lambda * s;
-  r.point_b = simplex.size > 0 ? combine(simplex, 2) : support_b(dir);
+  r.lambda = Real(lambda);
+  r.distance = simplex.size == 4 ? Real(0) : Real(glm::length(v));
+  r.point_a = simplex.size > 0 ? Vec3(combine(simplex, 1) + lambda * sw) : Vec3(WVec3(support_a(-dir)) + lambda * sw);
+  r.point_b = simplex.size > 0 ? Vec3(combine(simplex, 2)) : support_b(dir);
   // The normal: along -v (the simplex's nearest point, better than a difference of
   // witnesses) when the sets are clearly apart, else the last separating plane's.
-  if (r.distance > tolerance || (!r.advanced && r.distance > Real(0))) normal = Vec3(Real(0)) - v;  // no negative zeros
-  const Real length = glm::length(normal);
-  r.normal = length > Real(0) ? normal / length : normal;
+  const W distance = simplex.size == 4 ? W(0) : glm::length(v);
+  if (distance > wtolerance || (!r.advanced && distance > W(0))) normal = WVec3(W(0)) - v;  // no negative zeros
+  const W length = glm::length(normal);
+  r.normal = length > W(0) ? Vec3(normal / length) : Vec3(normal);
   return r;
 }
 
