@@ -33,6 +33,8 @@
 #include <cmath>
 #include <limits>
 
+#include "shapes/convex_hull_data.hpp"
+
 #if defined(__SSE2__) && !PROXIMA_DOUBLE
 #include <emmintrin.h>
 #define PROXIMA_HULL_SCAN_SSE2 1
@@ -79,7 +81,7 @@ inline __m128 block_dots(const float* p, __m128 dx, __m128 dy, __m128 dz) {
   return _mm_add_ps(_mm_add_ps(_mm_mul_ps(x, dx), _mm_mul_ps(y, dy)), _mm_mul_ps(z, dz));
 }
 
-// The same answer from the blocks of four (ConvexHull::Data::scan_blocks): pass 1 keeps the
+// The same answer from the blocks of four (detail::HullData::scan_blocks): pass 1 keeps the
 // lane-wise maximum of the products (maxps drops NaN products), pass 2 recomputes them
 // block by block and returns the first vertex whose product equals the maximum. Padding
 // repeats vertex 0, so it can only tie behind it.
@@ -111,29 +113,29 @@ std::uint32_t scan_support_blocks(const float* blocks, std::uint32_t n, const Ve
 }  // namespace
 
 std::uint32_t ConvexHull::support_index(const Vec3& direction, std::uint32_t start_vertex) const {
-  if (data_->shifted_vertices.size() <= kLinearScanMaxVertices) return scan_support_index(direction);
+  if (data().shifted_vertices.size() <= kLinearScanMaxVertices) return scan_support_index(direction);
   return climb_support_index(direction, start_vertex);
 }
 
 std::uint32_t ConvexHull::scan_support_index(const Vec3& direction) const {
 #if PROXIMA_HULL_SCAN_SSE2
-  return scan_support_blocks(data_->scan_blocks.data(), static_cast<std::uint32_t>(data_->shifted_vertices.size()),
+  return scan_support_blocks(data().scan_blocks.data(), static_cast<std::uint32_t>(data().shifted_vertices.size()),
                              direction);
 #else
-  return scan_support(data_->shifted_vertices.data(), static_cast<std::uint32_t>(data_->shifted_vertices.size()),
+  return scan_support(data().shifted_vertices.data(), static_cast<std::uint32_t>(data().shifted_vertices.size()),
                       direction);
 #endif
 }
 
 std::uint32_t ConvexHull::scalar_support_index(const Vec3& direction) const {
-  return scan_support(data_->shifted_vertices.data(), static_cast<std::uint32_t>(data_->shifted_vertices.size()),
+  return scan_support(data().shifted_vertices.data(), static_cast<std::uint32_t>(data().shifted_vertices.size()),
                       direction);
 }
 
 std::uint32_t ConvexHull::climb_support_index(const Vec3& direction, std::uint32_t start_vertex) const {
   // Relative to the box centre: for a hull far from the origin the differences are exact
   // and the dot products keep the hull's own resolution.
-  const std::vector<Vec3>& v = data_->shifted_vertices;
+  const std::vector<Vec3>& v = data().shifted_vertices;
   const auto n = static_cast<std::uint32_t>(v.size());
   std::uint32_t current = start_vertex < n ? start_vertex : 0;
   Real current_dot = glm::dot(v[current], direction);
@@ -142,8 +144,8 @@ std::uint32_t ConvexHull::climb_support_index(const Vec3& direction, std::uint32
   for (;;) {
     std::uint32_t next = current;
     Real next_dot = current_dot;
-    const std::uint32_t* nb_begin = data_->climb_neighbors.data() + data_->climb_offsets[current];
-    const std::uint32_t* nb_end = data_->climb_neighbors.data() + data_->climb_offsets[current + 1];
+    const std::uint32_t* nb_begin = data().climb_neighbors.data() + data().climb_offsets[current];
+    const std::uint32_t* nb_end = data().climb_neighbors.data() + data().climb_offsets[current + 1];
     for (const std::uint32_t* it = nb_begin; it != nb_end; ++it) {
       const std::uint32_t nb = *it;
       const Real d = glm::dot(v[nb], direction);
@@ -160,7 +162,7 @@ std::uint32_t ConvexHull::climb_support_index(const Vec3& direction, std::uint32
 
 Aabb ConvexHull::world_aabb(const Transform& pose) const {
   const Mat3 r = pose.rotation_matrix();
-  const std::vector<Vec3>& v = data_->shifted_vertices;
+  const std::vector<Vec3>& v = data().shifted_vertices;
   Aabb box = Aabb::empty();
   // Measured (bench/RESULTS.md): the streaming scan costs about 2 ns per vertex, six
   // hill-climbs cost more than that up to about 500 vertices.
@@ -179,23 +181,23 @@ Aabb ConvexHull::world_aabb(const Transform& pose) const {
       box.min[i] = glm::dot(row, v[hint]);
     }
   }
-  const Vec3 c = pose.apply(data_->reference);
+  const Vec3 c = pose.apply(data().reference);
   box.min += c;
   box.max += c;
   return box;
 }
 
 // Signed distance of the shifted point q in front of face i's plane.
-static inline Real plane_distance(const ConvexHull::Data& d, std::size_t i, const Vec3& q) {
+static inline Real plane_distance(const detail::HullData& d, std::size_t i, const Vec3& q) {
   return glm::dot(d.faces[i].normal, q) - d.shifted_offsets[i];
 }
 
 bool ConvexHull::contains(const Vec3& point) const {
-  const Real tol = data_->tolerance;
-  const Vec3 q = point - data_->reference;
+  const Real tol = data().tolerance;
+  const Vec3 q = point - data().reference;
   Real worst = -kRealMax;
-  for (std::size_t i = 0; i < data_->faces.size(); ++i) {
-    const Real d = plane_distance(*data_, i, q);
+  for (std::size_t i = 0; i < data().faces.size(); ++i) {
+    const Real d = plane_distance(data(), i, q);
     if (d > tol) return false;
     worst = std::max(worst, d);
   }
@@ -207,16 +209,16 @@ bool ConvexHull::contains(const Vec3& point) const {
 
 std::optional<RayHit> ConvexHull::raycast(const Ray& ray, Real max_t) const {
   if (!(max_t >= Real(0))) return std::nullopt;
-  const Vec3 origin = ray.origin - data_->reference;
+  const Vec3 origin = ray.origin - data().reference;
   Real t_enter = Real(0);
   Real t_exit = max_t;
-  std::size_t enter_face = data_->faces.size();
-  const Real tol = data_->tolerance;
-  for (std::size_t i = 0; i < data_->faces.size(); ++i) {
+  std::size_t enter_face = data().faces.size();
+  const Real tol = data().tolerance;
+  for (std::size_t i = 0; i < data().faces.size(); ++i) {
     // Inside the face's half-space: t * denom <= dist.
-    const Vec3& n = data_->faces[i].normal;
+    const Vec3& n = data().faces[i].normal;
     const Real denom = glm::dot(n, ray.direction);
-    const Real dist = -plane_distance(*data_, i, origin);
+    const Real dist = -plane_distance(data(), i, origin);
     if (denom == Real(0)) {
       if (dist < -tol) return std::nullopt;  // parallel and outside
       continue;
@@ -233,7 +235,7 @@ std::optional<RayHit> ConvexHull::raycast(const Ray& ray, Real max_t) const {
     if (t_enter > t_exit) return std::nullopt;
   }
   RayHit hit;
-  if (enter_face == data_->faces.size()) {
+  if (enter_face == data().faces.size()) {
     // The origin is inside (or on) the hull.
     hit.t = Real(0);
     hit.point = ray.origin;
@@ -247,20 +249,20 @@ std::optional<RayHit> ConvexHull::raycast(const Ray& ray, Real max_t) const {
   }
   hit.t = t_enter;
   hit.point = ray.at(t_enter);
-  hit.normal = data_->faces[enter_face].normal;
+  hit.normal = data().faces[enter_face].normal;
   return hit;
 }
 
 SurfacePoint ConvexHull::closest_point(const Vec3& point) const {
-  const std::vector<HullFace>& faces = data_->faces;
-  const std::vector<Vec3>& v = data_->shifted_vertices;
-  const Vec3& ref = data_->reference;
+  const std::vector<HullFace>& faces = data().faces;
+  const std::vector<Vec3>& v = data().shifted_vertices;
+  const Vec3& ref = data().reference;
   const Vec3 p = point - ref;
   // The face whose plane is farthest in front of (or least behind) the point.
   std::size_t best_face = 0;
   Real best_plane = -kRealMax;
   for (std::size_t i = 0; i < faces.size(); ++i) {
-    const Real d = plane_distance(*data_, i, p);
+    const Real d = plane_distance(data(), i, p);
     if (d > best_plane) {
       best_plane = d;
       best_face = i;
@@ -279,13 +281,13 @@ SurfacePoint ConvexHull::closest_point(const Vec3& point) const {
   Vec3 best_point = p;
   for (std::size_t i = 0; i < faces.size(); ++i) {
     const HullFace& f = faces[i];
-    const Real d = plane_distance(*data_, i, p);
+    const Real d = plane_distance(data(), i, p);
     if (d <= Real(0) || d * d >= best_d2) continue;
     const Vec3 q = p - d * f.normal;
     bool inside = true;
     for (std::uint32_t k = 0; k < f.index_count && inside; ++k) {
-      const Vec3& a = v[data_->face_indices[f.first_index + k]];
-      const Vec3& b = v[data_->face_indices[f.first_index + (k + 1) % f.index_count]];
+      const Vec3& a = v[data().face_indices[f.first_index + k]];
+      const Vec3& b = v[data().face_indices[f.first_index + (k + 1) % f.index_count]];
       inside = glm::dot(glm::cross(b - a, q - a), f.normal) >= Real(0);
     }
     if (inside) {
@@ -293,7 +295,7 @@ SurfacePoint ConvexHull::closest_point(const Vec3& point) const {
       best_point = q;
     }
   }
-  for (const HullEdge& e : data_->edges) {
+  for (const HullEdge& e : data().edges) {
     const Vec3 q = closest_on_segment(p, v[e.v0], v[e.v1]);
     const Vec3 pq = p - q;
     const Real d2 = glm::dot(pq, pq);
@@ -318,10 +320,10 @@ SurfacePoint ConvexHull::closest_point(const Vec3& point) const {
 
 MassProperties ConvexHull::mass_properties(Real density) const {
   MassProperties m;
-  m.volume = data_->volume;
-  m.mass = density * data_->volume;
-  m.centroid = data_->centroid;
-  m.inertia = data_->unit_inertia * density;
+  m.volume = data().volume;
+  m.mass = density * data().volume;
+  m.centroid = data().centroid;
+  m.inertia = data().unit_inertia * density;
   return m;
 }
 

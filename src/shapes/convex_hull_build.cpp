@@ -54,13 +54,9 @@
 #include <utility>
 #include <vector>
 
-namespace proxima {
+#include "shapes/convex_hull_data.hpp"
 
-namespace detail {
-// Defined in convex_hull_mass.cpp: volume, centroid and unit-density inertia of the
-// closed polyhedron held in `data` (vertices and CCW face loops).
-bool compute_hull_mass(ConvexHull::Data& data);
-}  // namespace detail
+namespace proxima {
 
 namespace {
 
@@ -407,7 +403,7 @@ std::string orient_and_simplify(QhullOutcome& hull, const std::vector<D3>& pts, 
 
 // Builds vertices, faces (planes by Newell's method), edges and adjacency from the
 // oriented loops, checking the closed 2-manifold. Returns an empty string, or why not.
-std::string assemble(std::span<const Vec3> points, const QhullOutcome& hull, ConvexHull::Data& data,
+std::string assemble(std::span<const Vec3> points, const QhullOutcome& hull, detail::HullData& data,
                      std::vector<D3>& vd, double& planarity) {
   planarity = 0;
   std::vector<std::uint32_t> remap(points.size(), std::numeric_limits<std::uint32_t>::max());
@@ -666,7 +662,7 @@ Result<ConvexHull> ConvexHull::create(std::span<const Vec3> points) {
 
   // 4-6. qhull, oriented loops, the polyhedron; retried with more merging when qhull or
   // the checks of its output fail.
-  auto data = std::make_shared<Data>();
+  auto data = std::make_shared<detail::HullData>();
   std::vector<D3> vd;  // hull vertices in double, original frame
   std::string failure;
   double planarity = 0;
@@ -686,7 +682,7 @@ Result<ConvexHull> ConvexHull::create(std::span<const Vec3> points) {
     }
     failure = orient_and_simplify(hull, pts, 2.0 * radius);
     if (!failure.empty()) continue;
-    *data = Data{};
+    *data = detail::HullData{};
     failure = assemble(points, hull, *data, vd, planarity);
     // Input points may lie above the merged faces by qhull's outer distance plus the
     // faces' own deviation from planarity.

@@ -15,15 +15,13 @@
 //  4. Centroid = r + first moment / volume; shift the covariance to the centroid
 //     (C_c = C - V c c^T) and convert: inertia = trace(C_c) E - C_c.
 
-#include <proxima/shapes/convex_hull.hpp>
-
 #include <array>
+
+#include "shapes/convex_hull_data.hpp"
 
 namespace proxima::detail {
 
-bool compute_hull_mass(ConvexHull::Data& data);
-
-bool compute_hull_mass(ConvexHull::Data& data) {
+bool compute_hull_mass(HullData& data) {
   using D3 = std::array<double, 3>;
   const std::size_t nv = data.vertices.size();
   if (nv < 4) return false;

@@ -14,6 +14,10 @@
 
 namespace proxima {
 
+namespace detail {
+struct HullData;  // the hull's full data (internal, src/shapes/convex_hull_data.hpp)
+}  // namespace detail
+
 /// A planar polygonal face of a ConvexHull.
 ///
 /// Its vertex indices are `face_indices()[first_index .. first_index + index_count)`, in
@@ -105,8 +109,9 @@ class ConvexHull : public UnroundedCore<ConvexHull> {
   std::uint32_t support_index(const Vec3& direction, std::uint32_t start_vertex = 0) const;
   /// The linear scan of support_index at any size: the first (lowest index) vertex of
   /// largest dot product with `direction` (local frame), 0 for a NaN direction. In float
-  /// with SSE2, four vertices per step over the x/y/z blocks of Data::scan_blocks; exactly
-  /// the index of scalar_support_index. O(V), no branch on the data but the last block.
+  /// with SSE2, four vertices per step over the vertices stored in blocks of four
+  /// (x x x x y y y y z z z z); exactly the index of scalar_support_index. O(V), no branch on the data but the last
+  /// block.
   std::uint32_t scan_support_index(const Vec3& direction) const;
   /// The scalar reference of scan_support_index (one vertex per step, same answer).
   std::uint32_t scalar_support_index(const Vec3& direction) const;
@@ -149,33 +154,31 @@ class ConvexHull : public UnroundedCore<ConvexHull> {
   /// box, so this does not grow with the distance from the local origin.
   Real tolerance() const { return data_->tolerance; }
 
-  /// The immutable hull data shared between copies.
-  struct Data {
+ private:
+  friend struct detail::HullData;  // derives from Boundary
+
+  /// What the inline accessors above read: the hull's boundary, box and tolerance (local
+  /// frame, length units). The rest of the hull's data (the support scan's blocks, the
+  /// hill-climbing adjacency, the shifted copies the queries work on, the mass properties)
+  /// is internal: detail::HullData (src/shapes/convex_hull_data.hpp), derived from this.
+  struct Boundary {
     std::vector<Vec3> vertices;                   ///< hull vertices, local frame
     std::vector<HullFace> faces;                  ///< polygonal faces
     std::vector<std::uint32_t> face_indices;      ///< concatenated CCW face loops
     std::vector<HullEdge> edges;                  ///< every edge once
     std::vector<std::uint32_t> neighbor_offsets;  ///< CSR offsets, size vertices + 1
     std::vector<std::uint32_t> neighbors;         ///< CSR adjacency over edges
-    std::vector<std::uint32_t> climb_offsets;     ///< CSR offsets of climb_neighbors, size vertices + 1
-    std::vector<std::uint32_t> climb_neighbors;   ///< vertices sharing a face (hill-climbing moves)
     Aabb local_box;                               ///< box of the vertices
-    Real scale = Real(1);                         ///< largest box extent
-    Real tolerance = Real(0);                     ///< absolute tolerance of contains / on-surface tests
-    Vec3 reference{Real(0)};                      ///< centre of the box: queries work relative to it
-    std::vector<Vec3> shifted_vertices;           ///< vertices - reference (exact for far hulls)
-    /// shifted_vertices in blocks of four, structure of arrays per block (x0 x1 x2 x3,
-    /// y0..y3, z0..z3), the last block padded with copies of vertex 0: the scan's layout.
-    std::vector<Real> scan_blocks;
-    std::vector<Real> shifted_offsets;  ///< face offsets relative to reference
-    Real volume = Real(0);              ///< volume (length^3)
-    Vec3 centroid{Real(0)};             ///< centre of volume, local frame
-    Mat3 unit_inertia{Real(0)};         ///< inertia about the centroid at density 1
+    Real scale = Real(1);                         ///< largest box extent (length)
+    Real tolerance = Real(0);                     ///< absolute tolerance of contains / on-surface tests (length)
   };
 
- private:
-  explicit ConvexHull(std::shared_ptr<const Data> data) : data_(std::move(data)) {}
-  std::shared_ptr<const Data> data_;  // immutable and shared: copies are cheap
+  /// Shares `data` (built by create).
+  explicit ConvexHull(std::shared_ptr<const detail::HullData> data);
+  /// The full data (defined in src/shapes/convex_hull_data.hpp, for the library's own code).
+  const detail::HullData& data() const;
+
+  std::shared_ptr<const Boundary> data_;  // a detail::HullData: immutable and shared, copies are cheap
 };
 
 }  // namespace proxima
