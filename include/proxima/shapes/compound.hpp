@@ -37,9 +37,8 @@ class Compound {
   /// (overlapping volume counts twice, as in Jolt and Bullet); open meshes contribute none.
   MassProperties mass_properties(Real density = Real(1)) const;
 
-  struct Data;  ///< the immutable shared data (children and BVH), defined in shape.hpp
-
  private:
+  struct Data;  ///< the immutable shared data (children and BVH), defined in shape.hpp
   explicit Compound(std::shared_ptr<const Data> data) : data_(std::move(data)) {}
   std::shared_ptr<const Data> data_;
 };
