@@ -203,6 +203,27 @@ class CollisionWorld {
   Result<std::optional<WorldClosest>> closest(ShapeRef geometry, const Transform& pose, Real max_distance,
                                               const QueryFilter& filter = {}) const;
 
+  // Batches: spans in, spans out (one answer per item, written in place), the items spread
+  // over `executor`; the answers equal the single queries' in item order for every executor
+  // and thread count. Every item is validated first: an error names the first bad one
+  // ("rays[3].direction") or a span of the wrong size, and writes nothing.
+
+  /// The closest hit of each ray: hits[i] for rays[i], a miss leaving hits[i].object unset
+  /// (ObjectHandle{}: is_set() false). Returns the number of rays that hit. Error "hits" when
+  /// hits.size() != rays.size().
+  Result<std::size_t> raycast_batch(std::span<const WorldRay> rays, std::span<WorldHit> hits,
+                                    const QueryFilter& filter = {}, Executor& executor = serial_executor()) const;
+  /// line_of_sight of each segment: visible[i] = 1 when nothing touches segments[i], else 0.
+  /// Returns the number of visible segments. Error "visible" for a size mismatch.
+  Result<std::size_t> line_of_sight_batch(std::span<const WorldSegment> segments, std::span<std::uint8_t> visible,
+                                          const QueryFilter& filter = {}, Executor& executor = serial_executor()) const;
+  /// closest_point of each point within `max_distance`: nearest[i] for points[i], unset
+  /// object when nothing is that near. Returns the number found. Error "nearest" for a size
+  /// mismatch.
+  Result<std::size_t> closest_point_batch(std::span<const Vec3> points, Real max_distance,
+                                          std::span<WorldClosest> nearest, const QueryFilter& filter = {},
+                                          Executor& executor = serial_executor()) const;
+
   // ---- state -------------------------------------------------------------------------
 
   /// A hash of the whole state (objects, poses, filters, modes, attachments, exclusions,

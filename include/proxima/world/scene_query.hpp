@@ -35,6 +35,19 @@ struct WorldOverlap {
   std::uint64_t user_data = 0;  ///< its user data
 };
 
+/// One ray of a batched ray cast (CollisionWorld::raycast_batch), world frame.
+struct WorldRay {
+  Vec3 origin{Real(0)};                       ///< start point
+  Vec3 direction{Real(1), Real(0), Real(0)};  ///< not zero; t is in units of its length
+  Real max_t = Real(1);                       ///< the ray's extent in those units (>= 0)
+};
+
+/// One segment of a batched line-of-sight test (CollisionWorld::line_of_sight_batch).
+struct WorldSegment {
+  Vec3 from{Real(0)};  ///< world frame
+  Vec3 to{Real(0)};    ///< world frame (equal to `from`: the point is tested)
+};
+
 /// The object nearest a point or a geometry, within a query's maximum distance.
 struct WorldClosest {
   ObjectHandle object;                     ///< the nearest object
