@@ -266,7 +266,13 @@ ToiResult time_of_impact_unchecked(ShapeRef a, const Motion& motion_a, ShapeRef 
   p.target = options.target_distance;
   p.tolerance = std::max(options.tolerance, Real(64) * kEpsilon * p.scale);
 
-  if (allow_cast && translating_convex_pair(p)) return by_cast(p, options, origin);
+  if (allow_cast && translating_convex_pair(p)) {
+    // The cast raises the tolerance to its own precision floor (its scale holds the whole
+    // translation), so a hit farther than this pair's target + tolerance is not certified
+    // here: the advancement below measures it again.
+    const ToiResult cast = by_cast(p, options, origin);
+    if (!(cast.status == CcdStatus::Hit && cast.distance > p.target + p.tolerance)) return cast;
+  }
 
   const Placements place_a(p.ma, p.wa), place_b(p.mb, p.wb);
   ToiResult r;

@@ -114,7 +114,7 @@ TEST(WorldQueryBatch, BadItemsAreNamedAndNothingIsWritten) {
 
   std::vector<WorldClosest> nearest(10);
   nearest[0].signed_distance = Real(42);
-  items.points[9].x = Real(1e30);
+  items.points[9].x = std::numeric_limits<Real>::infinity();
   EXPECT_EQ(world.closest_point_batch(items.points, Real(1), nearest).error().field, "points[9]");
   items.points[9].x = Real(0);
   EXPECT_EQ(world.closest_point_batch(items.points, Real(-1), nearest).error().field, "max_distance");
