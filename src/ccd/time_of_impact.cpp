@@ -180,14 +180,15 @@ ToiResult& bracket(ToiResult& r, Real t) {
 
 // Two bounded convex shapes whose cores do not turn (no rotation, or a core that rotation
 // leaves in place: a sphere or a point): the relative motion is a translation.
-bool translating_convex_pair(const Pair& p) {
+bool translating_pair(const Pair& p) {
   const auto still = [](const Vec3& w, const detail::ShapeRadii& r) {
-    return r.core == Real(0) || !(glm::length(w) > Real(0));
+    return (r.convex && r.core == Real(0)) || !(glm::length(w) > Real(0));
   };
-  return p.ra.convex && p.rb.convex && still(p.wa, p.ra) && still(p.wb, p.rb);
+  return still(p.wa, p.ra) && still(p.wb, p.rb);
 }
 
-// A translating convex pair: GJK ray casting of A along its motion relative to B. Each
+// A translating pair: the shape cast of A along its motion relative to B (GJK ray casting
+// for convex parts, each mesh triangle or compound child in nearest-first order). Each
 // advance of the cast keeps a separating plane at the target, so [0, t] is certified as in
 // conservative advancement.
 ToiResult by_cast(const Pair& p, const ToiOptions& options, const Vec3& origin) {
@@ -266,15 +267,24 @@ ToiResult time_of_impact_unchecked(ShapeRef a, const Motion& motion_a, ShapeRef 
   p.target = options.target_distance;
   p.tolerance = std::max(options.tolerance, Real(64) * kEpsilon * p.scale);
 
-  if (allow_cast && translating_convex_pair(p)) {
+  const Placements place_a(p.ma, p.wa), place_b(p.mb, p.wb);
+  if (allow_cast && translating_pair(p)) {
+    // A hit is measured by the narrow phase at its time (the answer's distance and points).
     // The cast raises the tolerance to its own precision floor (its scale holds the whole
     // translation), so a hit farther than this pair's target + tolerance is not certified
     // here: the advancement below measures it again.
-    const ToiResult cast = by_cast(p, options, origin);
-    if (!(cast.status == CcdStatus::Hit && cast.distance > p.target + p.tolerance)) return cast;
+    ToiResult cast = by_cast(p, options, origin);
+    if (cast.status != CcdStatus::Hit) return cast;
+    const DistanceResult d = distance(a, place_a.at(cast.toi), b, place_b.at(cast.toi));
+    if (std::isfinite(d.signed_distance) && d.signed_distance <= p.target + p.tolerance) {
+      cast.distance = d.signed_distance;
+      cast.point_a = d.point_a + origin;
+      cast.point_b = d.point_b + origin;
+      cast.point = (cast.point_a + cast.point_b) * Real(0.5);
+      return cast;
+    }
   }
 
-  const Placements place_a(p.ma, p.wa), place_b(p.mb, p.wb);
   ToiResult r;
   PairCache cache;
   Real t = Real(0);
