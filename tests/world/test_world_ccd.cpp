@@ -32,7 +32,9 @@ TEST(WorldCcd, AFastSphereThroughAThinPlateReportsItsImpact) {
     CollisionWorld world = make_world();
     const Real x0 = rng.uniform(Real(-9), Real(-1)), x1 = rng.uniform(Real(1), Real(9));
     const Real r = rng.uniform(Real(0.02), Real(0.1));
-    const Vec3 off(0, rng.uniform(Real(-1.5), Real(1.5)), rng.uniform(Real(-1.5), Real(1.5)));
+    const Real off_z = rng.uniform(Real(-1.5), Real(1.5));  // GCC's order of the arguments this replaced
+    const Real off_y = rng.uniform(Real(-1.5), Real(1.5));
+    const Vec3 off(0, off_y, off_z);
     const ObjectHandle p = *world.add(plate(at(0)));
     const ObjectHandle b = *world.add(bullet(Transform{Vec3(x0, 0, 0) + off, kIdentityQuat}, r, CcdMode::Auto));
     ASSERT_FALSE(world.step(Real(1) / Real(60)).has_value());

@@ -40,11 +40,19 @@ inline CollisionWorld make_world(const WorldSettings& settings = {}) {
 inline Shape random_geometry(Random& rng, Real size) {
   const int kind = rng.integer(0, 4);
   if (kind == 0) return *Sphere::create(rng.uniform(Real(0.3), Real(1)) * size);
-  if (kind == 1)
-    return *Capsule::create(rng.uniform(Real(0.2), Real(0.5)) * size, rng.uniform(Real(0.2), Real(0.8)) * size);
-  if (kind == 2)
-    return *Box::create(Vec3(rng.uniform(Real(0.2), Real(0.8)) * size, rng.uniform(Real(0.2), Real(0.8)) * size,
-                             rng.uniform(Real(0.2), Real(0.8)) * size));
+  // Each draw in a statement of its own, in the order GCC evaluated the call arguments they
+  // replace (right to left), so that a seed names the same scene with every compiler.
+  if (kind == 1) {
+    const Real half_length = rng.uniform(Real(0.2), Real(0.8)) * size;
+    const Real radius = rng.uniform(Real(0.2), Real(0.5)) * size;
+    return *Capsule::create(radius, half_length);
+  }
+  if (kind == 2) {
+    const Real z = rng.uniform(Real(0.2), Real(0.8)) * size;
+    const Real y = rng.uniform(Real(0.2), Real(0.8)) * size;
+    const Real x = rng.uniform(Real(0.2), Real(0.8)) * size;
+    return *Box::create(Vec3(x, y, z));
+  }
   if (kind == 3) {
     std::vector<Vec3> points;
     for (int k = 0; k < 12; ++k) points.push_back(rng.in_ball(size));
