@@ -6,8 +6,8 @@
 //  2. Convex against convex: GJK ray casting on the cores with margin = radii + target
 //     (van den Bergen 2004, gjk_raycast.hpp). A hit at t = 0 is classified by the narrow
 //     phase's distance: overlap (depth, push-out normal), touching and moving in (hit at
-//     0), or touching and not moving in (no hit). A hit's distance and points are the
-//     narrow phase's at t (the cast's simplex witnesses can miss a graze's gap).
+//     0), or touching and not moving in (no hit). A hit's distance is the cast's |v| less
+//     the radii (its witnesses along the advancing normal can miss a graze's gap).
 //  3. Convex against a half-space: closed form on the deepest support point along the
 //     plane's normal.
 //  4. Against a mesh or a compound (in B's frame): nearest-first walk of its hierarchy,
@@ -159,37 +159,21 @@ CastResult cast_cores(const Cast& c, SupportB& support_b, Real rb, const auto& c
     r.point_a = o.point_a + ra * o.normal;
     r.point_b = o.point_b - rb * o.normal;
     r.point = (r.point_a + r.point_b) * Real(0.5);
-    r.distance = glm::dot(r.point_b - r.point_a, o.normal);
+    // |v|, the cores' distance at the hit, less the radii: the simplex's witnesses projected on
+    // the advancing plane's normal said about 0 along a graze whose gap stays within the
+    // tolerance (parallel faces sliding past each other).
+    r.distance = o.distance - ra - rb;
     r.iterations = o.iterations;
     return r;
   });
 }
 
-// A GJK cast's witnesses come from its last simplex: along a graze (the gap staying within
-// the tolerance, parallel faces sliding past each other) they can say "touching" while the
-// shapes are up to the tolerance apart. A hit's distance and points are therefore the
-// narrow phase's at t, as the time of impact reports its own; the normal stays the cast's
-// (the direction the motion meets, where a flat shape's distance normal may flip sides).
-CastResult measured_hit(const Cast& c, CastResult r, ShapeRef b, const Transform& pose_b) {
-  if (r.status != CcdStatus::Hit) return r;
-  const DistanceResult d = distance(c.a, Transform{c.pose_a.position + r.t * c.s, c.pose_a.rotation}, b, pose_b);
-  if (!std::isfinite(d.signed_distance)) return r;
-  r.distance = d.signed_distance;
-  r.point_a = d.point_a;
-  r.point_b = d.point_b;
-  r.point = (d.point_a + d.point_b) * Real(0.5);
-  return r;
-}
-
 CastResult cast_convex(const Cast& c, ShapeRef b, const Transform& pose_b) {
-  return measured_hit(c,
-                      with_core(b, pose_b,
-                                [&](auto& support_b, Real rb) {
-                                  return cast_cores(
-                                      c, support_b, rb, [&] { return classify_start(c, b, pose_b); },
-                                      [&] { return cast_by_advancement(c, b, pose_b); });
-                                }),
-                      b, pose_b);
+  return with_core(b, pose_b, [&](auto& support_b, Real rb) {
+    return cast_cores(
+        c, support_b, rb, [&] { return classify_start(c, b, pose_b); },
+        [&] { return cast_by_advancement(c, b, pose_b); });
+  });
 }
 
 // Convex A against a half-space B: the deepest point of A along the plane's normal m moves

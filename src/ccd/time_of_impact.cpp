@@ -275,13 +275,18 @@ ToiResult time_of_impact_unchecked(ShapeRef a, const Motion& motion_a, ShapeRef 
     // here: the advancement below measures it again.
     ToiResult cast = by_cast(p, options, origin);
     if (cast.status != CcdStatus::Hit) return cast;
-    const DistanceResult d = distance(a, place_a.at(cast.toi), b, place_b.at(cast.toi));
-    if (std::isfinite(d.signed_distance) && d.signed_distance <= p.target + p.tolerance) {
-      cast.distance = d.signed_distance;
-      cast.point_a = d.point_a + origin;
-      cast.point_b = d.point_b + origin;
-      cast.point = (cast.point_a + cast.point_b) * Real(0.5);
-      return cast;
+    // A convex pair's cast distance is its GJK |v| at the hit.
+    if (p.ra.convex && p.rb.convex) {
+      if (cast.distance <= p.target + p.tolerance) return cast;
+    } else {
+      const DistanceResult d = distance(a, place_a.at(cast.toi), b, place_b.at(cast.toi));
+      if (std::isfinite(d.signed_distance) && d.signed_distance <= p.target + p.tolerance) {
+        cast.distance = d.signed_distance;
+        cast.point_a = d.point_a + origin;
+        cast.point_b = d.point_b + origin;
+        cast.point = (cast.point_a + cast.point_b) * Real(0.5);
+        return cast;
+      }
     }
   }
 
