@@ -35,21 +35,21 @@ struct SmallSat {
 
 /// Separation of the two vertex sets along `axis` (unit), with the side: `normal` is axis or
 /// -axis, pointing from A to B.
+/// The interval [lo, hi] of a polytope's vertices projected on `axis`.
+inline void project_vertices(const SmallPolytope& p, const Vec3& axis, Real& lo, Real& hi) {
+  lo = std::numeric_limits<Real>::infinity();
+  hi = -lo;
+  for (int i = 0; i < p.vertex_count; ++i) {
+    const Real d = glm::dot(p.vertices[i], axis);
+    lo = std::min(lo, d);
+    hi = std::max(hi, d);
+  }
+}
+
 inline Real axis_separation(const SmallPolytope& a, const SmallPolytope& b, const Vec3& axis, Vec3& normal) {
-  Real amin = std::numeric_limits<Real>::infinity();
-  Real amax = -amin;
-  Real bmin = amin;
-  Real bmax = -amin;
-  for (int i = 0; i < a.vertex_count; ++i) {
-    const Real d = glm::dot(a.vertices[i], axis);
-    amin = std::min(amin, d);
-    amax = std::max(amax, d);
-  }
-  for (int i = 0; i < b.vertex_count; ++i) {
-    const Real d = glm::dot(b.vertices[i], axis);
-    bmin = std::min(bmin, d);
-    bmax = std::max(bmax, d);
-  }
+  Real amin, amax, bmin, bmax;
+  project_vertices(a, axis, amin, amax);
+  project_vertices(b, axis, bmin, bmax);
   const Real plus = bmin - amax;   // B on the + side
   const Real minus = amin - bmax;  // B on the - side
   normal = plus >= minus ? axis : -axis;
@@ -103,17 +103,9 @@ inline TranslationInterval small_polytope_translation_interval(const SmallPolyto
                                                                const Vec3& d, Real parallel_sine) {
   TranslationInterval r;
   const auto bound = [&](const Vec3& m) {
-    Real amin = std::numeric_limits<Real>::infinity(), amax = -amin, bmin = amin, bmax = -amin;
-    for (int i = 0; i < a.vertex_count; ++i) {
-      const Real p = glm::dot(a.vertices[i], m);
-      amin = std::min(amin, p);
-      amax = std::max(amax, p);
-    }
-    for (int i = 0; i < b.vertex_count; ++i) {
-      const Real p = glm::dot(b.vertices[i], m);
-      bmin = std::min(bmin, p);
-      bmax = std::max(bmax, p);
-    }
+    Real amin, amax, bmin, bmax;
+    project_vertices(a, m, amin, amax);
+    project_vertices(b, m, bmin, bmax);
     // Overlap along m: amin - bmax <= t c <= amax - bmin.
     const Real c = glm::dot(m, d);
     if (c > Real(0)) {

@@ -327,25 +327,28 @@ void place(CollisionWorld::Impl& w, std::uint32_t i, const Transform& pose) {
 
 }  // namespace
 
-std::optional<Error> CollisionWorld::move(ObjectHandle object, const Transform& pose) {
-  Impl& w = *impl_;
+namespace {
+
+/// move (teleport false) or teleport: validates, places the object and its subtree, and
+/// with `teleport` makes their new poses the start of the next step's motion.
+std::optional<Error> set_pose(CollisionWorld::Impl& w, ObjectHandle object, const Transform& pose, bool teleport) {
   if (auto e = check_not_in_pre_contact(w)) return e;
   if (w.find(object) == nullptr) return stale("object");
   if (auto e = check_pose(pose, "pose")) return e;
   place(w, object.index, pose);
+  if (teleport) w.for_each_member(object.index, [&](std::uint32_t m) { w.slots[m].step_pose = w.slots[m].pose; });
   w.refresh_proxy(w.slots[object.index].root);
   return std::nullopt;
 }
 
+}  // namespace
+
+std::optional<Error> CollisionWorld::move(ObjectHandle object, const Transform& pose) {
+  return set_pose(*impl_, object, pose, false);
+}
+
 std::optional<Error> CollisionWorld::teleport(ObjectHandle object, const Transform& pose) {
-  Impl& w = *impl_;
-  if (auto e = check_not_in_pre_contact(w)) return e;
-  if (w.find(object) == nullptr) return stale("object");
-  if (auto e = check_pose(pose, "pose")) return e;
-  place(w, object.index, pose);
-  w.for_each_member(object.index, [&](std::uint32_t m) { w.slots[m].step_pose = w.slots[m].pose; });
-  w.refresh_proxy(w.slots[object.index].root);
-  return std::nullopt;
+  return set_pose(*impl_, object, pose, true);
 }
 
 std::optional<Error> CollisionWorld::move(std::span<const ObjectMove> moves) {
