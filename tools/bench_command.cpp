@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <iomanip>
@@ -151,13 +152,25 @@ bool read_w1(const std::string& path, W1Workload& out, std::string& error) {
         error = path + ":" + std::to_string(line_no) + ": header lacks n=";
         return false;
       }
-      out.boxes.reserve(n);
+      if (!std::isfinite(out.dt) || out.dt < 0.0 || !std::isfinite(out.lo) || !std::isfinite(out.hi) ||
+          !(out.lo <= out.hi) || out.frames < 0) {
+        error =
+            path + ":" + std::to_string(line_no) + ": dt (finite, >= 0), lo <= hi (finite) and frames >= 0 required";
+        return false;
+      }
+      out.boxes.reserve(std::min<std::size_t>(n, std::size_t(1) << 20));  // n is checked against the records
       have_header = true;
       continue;
     }
     W1Box b{};
     if (!(fields >> b.c[0] >> b.c[1] >> b.c[2] >> b.h[0] >> b.h[1] >> b.h[2] >> b.v[0] >> b.v[1] >> b.v[2])) {
       error = path + ":" + std::to_string(line_no) + ": expected 9 numbers";
+      return false;
+    }
+    bool finite = true;
+    for (int k = 0; k < 3; ++k) finite = finite && std::isfinite(b.c[k]) && std::isfinite(b.v[k]) && b.h[k] >= 0.0;
+    if (!finite || !std::all_of(b.h, b.h + 3, [](double h) { return std::isfinite(h); })) {
+      error = path + ":" + std::to_string(line_no) + ": centre, half extents (>= 0) and velocity must be finite";
       return false;
     }
     out.boxes.push_back(b);

@@ -24,6 +24,9 @@ std::string without_exception_tag(const std::string& what) {
   return what.rfind("[json.exception.", 0) == 0 && close != std::string::npos ? what.substr(close + 2) : what;
 }
 
+// Thrown by the parser callback at the nesting limit.
+struct TooDeep {};
+
 }  // namespace
 
 std::string read_op(const Json& request) { return read_string(require_member(request, "", "op"), "op"); }
@@ -49,10 +52,20 @@ Json answer_request_with(const Json& request, bool& rejected, RequestHandler han
 Json answer_line_with(std::string_view line, bool& rejected, RequestHandler handler) {
   Json request;
   try {
-    request = Json::parse(line);
+    // Arrays and objects nested deeper than kMaxJsonNesting are refused while parsing, so
+    // that nothing after (copies, echoes, destruction, the readers) recurses that deep.
+    request = Json::parse(line, [](int depth, Json::parse_event_t, Json&) {
+      if (depth > kMaxJsonNesting) throw TooDeep{};
+      return true;
+    });
   } catch (const Json::exception& e) {
     rejected = true;
     return error_answer(nullptr, "invalid JSON: " + without_exception_tag(e.what()), "", "bad_json");
+  } catch (const TooDeep&) {
+    rejected = true;
+    return error_answer(
+        nullptr, "invalid JSON: arrays and objects nested deeper than " + std::to_string(kMaxJsonNesting) + " levels",
+        "", "bad_json");
   }
   return answer_request_with(request, rejected, handler);
 }

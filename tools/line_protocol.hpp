@@ -30,7 +30,12 @@ std::string read_op(const Json& request);
 /// a FieldError or any other exception gives an error answer and sets `rejected`.
 Json answer_request_with(const Json& request, bool& rejected, RequestHandler handler);
 
-/// Parses one input line and answers it with `handler` (invalid JSON: a "bad_json" error).
+/// Deepest nesting of arrays and objects a request line may have (deeper: a "bad_json" error,
+/// refused while parsing).
+inline constexpr int kMaxJsonNesting = 64;
+
+/// Parses one input line and answers it with `handler` (invalid JSON, or nested deeper than
+/// kMaxJsonNesting: a "bad_json" error).
 Json answer_line_with(std::string_view line, bool& rejected, RequestHandler handler);
 
 /// Reads requests from `in` line by line (blank lines are skipped) and writes one compact

@@ -10,7 +10,9 @@
 
 #include <CLI/CLI.hpp>
 
+#include <cmath>
 #include <exception>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <string>
@@ -26,6 +28,21 @@
 #include "world_session.hpp"
 
 namespace {
+
+// A number option must be finite (CLI::Range lets NaN through: every comparison with it is
+// false).
+const CLI::Validator kFinite(
+    [](std::string& text) {
+      std::size_t used = 0;
+      double value = 0.0;
+      try {
+        value = std::stod(text, &used);
+      } catch (const std::exception&) {
+        return std::string("not a number: ") + text;
+      }
+      return used == text.size() && std::isfinite(value) ? std::string() : "must be a finite number: " + text;
+    },
+    "FINITE");
 
 std::string version_line() {
   return std::string("proxima ") + PROXIMA_VERSION_STRING + " (" + (PROXIMA_DOUBLE ? "double" : "float") +
@@ -49,11 +66,16 @@ int run_query(const std::string& input) {
     return proxima::tool::exit_status(proxima::tool::run_queries(std::cin, std::cout));
   }
   std::ifstream file(input);
-  if (!file) {
-    std::cerr << "proxima query: cannot open " << input << "\n";
+  if (!file || std::filesystem::is_directory(input)) {
+    std::cerr << "proxima query: cannot open " << input << " (not a readable file)\n";
     return 1;
   }
-  return proxima::tool::exit_status(proxima::tool::run_queries(file, std::cout));
+  const int status = proxima::tool::exit_status(proxima::tool::run_queries(file, std::cout));
+  if (file.bad()) {
+    std::cerr << "proxima query: reading " << input << " failed\n";
+    return 1;
+  }
+  return status;
 }
 
 std::string world_footer() {
@@ -76,11 +98,16 @@ int run_world(const proxima::tool::WorldOptions& options, const std::string& inp
   }
   if (input.empty() || input == "-") return proxima::tool::exit_status(session.value().run(std::cin, std::cout));
   std::ifstream file(input);
-  if (!file) {
-    std::cerr << "proxima world: cannot open " << input << "\n";
+  if (!file || std::filesystem::is_directory(input)) {
+    std::cerr << "proxima world: cannot open " << input << " (not a readable file)\n";
     return 1;
   }
-  return proxima::tool::exit_status(session.value().run(file, std::cout));
+  const int status = proxima::tool::exit_status(session.value().run(file, std::cout));
+  if (file.bad()) {
+    std::cerr << "proxima world: reading " << input << " failed\n";
+    return 1;
+  }
+  return status;
 }
 
 int run(int argc, char** argv) {
@@ -104,7 +131,7 @@ int run(int argc, char** argv) {
       ->capture_default_str();
   demo_cmd->add_option("--speed", demo.config.cue_speed, "Speed of the cue ball, m/s")
       ->capture_default_str()
-      ->check(CLI::Range(0.0, 1000.0));
+      ->check(kFinite & CLI::Range(0.0, 1000.0));
   demo_cmd->add_option("--substeps", demo.config.substeps, "World steps per frame")
       ->capture_default_str()
       ->check(CLI::Range(1, 1000));
@@ -152,7 +179,7 @@ int run(int argc, char** argv) {
       ->add_option("--contact-distance", world_contact_distance,
                    "Pairs within this gap touch (length units; 0: touching or overlapping only)")
       ->capture_default_str()
-      ->check(CLI::Range(0.0, 1e18));
+      ->check(kFinite & CLI::Range(0.0, 1e18));
   world_cmd->add_flag("--sensors-sense-sensors", world.settings.sensors_sense_sensors,
                       "Two sensors report enter / exit of each other");
   world_cmd->footer(world_footer());

@@ -84,6 +84,22 @@ TEST(BenchCommand, ReadsW1) {
   std::ofstream(bad) << "broadphase 1 n=2 frames=1\n1 2 3 4 5 6 7 8 9\n";
   EXPECT_FALSE(read_w1(bad.string(), w, error));
   EXPECT_NE(error.find("n=2"), std::string::npos) << error;
+  // Non-finite header values and records are refused (a NaN dt once divided by zero), and a
+  // huge n reserves nothing it cannot hold.
+  std::ofstream(bad) << "broadphase 1 n=1 frames=1 dt=nan\n1 2 3 4 5 6 7 8 9\n";
+  EXPECT_FALSE(read_w1(bad.string(), w, error));
+  EXPECT_NE(error.find("dt (finite"), std::string::npos) << error;
+  std::ofstream(bad) << "broadphase 1 n=1 frames=1 lo=5 hi=1\n1 2 3 4 5 6 7 8 9\n";
+  EXPECT_FALSE(read_w1(bad.string(), w, error));
+  std::ofstream(bad) << "broadphase 1 n=1 frames=1\n1 2 3 4 -5 6 7 8 9\n";
+  EXPECT_FALSE(read_w1(bad.string(), w, error));
+  EXPECT_NE(error.find("half extents (>= 0)"), std::string::npos) << error;
+  std::ofstream(bad) << "broadphase 1 n=1 frames=1\n1 2 inf 4 5 6 7 8 9\n";
+  EXPECT_FALSE(read_w1(bad.string(), w, error));
+  std::ofstream(bad) << "broadphase 1 n=1000000000000000 frames=1\n1 2 3 4 5 6 7 8 9\n";
+  EXPECT_FALSE(read_w1(bad.string(), w, error));
+  EXPECT_NE(error.find("header says"), std::string::npos) << error;
+  std::filesystem::remove(bad);
 }
 
 TEST(BenchCommand, EveryStructureAgrees) {

@@ -171,6 +171,14 @@ TEST(CliDemo, BadOptionsAreRejected) {
   EXPECT_NE(run_cli("demo --frames many 2>/dev/null").status, 0);
   EXPECT_NE(run_cli("demo --substeps 0 2>/dev/null").status, 0);
   EXPECT_EQ(run_cli("demo --broadphase nothing 2>/dev/null").status, 2);
+  EXPECT_NE(run_cli("demo --speed nan 2>/dev/null").status, 0);
+  EXPECT_NE(run_cli("demo --speed inf 2>/dev/null").status, 0);
+  EXPECT_NE(run_cli("world --contact-distance nan - < /dev/null 2>/dev/null").status, 0);
+  // A directory is not an input file.
+  const CliRun dir_query = run_cli("query / 2>&1");
+  EXPECT_EQ(dir_query.status, 1);
+  EXPECT_NE(dir_query.output.find("not a readable file"), std::string::npos) << dir_query.output;
+  EXPECT_EQ(run_cli("world / 2>/dev/null").status, 1);
 }
 
 // The answers to a file of requests, line by line, against the expected file.

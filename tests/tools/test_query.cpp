@@ -440,5 +440,30 @@ TEST(Query, BadJsonAndNonObjects) {
   }
 }
 
+// Nesting is refused while parsing past 64 levels (an "id" nested 3,000 deep once overflowed
+// the stack when it was echoed); 64 levels still parse; the next line is answered.
+TEST(Query, DeepNestingIsRefusedWhileParsing) {
+  for (const int depth : {3000, 100000}) {
+    const std::string line = "{\"id\":" + std::string(std::size_t(depth), '[') + std::string(std::size_t(depth), ']') +
+                             ",\"op\":\"mass\",\"target\":{\"type\":\"sphere\",\"radius\":1}}";
+    bool rejected = false;
+    const Json a = tool::answer_line(line, rejected);
+    EXPECT_TRUE(rejected);
+    EXPECT_EQ(a["code"], "bad_json");
+    EXPECT_NE(a["error"].get<std::string>().find("nested deeper than 64"), std::string::npos) << a.dump();
+  }
+  const std::string ok = "{\"id\":" + std::string(62, '[') + std::string(62, ']') +
+                         ",\"op\":\"mass\",\"target\":{\"type\":\"sphere\",\"radius\":1}}";
+  bool rejected = true;
+  const Json a = tool::answer_line(ok, rejected);
+  EXPECT_FALSE(rejected) << a.dump();
+  std::istringstream in(std::string("{\"id\":") + std::string(5000, '[') +
+                        "\n{\"id\":7,\"op\":\"mass\",\"target\":{\"type\":\"sphere\",\"radius\":1}}\n");
+  std::ostringstream out;
+  const tool::QuerySummary summary = tool::run_queries(in, out);
+  EXPECT_EQ(summary.rejected, 1u);
+  EXPECT_EQ(summary.answered, 1u);
+}
+
 }  // namespace test_query
 }  // namespace proxima
