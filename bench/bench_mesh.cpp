@@ -7,6 +7,10 @@
 ///   BM_Rays/Proxima           TriangleMesh::raycast, every W5 ray (single thread)
 ///   BM_Rays/ProximaLeaf/<n>   the same with a BVH of leaves of at most n triangles
 ///   BM_Rays/ProximaBatch      raycast_batch on a ThreadPool of every hardware thread
+///   BM_Rays/WorldBatch/<n>    the mesh as the one static object of a CollisionWorld:
+///                             CollisionWorld::raycast_batch (closest hit) on a ThreadPool of
+///                             n threads (1 and every hardware thread), beside
+///   BM_Rays/ProximaBatchOn/<n> the mesh's own raycast_batch on the same pool sizes
 ///   BM_Rays/Embree            rtcIntersect1, robust scene, high build quality, 1 thread
 ///   BM_Rays/Bullet            btBvhTriangleMeshShape::performRaycast with a
 ///                             btTriangleRaycastCallback keeping the closest hit
@@ -20,6 +24,7 @@
 #include <proxima/shapes/ray_batch.hpp>
 #include <proxima/shapes/triangle_mesh.hpp>
 #include <proxima/spatial/bvh.hpp>
+#include <proxima/world/collision_world.hpp>
 
 #if PROXIMA_HAVE_BULLET
 #include <BulletCollision/CollisionShapes/btBvhTriangleMeshShape.h>
@@ -142,6 +147,42 @@ void BM_RaysProximaBatch(benchmark::State& state) {
   state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()) * static_cast<std::int64_t>(g_batch.size()));
 }
 
+/// The mesh's own batch on a pool of state.range(0) threads (0: every hardware thread).
+void BM_RaysProximaBatchOn(benchmark::State& state) {
+  std::vector<proxima::RayHit> out(g_batch.size());
+  std::size_t hits = 0;
+  proxima::ThreadPool pool(static_cast<std::size_t>(state.range(0)));
+  for (auto _ : state) {
+    hits = proxima::raycast_batch(*g_ray_mesh, g_batch, out, pool).value();
+    benchmark::DoNotOptimize(out.data());
+  }
+  state.counters["hits"] = double(hits);
+  state.counters["threads"] = double(pool.concurrency());
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()) * static_cast<std::int64_t>(g_batch.size()));
+}
+
+/// The same rays through a CollisionWorld holding the mesh as its one static object.
+void BM_RaysWorldBatch(benchmark::State& state) {
+  proxima::CollisionWorld world = proxima::CollisionWorld::create().value();
+  proxima::ObjectDesc desc;
+  desc.geometry = *g_ray_mesh;
+  desc.kind = proxima::ObjectKind::Static;
+  world.add(desc).value();
+  std::vector<proxima::WorldRay> rays;
+  for (const proxima::BatchRay& r : g_batch) rays.push_back({r.ray.origin, r.ray.direction, r.max_t});
+  std::vector<proxima::WorldHit> out(rays.size());
+  std::size_t hits = 0;
+  proxima::ThreadPool pool(static_cast<std::size_t>(state.range(0)));
+  for (auto _ : state) {
+    hits = world.raycast_batch(rays, out, {}, pool).value();
+    benchmark::DoNotOptimize(out.data());
+  }
+  if (hits != g_proxima_hits) state.SkipWithError("the world's hit count differs from the mesh's");
+  state.counters["hits"] = double(hits);
+  state.counters["threads"] = double(pool.concurrency());
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()) * static_cast<std::int64_t>(rays.size()));
+}
+
 #if PROXIMA_HAVE_EMBREE
 std::unique_ptr<pb::EmbreeScene> g_embree;
 
@@ -242,6 +283,13 @@ bool register_mesh(const std::string& dir) {
   benchmark::RegisterBenchmark("BM_Rays/ProximaBatch", BM_RaysProximaBatch)
       ->Unit(benchmark::kMillisecond)
       ->UseRealTime();
+  for (const char* name : {"BM_Rays/ProximaBatchOn", "BM_Rays/WorldBatch"}) {
+    benchmark::RegisterBenchmark(name, name[8] == 'W' ? BM_RaysWorldBatch : BM_RaysProximaBatchOn)
+        ->Arg(1)
+        ->Arg(0)
+        ->Unit(benchmark::kMillisecond)
+        ->UseRealTime();
+  }
 #if PROXIMA_HAVE_EMBREE
   g_embree = std::make_unique<pb::EmbreeScene>(*g_ray_mesh);
   benchmark::RegisterBenchmark("BM_Rays/Embree", BM_RaysEmbree)->Unit(benchmark::kMillisecond);

@@ -5,21 +5,26 @@
 //  1. validate the output span's size and every item, in item order; the first bad one is
 //     named ("rays[3].direction") and nothing is written;
 //  2. spread the items over the executor (Executor::run: disjoint ranges); each item runs the
-//     single query (world_queries.cpp), which only reads the world, and writes its own slot,
-//     so the answers equal the serial loop's whatever the executor and its thread count;
+//     single query (world_queries.cpp; a ray its closest-hit walk without the hit list), which
+//     only reads the world, and writes its own slot, so the answers equal the serial loop's
+//     whatever the executor and its thread count;
 //  3. count the answers, serially.
 #include <proxima/core/validate.hpp>
+#include <proxima/shapes/shape_queries.hpp>
 #include <proxima/world/collision_world.hpp>
 
 #include <algorithm>
 #include <cmath>
 #include <string>
 
+#include "world/world_state.hpp"
+
 namespace proxima {
 
 namespace {
 
 using validate::is_acceptable;
+using Impl = CollisionWorld::Impl;
 
 std::string item_field(const char* span, std::size_t i, const char* member) {
   std::string field = std::string(span) + "[" + std::to_string(i) + "]";
@@ -63,10 +68,28 @@ Result<std::size_t> CollisionWorld::raycast_batch(std::span<const WorldRay> rays
       return make_error(ErrorCode::Negative, item_field("rays", i, "max_t"), "must be finite and >= 0");
     }
   }
+  // The closest hit of raycast(..., QueryMode::Closest) without its list: the same clipped
+  // ray and the same order (t, then handle).
+  const Impl& w = *impl_;
   for_each_item(executor, rays.size(), [&](std::size_t i) {
-    const Result<std::vector<WorldHit>> found =
-        raycast(Ray{rays[i].origin, rays[i].direction}, rays[i].max_t, filter, QueryMode::Closest);
-    hits[i] = found.ok() && !found->empty() ? found->front() : WorldHit{};
+    const Ray ray{rays[i].origin, rays[i].direction};
+    WorldHit best;
+    Real limit = rays[i].max_t;
+    w.broadphase->query_ray(ray, limit, [&](ProxyId root, Real) -> Real {
+      w.for_each_member(root, [&](std::uint32_t j) {
+        const ObjectSlot& s = w.slots[j];
+        if (!filter.accepts(s.handle(j), s.filter)) return;
+        const std::optional<RayHit> hit = proxima::raycast(s.geometry, s.pose, ray, limit);
+        if (!hit) return;
+        const ObjectHandle h = s.handle(j);
+        if (!best.object.is_set() || hit->t < best.t || (hit->t == best.t && h < best.object)) {
+          best = WorldHit{h, s.user_data, hit->t, hit->point, hit->normal, hit->sub};
+        }
+        limit = hit->t;
+      });
+      return limit;
+    });
+    hits[i] = best;
   });
   return static_cast<std::size_t>(
       std::count_if(hits.begin(), hits.end(), [](const WorldHit& h) { return h.object.is_set(); }));
