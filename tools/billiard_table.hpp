@@ -69,6 +69,7 @@ struct BilliardStats {
   std::uint64_t persist_events = 0;      ///< contact persist events
   std::uint64_t end_events = 0;          ///< contact end events
   std::uint64_t callbacks = 0;           ///< listener calls (begin + persist + end + impact callbacks)
+  std::uint64_t capped_steps = 0;        ///< steps whose overlap passes stopped at their cap (never expected)
   double step_seconds = 0.0;             ///< wall-clock time inside CollisionWorld::step
 };
 

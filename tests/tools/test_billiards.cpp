@@ -76,6 +76,7 @@ TEST(Billiards, BreakKeepsBallsApartOnTheTableAndLosesEnergy) {
     EXPECT_GE(s.begin_events, 20u);  // the racked balls touch (0.2 mm apart) at the first step
     EXPECT_EQ(s.begin_events, s.end_events + table.world().contacts().size());
     EXPECT_EQ(s.callbacks, s.begin_events + s.persist_events + s.end_events + s.impacts);
+    EXPECT_EQ(s.capped_steps, 0u);
     EXPECT_EQ(table.contacts().size(), s.ball_collisions + s.cushion_collisions);
     std::vector<bool> hit(BilliardTable::kBallCount, false);
     for (const auto& contact : table.contacts()) {
@@ -161,7 +162,7 @@ TEST(Billiards, FastBallsDoNotTunnel) {
 }
 
 // Two balls racing head-on at 300 m/s each: one impact at the meeting point (the balls stop
-// at the contact distance, 0.5 mm, so the point is within half of it).
+// at the contact distance, 0.5 mm, symmetric about it), as in the exact reference.
 TEST(Billiards, HeadOnImpactAtTheMeetingPoint) {
   BilliardConfig config;
   config.rolling_deceleration = 0;
@@ -175,10 +176,23 @@ TEST(Billiards, HeadOnImpactAtTheMeetingPoint) {
   const auto& first = table.contacts().front();
   EXPECT_EQ(first.ball, 2);
   EXPECT_EQ(first.other, 3);
-  EXPECT_NEAR(double(first.point.x), 0.0, 1e-4);
-  EXPECT_NEAR(double(first.point.y), -0.2, 1e-4);
+  // The balls meet at the contact distance, at the time-of-impact tolerance (1e-5 m).
+  EXPECT_NEAR(double(first.point.x), 0.0, 2e-5);
+  EXPECT_NEAR(double(first.point.y), -0.2, 2e-5);
   EXPECT_TRUE(first.continuous);
   expect_valid_state(table, 0);
+
+  // The exact reference meets at the exact point.
+  ExactBilliards exact(config);
+  park_balls(exact);
+  exact.place_ball(2, Vec3(Real(-1), Real(-0.2), 0), Vec3(Real(300), 0, 0));
+  exact.place_ball(3, Vec3(Real(1), Real(-0.2), 0), Vec3(Real(-300), 0, 0));
+  exact.step();
+  ASSERT_FALSE(exact.contacts().empty());
+  EXPECT_EQ(exact.contacts().front().ball, 2);
+  EXPECT_EQ(exact.contacts().front().other, 3);
+  EXPECT_NEAR(double(exact.contacts().front().point.x), 0.0, 1e3 * double(kEpsilon));
+  EXPECT_NEAR(double(exact.contacts().front().point.y), -0.2, 1e3 * double(kEpsilon));
 }
 
 // Against the exact event-driven reference: one ball bouncing between two cushions for ten
