@@ -43,6 +43,18 @@ Json answer_line_with(std::string_view line, bool& rejected, RequestHandler hand
 /// interactively through a pipe.
 QuerySummary run_lines(std::istream& in, std::ostream& out, RequestHandler handler);
 
+/// The names of a protocol's operation table (elements with a `name`), comma-separated, in
+/// table order (for error messages and --help).
+template <class Operations>
+std::string joined_names(const Operations& operations) {
+  std::string names;
+  for (const auto& op : operations) {
+    if (!names.empty()) names += ", ";
+    names += op.name;
+  }
+  return names;
+}
+
 /// The process exit status for a run: 2 when any line was rejected, else 0.
 int exit_status(const QuerySummary& summary);
 

@@ -2,6 +2,7 @@
 
 #include <array>
 
+#include "line_protocol.hpp"
 #include "query_bound_ops.hpp"
 #include "query_broadphase_ops.hpp"
 #include "query_ccd_ops.hpp"
@@ -46,13 +47,6 @@ const Operation* find_operation(std::string_view name) {
   return nullptr;
 }
 
-std::string operation_names() {
-  std::string names;
-  for (const Operation& op : kOperations) {
-    if (!names.empty()) names += ", ";
-    names += op.name;
-  }
-  return names;
-}
+std::string operation_names() { return joined_names(kOperations); }
 
 }  // namespace proxima::tool

@@ -103,44 +103,49 @@ Json op_world_move(WorldSession& session, const Json& request) {
   return ok();
 }
 
-Json op_world_set_geometry(WorldSession& session, const Json& request) {
-  reject_unknown_fields(request, "", {"id", "op", "object", "geometry"});
+namespace {
+
+/// A set_* operation: {"object":H, member: value}; `read(json, path)` parses the value and
+/// `set(world, object, value)` applies it.
+template <class Read, class Set>
+Json set_property(WorldSession& session, const Json& request, const char* member, Read read, Set set) {
+  reject_unknown_fields(request, "", {"id", "op", "object", member});
   const ObjectHandle object = member_live_handle(request, "object", session.world());
-  const Shape geometry = read_geometry(require_member(request, "", "geometry"), "geometry");
-  check_world(session.world().set_geometry(object, geometry));
+  const auto value = read(require_member(request, "", member), member);
+  check_world(set(session.world(), object, value));
   return ok();
+}
+
+}  // namespace
+
+Json op_world_set_geometry(WorldSession& session, const Json& request) {
+  return set_property(
+      session, request, "geometry", [](const Json& j, const char* p) { return read_geometry(j, p); },
+      [](CollisionWorld& w, ObjectHandle o, const Shape& g) { return w.set_geometry(o, g); });
 }
 
 Json op_world_set_filter(WorldSession& session, const Json& request) {
-  reject_unknown_fields(request, "", {"id", "op", "object", "filter"});
-  const ObjectHandle object = member_live_handle(request, "object", session.world());
-  const CollisionFilter filter = read_collision_filter(require_member(request, "", "filter"), "filter");
-  check_world(session.world().set_filter(object, filter));
-  return ok();
+  return set_property(
+      session, request, "filter", [](const Json& j, const char* p) { return read_collision_filter(j, p); },
+      [](CollisionWorld& w, ObjectHandle o, const CollisionFilter& f) { return w.set_filter(o, f); });
 }
 
 Json op_world_set_kind(WorldSession& session, const Json& request) {
-  reject_unknown_fields(request, "", {"id", "op", "object", "kind"});
-  const ObjectHandle object = member_live_handle(request, "object", session.world());
-  const ObjectKind kind = read_kind(require_member(request, "", "kind"), "kind");
-  check_world(session.world().set_kind(object, kind));
-  return ok();
+  return set_property(
+      session, request, "kind", [](const Json& j, const char* p) { return read_kind(j, p); },
+      [](CollisionWorld& w, ObjectHandle o, ObjectKind k) { return w.set_kind(o, k); });
 }
 
 Json op_world_set_ccd(WorldSession& session, const Json& request) {
-  reject_unknown_fields(request, "", {"id", "op", "object", "ccd"});
-  const ObjectHandle object = member_live_handle(request, "object", session.world());
-  const CcdMode mode = read_ccd(require_member(request, "", "ccd"), "ccd");
-  check_world(session.world().set_ccd(object, mode));
-  return ok();
+  return set_property(
+      session, request, "ccd", [](const Json& j, const char* p) { return read_ccd(j, p); },
+      [](CollisionWorld& w, ObjectHandle o, CcdMode m) { return w.set_ccd(o, m); });
 }
 
 Json op_world_set_user_data(WorldSession& session, const Json& request) {
-  reject_unknown_fields(request, "", {"id", "op", "object", "user_data"});
-  const ObjectHandle object = member_live_handle(request, "object", session.world());
-  const std::uint64_t user_data = read_u64(require_member(request, "", "user_data"), "user_data");
-  check_world(session.world().set_user_data(object, user_data));
-  return ok();
+  return set_property(
+      session, request, "user_data", [](const Json& j, const char* p) { return read_u64(j, p); },
+      [](CollisionWorld& w, ObjectHandle o, std::uint64_t u) { return w.set_user_data(o, u); });
 }
 
 Json op_world_attach(WorldSession& session, const Json& request) {

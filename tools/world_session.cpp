@@ -41,14 +41,7 @@ const std::array kWorldOperations = {
 
 std::span<const WorldOperation> world_operations() { return kWorldOperations; }
 
-std::string world_operation_names() {
-  std::string names;
-  for (const WorldOperation& op : kWorldOperations) {
-    if (!names.empty()) names += ", ";
-    names += op.name;
-  }
-  return names;
-}
+std::string world_operation_names() { return joined_names(kWorldOperations); }
 
 Result<WorldSession> WorldSession::create(const WorldOptions& options) {
   Result<CollisionWorld> world = CollisionWorld::create(options.settings);

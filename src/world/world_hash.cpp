@@ -27,7 +27,7 @@ std::uint64_t mix64(std::uint64_t z) {
 }
 
 /// Running digest.
-struct Digest {
+struct Digest : RealSequence<Digest> {
   std::uint64_t h = 0x243F6A8885A308D3ull;
 
   void word(std::uint64_t v) { h = mix64(h ^ v); }
@@ -40,18 +40,6 @@ struct Digest {
     }
   }
   void real(Real x) { bytes(&x, sizeof x); }
-  void vec(const Vec3& v) {
-    real(v.x);
-    real(v.y);
-    real(v.z);
-  }
-  void pose(const Transform& t) {
-    vec(t.position);
-    real(t.rotation.w);
-    real(t.rotation.x);
-    real(t.rotation.y);
-    real(t.rotation.z);
-  }
 };
 
 std::uint64_t vertex_count(const Shape& g) {

@@ -41,7 +41,7 @@ constexpr std::uint32_t kNone = ObjectHandle::kNoObject;
 
 // ---- writing -----------------------------------------------------------------------------
 
-class Writer {
+class Writer : public RealSequence<Writer> {
  public:
   explicit Writer(std::ostream& out) : out_(out) {}
   void u8(std::uint8_t v) { out_.put(static_cast<char>(v)); }
@@ -56,18 +56,6 @@ class Writer {
     std::uint64_t bits;
     std::memcpy(&bits, &d, sizeof bits);
     u64(bits);
-  }
-  void vec(const Vec3& v) {
-    real(v.x);
-    real(v.y);
-    real(v.z);
-  }
-  void pose(const Transform& t) {
-    vec(t.position);
-    real(t.rotation.w);
-    real(t.rotation.x);
-    real(t.rotation.y);
-    real(t.rotation.z);
   }
   void text(const std::string& s) {
     u32(static_cast<std::uint32_t>(s.size()));

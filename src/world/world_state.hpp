@@ -145,6 +145,27 @@ struct CollisionWorld::Impl {
   void propagate_pose(std::uint32_t i);
 };
 
+/// Writes vectors and poses as their reals in the one order the state hash and the snapshot
+/// share (x, y, z; the position, then the rotation's w, x, y, z) through the derived sink's
+/// real(Real) (CRTP).
+template <class Sink>
+struct RealSequence {
+  void vec(const Vec3& v) {
+    Sink& sink = static_cast<Sink&>(*this);
+    sink.real(v.x);
+    sink.real(v.y);
+    sink.real(v.z);
+  }
+  void pose(const Transform& t) {
+    vec(t.position);
+    Sink& sink = static_cast<Sink&>(*this);
+    sink.real(t.rotation.w);
+    sink.real(t.rotation.x);
+    sink.real(t.rotation.y);
+    sink.real(t.rotation.z);
+  }
+};
+
 /// An Error naming `field`.position or `field`.rotation when the pose is not finite within
 /// kMaxCoordinate or its rotation not unit; nothing otherwise.
 std::optional<Error> check_pose(const Transform& pose, const std::string& field);
