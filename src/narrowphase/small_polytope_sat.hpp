@@ -99,6 +99,7 @@ struct TranslationInterval {
   Real hi = std::numeric_limits<Real>::infinity();   ///< largest t
 };
 
+/// The interval of t (see TranslationInterval) for polytopes a and b and the direction d.
 inline TranslationInterval small_polytope_translation_interval(const SmallPolytope& a, const SmallPolytope& b,
                                                                const Vec3& d, Real parallel_sine) {
   TranslationInterval r;
