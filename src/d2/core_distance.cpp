@@ -80,14 +80,17 @@ bool solve_triangle(Simplex& s) {
   const Real d3 = -glm::dot(ab, b), d4 = -glm::dot(ac, b);
   if (d3 >= Real(0) && d4 <= d3) return keep_one(s, 1), false;
   const Real vc = d1 * d4 - d3 * d2;
-  if (vc <= Real(0) && d1 >= Real(0) && d3 <= Real(0)) return keep_two(s, 0, 1, d1 / (d1 - d3)), false;
+  if (vc <= Real(0) && d1 >= Real(0) && d3 <= Real(0))
+    return keep_two(s, 0, 1, d1 > d3 ? d1 / (d1 - d3) : Real(0)), false;
   const Real d5 = -glm::dot(ab, c), d6 = -glm::dot(ac, c);
   if (d6 >= Real(0) && d5 <= d6) return keep_one(s, 2), false;
   const Real vb = d5 * d2 - d1 * d6;
-  if (vb <= Real(0) && d2 >= Real(0) && d6 <= Real(0)) return keep_two(s, 0, 2, d2 / (d2 - d6)), false;
+  if (vb <= Real(0) && d2 >= Real(0) && d6 <= Real(0))
+    return keep_two(s, 0, 2, d2 > d6 ? d2 / (d2 - d6) : Real(0)), false;
   const Real va = d3 * d6 - d5 * d4;
   if (va <= Real(0) && (d4 - d3) >= Real(0) && (d5 - d6) >= Real(0)) {
-    return keep_two(s, 1, 2, (d4 - d3) / ((d4 - d3) + (d5 - d6))), false;
+    const Real sum = (d4 - d3) + (d5 - d6);
+    return keep_two(s, 1, 2, sum > Real(0) ? (d4 - d3) / sum : Real(0)), false;
   }
   return true;
 }

@@ -10,8 +10,8 @@
 ///   3. the reference edge is A's unless B's axis separates more by a tie margin (so the
 ///      choice does not flicker between frames); the incident edge is the other core's edge
 ///      whose normal is most anti-parallel to the reference normal;
-///   4. rounded cores apart whose nearest features are two vertices (a corner meeting a
-///      corner): one point along the line between them;
+///   4. cores apart whose nearest features are two vertices (a corner meeting a corner): one
+///      point along the line between them, at their exact distance;
 ///   5. otherwise clip the incident edge by the two side lines of the reference edge and keep
 ///      each clipped point within the contact distance; the point on the reference surface is
 ///      its projection on the reference edge moved out by the reference radius.
@@ -84,7 +84,7 @@ Manifold clip_manifold(const ConvexCore& ref, int edge, const ConvexCore& inc, R
   const Vec2 w1 = inc.vertices[incident], w2 = inc.vertices[i2];
   const Real radius = ref.radius + inc.radius;
   m.normal = n;
-  if (allow_corner && separation > tie && radius > Real(0)) {  // rounded cores apart: maybe corner to corner
+  if (allow_corner && separation > tie) {  // cores apart: maybe corner to corner
     Real s, t;
     closest_segment_parameters(v1, v2, w1, w2, s, t);
     const bool ref_end = s == Real(0) || s == Real(1);

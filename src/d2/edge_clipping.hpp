@@ -11,8 +11,8 @@ namespace proxima::d2::detail {
 /// The manifold of reference core `ref` (its edge `edge`, whose separation from `inc` is
 /// `separation`) against incident core `inc` (2+ vertices), both in the reference core's
 /// frame, normal from ref to inc, points within `contact_distance`. With `allow_corner`,
-/// rounded cores apart by more than `tie` whose nearest features are two vertices get one
-/// point along the line between them instead.
+/// cores apart by more than `tie` whose nearest features are two vertices get one point
+/// along the line between them instead.
 Manifold clip_manifold(const ConvexCore& ref, int edge, const ConvexCore& inc, Real separation, Real contact_distance,
                        Real tie, bool allow_corner);
 

@@ -30,8 +30,8 @@ bool core_intersect(const ConvexCore& a, const Pose& pose_a, const ConvexCore& b
 /// Cores of 2+ vertices: the separating axis with the largest separation over both cores'
 /// edge normals picks the reference edge (A's unless B's separates more by a tie margin),
 /// the most anti-parallel edge of the other core is the incident edge, and the incident edge
-/// clipped by the reference edge's side lines gives the points; rounded cores apart at a
-/// vertex–vertex pair get one point along the line between those vertices. A 1-vertex core
+/// clipped by the reference edge's side lines gives the points; cores apart whose nearest
+/// features are two vertices get one point along the line between those vertices. A 1-vertex core
 /// (point, circle) gets one point from core_distance.
 Manifold core_manifold(const ConvexCore& a, const Pose& pose_a, const ConvexCore& b, const Pose& pose_b,
                        Real contact_distance = Real(0));
