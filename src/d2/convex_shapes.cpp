@@ -47,7 +47,7 @@ std::vector<Vec2> monotone_chain_hull(std::span<const Vec2> points) {
   Real scale = Real(0);
   for (const Vec2& p : sorted) scale = std::max(scale, max_abs_component(p));
   // A turn counts only beyond the precision's weld tolerance on the points' scale.
-  const Real weld = Real(1e3) * kEpsilon * scale * scale + std::numeric_limits<Real>::min();
+  const Real weld = Real(16) * kEpsilon * scale * scale + std::numeric_limits<Real>::min();
   std::vector<Vec2> hull(2 * sorted.size() + 1);
   std::size_t k = 0;
   for (const Vec2& p : sorted) {  // lower chain

@@ -122,7 +122,7 @@ inline LD ray_entry(const RefShape& s, const RefPose& pose, const P& o, const P&
   const auto f = [&](LD t) { return point_signed_distance(s, pose, o + d * t); };
   if (f(0) <= 0) return 0;
   LD lo = 0, hi = max_t;
-  for (int i = 0; i < 200; ++i) {  // ternary search for the minimum of the convex f
+  for (int i = 0; i < 100; ++i) {  // ternary search for the minimum of the convex f
     const LD m1 = lo + (hi - lo) / 3, m2 = hi - (hi - lo) / 3;
     if (f(m1) < f(m2))
       hi = m2;
@@ -132,7 +132,7 @@ inline LD ray_entry(const RefShape& s, const RefPose& pose, const P& o, const P&
   const LD t_min = (lo + hi) / 2;
   if (f(t_min) > 0) return -1;
   lo = 0, hi = t_min;
-  for (int i = 0; i < 200; ++i) {
+  for (int i = 0; i < 70; ++i) {
     const LD mid = (lo + hi) / 2;
     (f(mid) > 0 ? lo : hi) = mid;
   }

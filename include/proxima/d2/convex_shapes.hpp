@@ -134,7 +134,7 @@ class Capsule {
 
 /// A convex polygon with 3 to 16 vertices, optionally rounded by a radius. Built as the
 /// convex hull of the given points (Andrew's monotone chain), so the input order does not
-/// matter; a point whose turn is within 1e3 machine epsilons of the points' squared scale
+/// matter; a point whose turn is within 16 machine epsilons of the points' squared scale
 /// (collinear or nearly duplicate) is dropped, so the kept vertices are strictly convex.
 class Polygon {
  public:
