@@ -119,6 +119,8 @@ GjkOutcome run_gjk(const CorePair& pair) {
   s.count = 1;
   const Real tiny = detail::pair_tolerance(pair.scale) * Real(1e-3);
   GjkOutcome out;
+  Simplex best = s;
+  Real best_distance2 = std::numeric_limits<Real>::infinity();
   for (out.iterations = 1; out.iterations <= kMaxIterations; ++out.iterations) {
     if (s.count == 2) solve_segment(s);
     if (s.count == 3 && solve_triangle(s)) {
@@ -130,12 +132,23 @@ GjkOutcome run_gjk(const CorePair& pair) {
       out.overlap = true;
       return out;
     }
+    // In exact arithmetic |p| shrinks at every step; when rounding stops that (a boundary
+    // through the origin), the previous simplex is the answer.
+    if (out.iterations > 1 && length_squared(p) >= best_distance2) {
+      s = best;
+      break;
+    }
+    best = s;
+    best_distance2 = length_squared(p);
     const SimplexVertex next = support_vertex(pair, -p);
     bool repeated = false;
     for (int i = 0; i < s.count; ++i) repeated = repeated || (s.v[i].ia == next.ia && s.v[i].ib == next.ib);
-    // Progress test: the support plane through `next` must come nearer the origin than p.
+    // Progress test: the support line through `next` bounds the distance from below by
+    // dot(next.w, p) / |p|; stop when that bound is within rounding of |p| (an absolute
+    // 16 epsilon of the pair's scale, so that touching pairs stop too).
     const Real gain = glm::dot(p, p) - glm::dot(next.w, p);
-    if (repeated || gain <= kRelativeTolerance * glm::dot(p, p)) break;
+    const Real resolution = Real(16) * kEpsilon * pair.scale * std::sqrt(glm::dot(p, p));
+    if (repeated || gain <= resolution + kRelativeTolerance * glm::dot(p, p) || out.iterations == kMaxIterations) break;
     s.v[s.count++] = next;
   }
   for (int i = 0; i < s.count; ++i) {

@@ -16,6 +16,7 @@
 #include <proxima/d2/shape.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <support/random.hpp>
 #include <vector>
@@ -138,6 +139,10 @@ inline LD ray_entry(const RefShape& s, const RefPose& pose, const P& o, const P&
   }
   return hi;
 }
+
+/// Every convex kind (all but Chain).
+inline constexpr std::array<ShapeType, 5> kConvexKinds = {ShapeType::Point, ShapeType::Circle, ShapeType::Segment,
+                                                          ShapeType::Capsule, ShapeType::Polygon};
 
 /// A random convex shape of kind `type` (every kind but Chain), about `size` across, with
 /// its defining numbers.

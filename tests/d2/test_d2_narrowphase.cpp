@@ -19,8 +19,7 @@ namespace {
 using test::LD;
 using test::RefPose;
 
-constexpr std::array<ShapeType, 5> kConvexKinds = {ShapeType::Point, ShapeType::Circle, ShapeType::Segment,
-                                                   ShapeType::Capsule, ShapeType::Polygon};
+using test::kConvexKinds;
 
 /// Distance tolerance at coordinate scale `scale`.
 Real tolerance(Real scale) { return (sizeof(Real) == 4 ? Real(2e-5) : Real(1e-10)) * (Real(1) + scale); }
@@ -121,6 +120,31 @@ TEST(D2Distance, CoincidentCentresGetTheSumOfTheRadii) {
   const DistanceResult r = distance(circle, Pose::from({2, 3}, 0), circle, Pose::from({2, 3}, 1));
   EXPECT_EQ(r.signed_distance, Real(-2));
   EXPECT_NEAR(glm::length(r.normal), Real(1), Real(1e-6));
+}
+
+/// Regression: a segment lying on a polygon's edge (the Minkowski difference's boundary
+/// through the origin) made GJK cycle to its iteration cap and report the witnesses of an
+/// unsolved simplex, a distance of 2.04 for touching shapes.
+TEST(D2Distance, TouchingParallelEdgesConverge) {
+  proxima::test::Random rng(0x70C4);
+  int exact = 0;
+  for (int i = 0; i < proxima::test::sweep_size(3000); ++i) {
+    // A random polygon and a segment along part of one of its edges, outside it by 0 or by a
+    // rounding-level gap, both under one random pose.
+    const test::RandomShape a = test::random_shape(rng, ShapeType::Polygon, rng.uniform(Real(0.3), Real(2)));
+    const ConvexCore core = a.shape.core();
+    const int e = rng.integer(0, core.count - 1);
+    const Vec2 p = core.vertices[e], q = core.vertices[(e + 1) % core.count];
+    const Real s0 = rng.uniform(Real(-0.5), Real(0.6)), s1 = rng.uniform(Real(0.7), Real(1.5));
+    const Shape segment = Segment::create(p + s0 * (q - p), p + s1 * (q - p)).value();
+    const Pose pose =
+        Pose::from({rng.uniform(Real(-5), Real(5)), rng.uniform(Real(-5), Real(5))}, rng.uniform(Real(-3), Real(3)));
+    const DistanceResult r = distance(a.shape, pose, segment, pose);
+    ASSERT_NEAR(r.signed_distance, -core.radius, tolerance(Real(8))) << "case " << i;
+    ASSERT_LT(r.iterations, 20) << "case " << i;
+    exact += r.signed_distance == -core.radius;
+  }
+  EXPECT_GT(exact, 0);
 }
 
 TEST(D2Distance, NonFinitePoseIsInvalidInput) {

@@ -18,10 +18,9 @@ namespace {
 using test::LD;
 using test::RefPose;
 
-constexpr std::array<ShapeType, 5> kConvexKinds = {ShapeType::Point, ShapeType::Circle, ShapeType::Segment,
-                                                   ShapeType::Capsule, ShapeType::Polygon};
+using test::kConvexKinds;
 
-Real tolerance() { return sizeof(Real) == 4 ? Real(1e-4) : Real(1e-9); }
+Real query_tolerance() { return sizeof(Real) == 4 ? Real(1e-4) : Real(1e-9); }
 
 RefPose random_pose(proxima::test::Random& rng) {
   return {rng.uniform(Real(-2), Real(2)), rng.uniform(Real(-2), Real(2)), rng.uniform(Real(-3.2), Real(3.2))};
@@ -40,12 +39,12 @@ TEST(D2Queries, RayCastsMatchTheFirstZeroOfTheSignedDistance) {
       const Ray ray{origin, target - origin};
       const LD expected = test::ray_entry(s.ref, pose, {origin.x, origin.y}, {ray.direction.x, ray.direction.y}, 2);
       const auto hit = raycast(s.shape, pose.pose(), ray, Real(2));
-      const Real tol = tolerance() * Real(10) / std::max(Real(1e-3), glm::length(ray.direction));
+      const Real tol = query_tolerance() * Real(10) / std::max(Real(1e-3), glm::length(ray.direction));
       if (expected < 0) {
         // A miss, or a graze the reference's bisection cannot resolve.
         if (hit) {
           const LD gap = test::point_signed_distance(s.ref, pose, {hit->point.x, hit->point.y});
-          ASSERT_LE(static_cast<Real>(gap), tolerance() * 10) << to_string(type) << " case " << i;
+          ASSERT_LE(static_cast<Real>(gap), query_tolerance() * 10) << to_string(type) << " case " << i;
         }
         continue;
       }
@@ -102,13 +101,14 @@ TEST(D2Queries, ContainmentAndClosestPointsMatchTheReference) {
       const Vec2 q(pose.x + rng.uniform(Real(-3), Real(3)), pose.y + rng.uniform(Real(-3), Real(3)));
       const LD expected = test::point_signed_distance(s.ref, pose, {q.x, q.y});
       const SurfacePoint sp = closest_point(s.shape, pose.pose(), q);
-      ASSERT_NEAR(sp.signed_distance, static_cast<Real>(expected), tolerance()) << to_string(type) << " case " << i;
+      ASSERT_NEAR(sp.signed_distance, static_cast<Real>(expected), query_tolerance())
+          << to_string(type) << " case " << i;
       ASSERT_NEAR(static_cast<Real>(test::point_signed_distance(s.ref, pose, {sp.point.x, sp.point.y})), Real(0),
-                  tolerance())
+                  query_tolerance())
           << to_string(type) << " case " << i;
-      ASSERT_NEAR(glm::length(q - sp.point), std::abs(sp.signed_distance), tolerance())
+      ASSERT_NEAR(glm::length(q - sp.point), std::abs(sp.signed_distance), query_tolerance())
           << to_string(type) << " case " << i;
-      if (std::abs(expected) > tolerance()) {
+      if (std::abs(expected) > query_tolerance()) {
         ASSERT_EQ(contains(s.shape, pose.pose(), q), expected < 0) << to_string(type) << " case " << i;
       }
     }
