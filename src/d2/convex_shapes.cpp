@@ -81,7 +81,10 @@ Vec2 polygon_centroid(const ConvexCore& core) {
 }  // namespace
 
 void compute_core_normals(ConvexCore& core) {
-  if (core.count < 2) return;
+  if (core.count < 2) {
+    core.normals[0] = Vec2(Real(1), Real(0));  // unused; set so that copies read no indeterminate value
+    return;
+  }
   for (int i = 0; i < core.count; ++i) {
     const Vec2 edge = core.vertices[(i + 1) % core.count] - core.vertices[i];
     Vec2 unit;

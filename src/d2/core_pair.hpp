@@ -32,7 +32,7 @@ inline CorePair make_core_pair(const ConvexCore& a, const Pose& pose_a, const Co
   for (int i = 0; i < a.count; ++i) scale = std::max(scale, max_abs_component(a.vertices[i]));
   for (int i = 0; i < b.count; ++i) {
     pair.b.vertices[i] = rel.apply(b.vertices[i]);
-    pair.b.normals[i] = rel.rotation.apply(b.normals[i]);
+    if (b.count >= 2) pair.b.normals[i] = rel.rotation.apply(b.normals[i]);
     scale = std::max(scale, max_abs_component(pair.b.vertices[i]));
   }
   pair.scale = std::max(scale, Real(1e-30));

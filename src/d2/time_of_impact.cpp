@@ -175,9 +175,9 @@ Result<ToiResult> time_of_impact(const Shape& a, const Motion& motion_a, const S
   return best;
 }
 
-Result<ToiResult> shape_cast(const Shape& a, const Pose& pose_a, const Shape& b, const Pose& pose_b,
-                             const Vec2& translation, const ToiOptions& options) {
-  return time_of_impact(a, Motion::translating(pose_a, Vec2(Real(0))), b, Motion::translating(pose_b, translation),
+Result<ToiResult> shape_cast(const Shape& a, const Pose& pose_a, const Vec2& translation, const Shape& b,
+                             const Pose& pose_b, const ToiOptions& options) {
+  return time_of_impact(a, Motion::translating(pose_a, translation), b, Motion::translating(pose_b, Vec2(Real(0))),
                         options);
 }
 

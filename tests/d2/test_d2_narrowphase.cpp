@@ -177,7 +177,9 @@ void expect_manifold_matches(const RandomPair& p, Real contact_distance, const s
     const ContactPoint& c = m.points[k];
     deepest = std::max(deepest, c.depth);
     ASSERT_NEAR(glm::dot(c.point_a - c.point_b, m.normal), c.depth, tol) << what;
-    ASSERT_LE(c.depth, static_cast<Real>(-expected) + tol) << what << " point " << k;
+    // The reference edge may be the one within the tie margin (1e-4 of the pair's scale) of
+    // the least-penetrating axis: a point's depth can exceed the exact one by that much.
+    ASSERT_LE(c.depth, static_cast<Real>(-expected) + tol + Real(1e-4) * Real(8)) << what << " point " << k;
     ASSERT_GE(c.depth, -contact_distance - tol) << what;
     const LD on_a = test::point_signed_distance(p.a.ref, p.pa, {c.point_a.x, c.point_a.y});
     const LD on_b = test::point_signed_distance(p.b.ref, p.pb, {c.point_b.x, c.point_b.y});

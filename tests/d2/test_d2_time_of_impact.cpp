@@ -116,11 +116,11 @@ TEST(D2TimeOfImpact, EveryConvexPairMatchesTheSampledReference) {
 TEST(D2TimeOfImpact, CircleOntoABoxAtTheAnalyticTime) {
   const Shape box = Polygon::box(Real(1), Real(1)).value();
   const Shape ball = Circle::create(Real(0.5)).value();
-  const ToiResult r = shape_cast(box, Pose::identity(), ball, Pose::from({Real(5), 0}, 0), {Real(-8), 0}).value();
+  const ToiResult r = shape_cast(ball, Pose::from({Real(5), 0}, 0), {Real(-8), 0}, box, Pose::identity()).value();
   ASSERT_EQ(r.status, CcdStatus::Hit);
   EXPECT_NEAR(r.toi, Real(3.5) / Real(8), Real(2e-4));
-  EXPECT_NEAR(r.normal.x, Real(1), Real(1e-4));
-  EXPECT_NEAR(r.point_a.x, Real(1), Real(1e-3));
+  EXPECT_NEAR(r.normal.x, Real(-1), Real(1e-4));
+  EXPECT_NEAR(r.point_b.x, Real(1), Real(1e-3));
 }
 
 TEST(D2TimeOfImpact, ASpinningPaddleHitsABallAtTheAnalyticAngle) {
@@ -141,15 +141,15 @@ TEST(D2TimeOfImpact, ASpinningPaddleHitsABallAtTheAnalyticAngle) {
 TEST(D2TimeOfImpact, TheTimeZeroContract) {
   const Shape box = Polygon::box(Real(1), Real(1)).value();
   // Overlapping at t = 0.
-  ToiResult r = shape_cast(box, Pose::identity(), box, Pose::from({Real(1.5), 0}, 0), {Real(1), 0}).value();
+  ToiResult r = shape_cast(box, Pose::from({Real(1.5), 0}, 0), {Real(1), 0}, box, Pose::identity()).value();
   EXPECT_EQ(r.status, CcdStatus::InitiallyOverlapping);
   EXPECT_NEAR(r.depth, Real(0.5), Real(1e-5));
-  EXPECT_NEAR(r.normal.x, Real(1), Real(1e-5));
+  EXPECT_NEAR(r.normal.x, Real(-1), Real(1e-5));
   // Touching and approaching: a hit at 0; touching and leaving: separated.
-  r = shape_cast(box, Pose::identity(), box, Pose::from({Real(2), 0}, 0), {Real(-1), 0}).value();
+  r = shape_cast(box, Pose::from({Real(2), 0}, 0), {Real(-1), 0}, box, Pose::identity()).value();
   EXPECT_EQ(r.status, CcdStatus::Hit);
   EXPECT_EQ(r.toi, Real(0));
-  r = shape_cast(box, Pose::identity(), box, Pose::from({Real(2), 0}, 0), {Real(1), 0}).value();
+  r = shape_cast(box, Pose::from({Real(2), 0}, 0), {Real(1), 0}, box, Pose::identity()).value();
   EXPECT_EQ(r.status, CcdStatus::Separated);
 }
 
@@ -159,12 +159,12 @@ TEST(D2TimeOfImpact, ChainsAreOneSidedAndSegmentsAreFound) {
   const Shape bullet = Circle::create(Real(0.05)).value();
   // A bullet falling fast from above hits segment 1 ([0, 5]) at the analytic time.
   ToiResult r =
-      shape_cast(floor, Pose::identity(), bullet, Pose::from({Real(2), Real(10)}, 0), {Real(0), Real(-100)}).value();
+      shape_cast(bullet, Pose::from({Real(2), Real(10)}, 0), {Real(0), Real(-100)}, floor, Pose::identity()).value();
   ASSERT_EQ(r.status, CcdStatus::Hit);
   EXPECT_NEAR(r.toi, Real(9.95) / Real(100), Real(1e-5));
-  EXPECT_EQ(r.part_a, 1);
+  EXPECT_EQ(r.part_b, 1);
   // From below, it passes through.
-  r = shape_cast(floor, Pose::identity(), bullet, Pose::from({Real(2), Real(-10)}, 0), {Real(0), Real(100)}).value();
+  r = shape_cast(bullet, Pose::from({Real(2), Real(-10)}, 0), {Real(0), Real(100)}, floor, Pose::identity()).value();
   EXPECT_EQ(r.status, CcdStatus::Separated);
 }
 

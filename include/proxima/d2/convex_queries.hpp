@@ -28,7 +28,8 @@ bool core_intersect(const ConvexCore& a, const Pose& pose_a, const ConvexCore& b
 /// Contact manifold of two rounded cores: up to two points with one normal, including
 /// speculative points whose gap is at most `contact_distance` (>= 0, length units).
 /// Cores of 2+ vertices: the separating axis with the largest separation over both cores'
-/// edge normals picks the reference edge (A's unless B's separates more by a tie margin),
+/// edge normals picks the reference edge (A's unless B's separates more by a tie margin of
+/// 1e-4 of the pair's scale, so a depth may exceed the exact penetration by that margin),
 /// the most anti-parallel edge of the other core is the incident edge, and the incident edge
 /// clipped by the reference edge's side lines gives the points; cores apart whose nearest
 /// features are two vertices get one point along the line between those vertices. A 1-vertex core

@@ -75,9 +75,10 @@ struct ToiResult {
 Result<ToiResult> time_of_impact(const Shape& a, const Motion& motion_a, const Shape& b, const Motion& motion_b,
                                  const ToiOptions& options = {});
 
-/// Shape cast: B at `pose_b` translated by `translation` (t in [0, 1] along it) against A at
-/// `pose_a`; time_of_impact with those two motions.
-Result<ToiResult> shape_cast(const Shape& a, const Pose& pose_a, const Shape& b, const Pose& pose_b,
-                             const Vec2& translation, const ToiOptions& options = {});
+/// Shape cast (as ccd/shape_cast.hpp in 3D): A at `pose_a` translated by `translation` (t in
+/// [0, 1] along it) against B resting at `pose_b`; time_of_impact with those two motions
+/// (errors name "motion_a.translation" for the translation).
+Result<ToiResult> shape_cast(const Shape& a, const Pose& pose_a, const Vec2& translation, const Shape& b,
+                             const Pose& pose_b, const ToiOptions& options = {});
 
 }  // namespace proxima::d2
