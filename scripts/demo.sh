@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # Installs the dependencies, builds Proxima (release) and runs the main job: `proxima demo`
-# (the billiard break), then `proxima demo-tunnelling` (discrete against continuous detection),
-# whose picture goes next to the billiards one: PATH.svg gives PATH-tunnelling.svg
-# (proxima-demo.svg and proxima-demo-tunnelling.svg by default). The arguments go to
-# `proxima demo`; of them the tunnelling demo follows --svg ('' : no pictures) and --quiet.
+# (the billiard break), then `proxima demo-tunnelling` (discrete against continuous detection)
+# and `proxima demo-platformer` (the 2D world), whose pictures go next to the billiards one:
+# PATH.svg gives PATH-tunnelling.svg and PATH-platformer.svg (proxima-demo.svg,
+# proxima-demo-tunnelling.svg and proxima-demo-platformer.svg by default). The arguments go
+# to `proxima demo`; of them the other demos follow --svg ('' : no pictures) and --quiet.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
@@ -22,7 +23,10 @@ for ((i = 0; i < ${#args[@]}; i++)); do
     --help | -h) exec ./build/release/tools/proxima demo "$@" ;;
   esac
 done
+platformer=(--svg)
 if [ -n "$svg" ]; then tunnelling+=("${svg%.svg}-tunnelling.svg"); else tunnelling+=(""); fi
+if [ -n "$svg" ]; then platformer+=("${svg%.svg}-platformer.svg"); else platformer+=(""); fi
 
 ./build/release/tools/proxima demo "$@"
 ./build/release/tools/proxima demo-tunnelling "${tunnelling[@]}" "${quiet[@]}"
+./build/release/tools/proxima demo-platformer "${platformer[@]}" "${quiet[@]}"

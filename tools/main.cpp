@@ -2,6 +2,7 @@
 //   proxima --version          version and scalar precision
 //   proxima demo [options]     the billiard-break demo (statistics + SVG picture)
 //   proxima demo-tunnelling    discrete against continuous detection of fast bullets (+ SVG)
+//   proxima demo-platformer    a 2D platformer on the 2D collision world (+ SVG)
 //   proxima query [FILE|-]     the JSON query protocol, one request per line
 //   proxima world [FILE|-]     a collision world driven by JSON requests, one per line
 //   proxima bench broadphase   one broad-phase structure on a W1 workload file
@@ -20,6 +21,7 @@
 
 #include "bench_command.hpp"
 #include "demo_billiards.hpp"
+#include "demo_platformer.hpp"
 #include "demo_tunnelling.hpp"
 #include "json_shapes.hpp"
 #include "mesh_info.hpp"
@@ -156,6 +158,21 @@ int run(int argc, char** argv) {
       ->capture_default_str();
   tunnelling_cmd->add_flag("--quiet,-q", tunnelling.quiet, "Print nothing (still writes the SVG)");
 
+  proxima::tool::PlatformerDemoOptions platformer;
+  CLI::App* platformer_cmd =
+      app.add_subcommand("demo-platformer",
+                         "A 2D platformer on the 2D collision world: a player walking over a tiled chain ground, "
+                         "fast projectiles at a thin wall with and without continuous detection; prints statistics, "
+                         "draws both runs as an SVG");
+  platformer_cmd->add_option("--frames", platformer.config.frames, "Frames to simulate at 60 Hz")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 100000));
+  platformer_cmd->add_option("--projectiles", platformer.config.projectiles, "Projectiles fired, spread over the run")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 1000));
+  platformer_cmd->add_option("--svg", platformer.svg_path, "Picture of both runs (empty: none)")->capture_default_str();
+  platformer_cmd->add_flag("--quiet,-q", platformer.quiet, "Print nothing (still writes the SVG)");
+
   std::string query_input;
   CLI::App* query_cmd = app.add_subcommand(
       "query", "Answer JSON requests, one per line, from FILE or standard input; one JSON answer per line");
@@ -224,6 +241,7 @@ int run(int argc, char** argv) {
   try {
     if (demo_cmd->parsed()) return proxima::tool::run_billiards_demo(demo, std::cout, std::cerr);
     if (tunnelling_cmd->parsed()) return proxima::tool::run_tunnelling_demo(tunnelling, std::cout, std::cerr);
+    if (platformer_cmd->parsed()) return proxima::tool::run_platformer_demo(platformer, std::cout, std::cerr);
     if (query_cmd->parsed()) return run_query(query_input);
     if (world_cmd->parsed()) {
       world.settings.contact_distance = static_cast<proxima::Real>(world_contact_distance);
