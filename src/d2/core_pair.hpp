@@ -32,9 +32,10 @@ inline CorePair make_core_pair(const ConvexCore& a, const Pose& pose_a, const Co
   for (int i = 0; i < a.count; ++i) scale = std::max(scale, max_abs_component(a.vertices[i]));
   for (int i = 0; i < b.count; ++i) {
     pair.b.vertices[i] = rel.apply(b.vertices[i]);
-    pair.b.normals[i] = rel.rotation.apply(b.normals[i]);
     scale = std::max(scale, max_abs_component(pair.b.vertices[i]));
   }
+  // A 1-vertex core has no edge: its normals are unset and must not be read.
+  for (int i = 0; b.count >= 2 && i < b.count; ++i) pair.b.normals[i] = rel.rotation.apply(b.normals[i]);
   pair.scale = std::max(scale, Real(1e-30));
   return pair;
 }
