@@ -34,9 +34,7 @@
 #include "support/workloads.hpp"
 
 #if PROXIMA_HAVE_BOX2D
-#include <box2d/b2_collision.h>
-#include <box2d/b2_distance.h>
-#include <box2d/box2d.h>
+#include "support/box2d_peers.hpp"
 #endif
 
 namespace proxima::d2 {
@@ -271,54 +269,12 @@ TEST(D2Box2dPeers, OneVertexCoreNormalIsNeverRead) {
 
 #if PROXIMA_HAVE_BOX2D
 // ---------------------------------------------------------------------------------------
-// Box2D's shapes: exact proxies for b2Distance, skinned shapes for b2Collide*
+// Box2D: b2Distance and b2Collide* on the shapes of support/box2d_peers.hpp
 
-/// One side of a pair for Box2D.
-struct B2Side {
-  enum Kind { Circle, Polygon, Edge } kind = Circle;
-  std::array<b2Vec2, b2_maxPolygonVertices> vertices{};  // the core, local frame
-  int count = 0;
-  float radius = 0;  // the exact rounding radius
-  float skin = 0;    // b2_polygonRadius for polygons and edges, 0 for circles
-  b2PolygonShape polygon;
-  b2CircleShape circle;
-  b2EdgeShape edge;
-  b2Transform xf;
-};
-
-B2Side b2_side(const pb::Polygons2dShape& s, const pb::Polygons2dPose& pose) {
-  B2Side b;
-  const std::vector<P> local = local_vertices(s);
-  b.count = int(local.size());
-  for (std::size_t i = 0; i < local.size(); ++i) b.vertices[i].Set(float(local[i].x), float(local[i].y));
-  b.radius = float(s.radius);
-  b.xf.p.Set(float(pose.x), float(pose.y));
-  b.xf.q.s = float(std::sin(pose.angle));
-  b.xf.q.c = float(std::cos(pose.angle));
-  if (b.count == 1) {
-    b.circle.m_radius = b.radius;
-    return b;
-  }
-  b.skin = b2_polygonRadius;
-  if (b.count == 2) {
-    b.kind = B2Side::Edge;
-    b.edge.SetTwoSided(b.vertices[0], b.vertices[1]);
-    b.edge.m_radius = b.radius + b.skin;
-    return b;
-  }
-  b.kind = B2Side::Polygon;
-  b.polygon.Set(b.vertices.data(), b.count);
-  b.polygon.m_radius = b.radius + b.skin;
-  return b;
-}
+using B2Side = pb::Box2dShape;
 
 b2DistanceOutput b2_distance(const B2Side& a, const B2Side& b) {
-  b2DistanceInput input;
-  input.proxyA.Set(a.vertices.data(), a.count, a.radius);
-  input.proxyB.Set(b.vertices.data(), b.count, b.radius);
-  input.transformA = a.xf;
-  input.transformB = b.xf;
-  input.useRadii = true;
+  const b2DistanceInput input = pb::box2d_distance_input(a, b);
   b2SimplexCache cache;
   cache.count = 0;
   b2DistanceOutput output;
@@ -334,28 +290,11 @@ struct B2Contact {
   float deepest = 0;
 };
 
-/// The b2Collide* call for (a, b) in Box2D's argument order; false when Box2D has none.
-bool b2_collide_ordered(const B2Side& a, const B2Side& b, b2Manifold& m) {
-  using K = B2Side::Kind;
-  if (a.kind == K::Circle && b.kind == K::Circle) return b2CollideCircles(&m, &a.circle, a.xf, &b.circle, b.xf), true;
-  if (a.kind == K::Polygon && b.kind == K::Circle) {
-    return b2CollidePolygonAndCircle(&m, &a.polygon, a.xf, &b.circle, b.xf), true;
-  }
-  if (a.kind == K::Polygon && b.kind == K::Polygon) {
-    return b2CollidePolygons(&m, &a.polygon, a.xf, &b.polygon, b.xf), true;
-  }
-  if (a.kind == K::Edge && b.kind == K::Circle) return b2CollideEdgeAndCircle(&m, &a.edge, a.xf, &b.circle, b.xf), true;
-  if (a.kind == K::Edge && b.kind == K::Polygon) {
-    return b2CollideEdgeAndPolygon(&m, &a.edge, a.xf, &b.polygon, b.xf), true;
-  }
-  return false;
-}
-
 std::optional<B2Contact> b2_collide(const B2Side& a, const B2Side& b) {
   b2Manifold m;
   bool swapped = false;
-  if (!b2_collide_ordered(a, b, m)) {
-    if (!b2_collide_ordered(b, a, m)) return std::nullopt;
+  if (!pb::box2d_collide_ordered(a, b, m)) {
+    if (!pb::box2d_collide_ordered(b, a, m)) return std::nullopt;
     swapped = true;
   }
   const B2Side& first = swapped ? b : a;
@@ -395,7 +334,7 @@ struct Tally {
 // b2Distance
 
 void compare_distance(const Pair& p, const pb::Polygons2dShapePair& s, std::size_t k, Tally& t) {
-  const B2Side a = b2_side(p.raw.a, p.raw.pose_a), b = b2_side(p.raw.b, p.raw.pose_b);
+  const B2Side a = pb::make_box2d_shape(p.raw.a, p.raw.pose_a), b = pb::make_box2d_shape(p.raw.b, p.raw.pose_b);
   const b2DistanceOutput out = b2_distance(a, b);
   const LD tol = box2d_tolerance(p);
   const bool b2_overlap = out.distance < 10.0f * b2_epsilon;  // b2TestOverlap's rule
@@ -466,7 +405,7 @@ void judge_verdicts(const Pair& p, int ours, int theirs, LD reach, LD tol, std::
 }
 
 void compare_manifold(const Pair& p, const pb::Polygons2dShapePair& s, std::size_t k, Tally& t) {
-  const B2Side a = b2_side(p.raw.a, p.raw.pose_a), b = b2_side(p.raw.b, p.raw.pose_b);
+  const B2Side a = pb::make_box2d_shape(p.raw.a, p.raw.pose_a), b = pb::make_box2d_shape(p.raw.b, p.raw.pose_b);
   const std::optional<B2Contact> theirs = b2_collide(a, b);
   if (!theirs) return t.add("pairs Box2D has no function for (edge-edge)", k);
   const Real reach = Real(a.skin + b.skin);
