@@ -46,6 +46,7 @@ using LD = long double;
 // ---------------------------------------------------------------------------------------
 // The exact reference (long double, from the file's numbers)
 
+/// A point or vector of the plane in long double.
 struct P {
   LD x = 0;
   LD y = 0;
@@ -60,6 +61,7 @@ struct RefShape {
   LD radius = 0;
 };
 
+/// The core's vertices in the shape's local frame (a circle: its centre; a box: 4 corners).
 std::vector<P> local_vertices(const pb::Polygons2dShape& s) {
   if (s.kind == pb::Polygons2dKind::Circle) return {P{}};
   if (s.kind == pb::Polygons2dKind::Box) {
@@ -71,6 +73,7 @@ std::vector<P> local_vertices(const pb::Polygons2dShape& s) {
   return v;
 }
 
+/// The shape's core placed in the world, in long double.
 RefShape ref_shape(const pb::Polygons2dShape& s, const pb::Polygons2dPose& pose) {
   const LD c = std::cos(LD(pose.angle)), sn = std::sin(LD(pose.angle));
   RefShape r;
@@ -99,6 +102,7 @@ std::vector<P> hull(std::vector<P> pts) {
   return h;
 }
 
+/// Distance from the origin to the segment [a, b].
 LD origin_to_segment(const P& a, const P& b) {
   const P e = b - a;
   const LD ee = dot(e, e);
@@ -135,6 +139,7 @@ LD ref_point_distance(const RefShape& s, const Vec2& p) { return ref_signed_dist
 // ---------------------------------------------------------------------------------------
 // The workload, with Proxima's answers and the reference's
 
+/// One W9 pair as read, its reference shapes and exact signed distance.
 struct Pair {
   pb::Polygons2dPair raw;
   RefShape ref_a, ref_b;
@@ -142,11 +147,13 @@ struct Pair {
   LD scale = 1;      // largest coordinate of the pair (>= 1): the tolerances' scale
 };
 
+/// Every pair, and the pairs as the 2D module's shapes (same order).
 struct Workload {
   std::vector<Pair> pairs;
   std::vector<pb::Polygons2dShapePair> shapes;
 };
 
+/// The pair's largest coordinate plus radius, at least 1.
 LD pair_scale(const Pair& p) {
   LD s = 1;
   for (const RefShape* r : {&p.ref_a, &p.ref_b})
@@ -154,6 +161,7 @@ LD pair_scale(const Pair& p) {
   return s;
 }
 
+/// The workload, read and decided once; null (with `why`) when it cannot be read.
 const Workload* load(std::string& why) {
   static const std::optional<Workload> workload = [&]() -> std::optional<Workload> {
     auto raw = pb::read_polygons2d_pairs(pb::workload_path(pb::workload_dir(), "polygons2d_pairs.txt"));
@@ -173,6 +181,7 @@ const Workload* load(std::string& why) {
   return workload ? &*workload : nullptr;
 }
 
+/// Loads the workload into `w`, or skips the test when the shared files are absent.
 #define PROXIMA_W9_LOAD(w)                                                                                \
   std::string w##_why;                                                                                    \
   const Workload* w = load(w##_why);                                                                      \
@@ -184,6 +193,7 @@ const Workload* load(std::string& why) {
 /// Proxima's accuracy at a pair's scale: a few hundred ulps of Real.
 LD proxima_tolerance(const Pair& p) { return LD(500) * LD(std::numeric_limits<Real>::epsilon()) * p.scale; }
 
+/// "pair k (line k + 2)": where a pair is in polygons2d_pairs.txt.
 std::string describe(std::size_t k) { return "pair " + std::to_string(k) + " (line " + std::to_string(k + 2) + ")"; }
 
 // ---------------------------------------------------------------------------------------
@@ -273,6 +283,7 @@ TEST(D2Box2dPeers, OneVertexCoreNormalIsNeverRead) {
 
 using B2Side = pb::Box2dShape;
 
+/// b2Distance on a pair with a fresh simplex cache.
 b2DistanceOutput b2_distance(const B2Side& a, const B2Side& b) {
   const b2DistanceInput input = pb::box2d_distance_input(a, b);
   b2SimplexCache cache;
@@ -290,6 +301,8 @@ struct B2Contact {
   float deepest = 0;
 };
 
+/// Box2D's manifold of (a, b), calling b2Collide* with the sides swapped where Box2D takes
+/// them in the other order; nothing for edge against edge.
 std::optional<B2Contact> b2_collide(const B2Side& a, const B2Side& b) {
   b2Manifold m;
   bool swapped = false;
@@ -333,6 +346,7 @@ struct Tally {
 // ---------------------------------------------------------------------------------------
 // b2Distance
 
+/// Tallies b2Distance's answer on pair k against the reference and Proxima's witnesses.
 void compare_distance(const Pair& p, const pb::Polygons2dShapePair& s, std::size_t k, Tally& t) {
   const B2Side a = pb::make_box2d_shape(p.raw.a, p.raw.pose_a), b = pb::make_box2d_shape(p.raw.b, p.raw.pose_b);
   const b2DistanceOutput out = b2_distance(a, b);
@@ -384,6 +398,8 @@ void judge_our_deepest(const Pair& p, LD ours, LD tol, std::size_t k, Tally& t) 
                 << double(p.reference);
 }
 
+/// Box2D's deepest point against the reference: exact, shallower on rounded cores apart,
+/// deeper within its axis hysteresis, or wrong.
 void judge_their_deepest(const Pair& p, LD theirs, LD tol, std::size_t k, Tally& t) {
   if (std::abs(theirs - p.reference) <= tol) return t.add("Box2D deepest exact", k);
   if (rounded_apart(p) && theirs > p.reference) return t.add("Box2D deepest shallower (clipped rounded end)", k);
@@ -404,6 +420,7 @@ void judge_verdicts(const Pair& p, int ours, int theirs, LD reach, LD tol, std::
   }
 }
 
+/// Tallies both manifolds of pair k against the reference.
 void compare_manifold(const Pair& p, const pb::Polygons2dShapePair& s, std::size_t k, Tally& t) {
   const B2Side a = pb::make_box2d_shape(p.raw.a, p.raw.pose_a), b = pb::make_box2d_shape(p.raw.b, p.raw.pose_b);
   const std::optional<B2Contact> theirs = b2_collide(a, b);

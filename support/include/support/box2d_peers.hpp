@@ -27,8 +27,9 @@ namespace proxima::bench {
 
 /// One W9 shape and pose for Box2D.
 struct Box2dShape {
-  /// Which b2Shape b2Collide* takes.
-  enum Kind { Circle, Polygon, Edge } kind = Circle;
+  /// The b2Shape that b2Collide* takes: b2CircleShape, b2PolygonShape or b2EdgeShape.
+  enum Kind { Circle, Polygon, Edge };
+  Kind kind = Circle;                                    ///< which of circle, polygon, edge below is built
   std::array<b2Vec2, b2_maxPolygonVertices> vertices{};  ///< exact core, local frame
   int count = 0;                                         ///< core vertices (1, 2 or 3..8)
   float radius = 0;                                      ///< exact rounding radius (length units)
