@@ -1,5 +1,5 @@
-# Optional peer libraries (FCL, libccd, Bullet, ODE, Embree 3), used by the benchmarks and
-# the cross-validation tests only, never by the library.
+# Optional peer libraries (FCL, libccd, Bullet, ODE, Embree 3, Box2D 2.4), used by the
+# benchmarks and the cross-validation tests only, never by the library.
 include_guard(GLOBAL)
 # Optional peer libraries: each found one becomes an INTERFACE target
 # proxima_peer_<name> carrying its include paths, libraries and PROXIMA_HAVE_<NAME>=1.
@@ -42,6 +42,9 @@ proxima_add_peer(fcl PROXIMA_HAVE_FCL fcl)
 proxima_add_peer(ccd PROXIMA_HAVE_CCD ccd)
 proxima_add_peer(bullet PROXIMA_HAVE_BULLET bullet)
 proxima_add_peer(ode PROXIMA_HAVE_ODE ode)
+# Box2D 2.4 (Debian's libbox2d-dev ships box2d.pc): the 2D module's peer. Its .pc also adds
+# /usr/include/box2d, so its headers are included as <box2d/b2_*.h>.
+proxima_add_peer(box2d PROXIMA_HAVE_BOX2D box2d)
 
 # Embree 3: its CMake package first, then pkg-config.
 find_package(embree 3 CONFIG QUIET)

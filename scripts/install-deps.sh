@@ -19,6 +19,7 @@ packages=(
   # Peer libraries: references for the cross-validation tests and the side-by-side
   # benchmarks only; the library never links them.
   libfcl-dev libccd-dev libbullet-dev libode-dev libembree-dev
+  libbox2d-dev                       # Box2D 2.4: the 2D module's peer (tests/d2, bench_d2_pairs)
 )
 $SUDO apt-get update -qq
 $SUDO apt-get install -y -qq --no-install-recommends "${packages[@]}" >/dev/null

@@ -85,12 +85,16 @@ void compute_core_normals(ConvexCore& core) {
     core.normals[0] = Vec2(Real(1), Real(0));  // unused; set so that copies read no indeterminate value
     return;
   }
-  for (int i = 0; i < core.count; ++i) {
+  // Two vertices: edge (1, 0) is edge (0, 1) reversed, and unit_and_length's scaling and
+  // rounding are symmetric in sign, so its normal is exactly the negation.
+  const int distinct = core.count == 2 ? 1 : core.count;
+  for (int i = 0; i < distinct; ++i) {
     const Vec2 edge = core.vertices[(i + 1) % core.count] - core.vertices[i];
     Vec2 unit;
     Real length;
     core.normals[i] = unit_and_length(right_perp(edge), unit, length) ? unit : Vec2(Real(1), Real(0));
   }
+  if (core.count == 2) core.normals[1] = -core.normals[0];
 }
 
 Result<Point> Point::create(const Vec2& position) {

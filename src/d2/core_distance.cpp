@@ -202,15 +202,19 @@ DistanceResult core_distance(const ConvexCore& a, const Pose& pose_a, const Conv
     r.status = PairStatus::InvalidInput;
     return r;
   }
-  const CorePair pair = detail::make_core_pair(a, pose_a, b, pose_b);
+  CorePair pair = detail::make_core_pair(a, pose_a, b, pose_b, false);
+  const auto penetration = [&] {
+    detail::move_normals(pair, b);
+    return sat_penetration(pair);
+  };
   const GjkOutcome gjk = run_gjk(pair);
   if (gjk.overlap) {
-    r = sat_penetration(pair);
+    r = penetration();
   } else {
     Vec2 n;
     Real d;
     if (!unit_and_length(gjk.b - gjk.a, n, d)) {
-      r = sat_penetration(pair);
+      r = penetration();
     } else {
       r.signed_distance = d;
       r.normal = n;

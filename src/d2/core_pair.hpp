@@ -15,26 +15,36 @@ namespace proxima::d2::detail {
 /// Core B placed in A's frame.
 struct CorePair {
   const ConvexCore* a = nullptr;
-  ConvexCore b;  ///< B's vertices and normals in A's frame
+  ConvexCore b;         ///< B's vertices in A's frame, and its normals once moved (move_normals)
+  Rotation rotation{};  ///< B's frame to A's
   /// Largest coordinate magnitude of both cores in A's frame plus the radii: the scale of
   /// the pair's tolerances.
   Real scale = Real(1);
 };
 
-/// Moves B into A's frame.
-inline CorePair make_core_pair(const ConvexCore& a, const Pose& pose_a, const ConvexCore& b, const Pose& pose_b) {
+/// Rotates B's edge normals into A's frame (a 1-vertex core has none: its normals are
+/// unset and must not be read).
+inline void move_normals(CorePair& pair, const ConvexCore& b) {
+  for (int i = 0; b.count >= 2 && i < b.count; ++i) pair.b.normals[i] = pair.rotation.apply(b.normals[i]);
+}
+
+/// Moves B's vertices into A's frame, and its normals with `with_normals` (the
+/// separating-axis code needs them, GJK does not).
+inline CorePair make_core_pair(const ConvexCore& a, const Pose& pose_a, const ConvexCore& b, const Pose& pose_b,
+                               bool with_normals = true) {
   CorePair pair;
   pair.a = &a;
   const Pose rel = relative(pose_a, pose_b);
+  pair.rotation = rel.rotation;
   pair.b.count = b.count;
   pair.b.radius = b.radius;
   Real scale = a.radius + b.radius;
   for (int i = 0; i < a.count; ++i) scale = std::max(scale, max_abs_component(a.vertices[i]));
   for (int i = 0; i < b.count; ++i) {
     pair.b.vertices[i] = rel.apply(b.vertices[i]);
-    if (b.count >= 2) pair.b.normals[i] = rel.rotation.apply(b.normals[i]);
     scale = std::max(scale, max_abs_component(pair.b.vertices[i]));
   }
+  if (with_normals) move_normals(pair, b);
   pair.scale = std::max(scale, Real(1e-30));
   return pair;
 }
