@@ -99,36 +99,28 @@ void compute_core_normals(ConvexCore& core) {
 
 Result<Point> Point::create(const Vec2& position) {
   if (auto e = check_point(position, "position")) return *e;
-  return Point(position);
+  return Point(make_core({position}, Real(0)));
 }
-
-ConvexCore Point::core() const { return make_core({position_}, Real(0)); }
 
 Result<Circle> Circle::create(Real radius, const Vec2& center) {
   if (auto e = validate::positive(radius, "radius")) return *e;
   if (auto e = check_point(center, "center")) return *e;
-  return Circle(radius, center);
+  return Circle(make_core({center}, radius));
 }
-
-ConvexCore Circle::core() const { return make_core({center_}, radius_); }
 
 Result<Segment> Segment::create(const Vec2& a, const Vec2& b) {
   if (auto e = check_point(a, "vertices[0]")) return *e;
   if (auto e = check_point(b, "vertices[1]")) return *e;
   if (a == b) return Error{ErrorCode::Degenerate, "vertices", "the two end points are equal"};
-  return Segment(a, b);
+  return Segment(make_core({a, b}, Real(0)));
 }
-
-ConvexCore Segment::core() const { return make_core({a_, b_}, Real(0)); }
 
 Result<Capsule> Capsule::create(const Vec2& a, const Vec2& b, Real radius) {
   if (auto e = check_point(a, "vertices[0]")) return *e;
   if (auto e = check_point(b, "vertices[1]")) return *e;
   if (auto e = validate::positive(radius, "radius")) return *e;
-  return Capsule(a, b, radius);
+  return Capsule(a == b ? make_core({a}, radius) : make_core({a, b}, radius));
 }
-
-ConvexCore Capsule::core() const { return a_ == b_ ? make_core({a_}, radius_) : make_core({a_, b_}, radius_); }
 
 Result<Polygon> Polygon::create(std::span<const Vec2> points, Real radius) {
   for (std::size_t i = 0; i < points.size(); ++i) {

@@ -7,13 +7,6 @@
 namespace proxima::d2 {
 namespace {
 
-/// Calls f(core) with the shape's core (a polygon's stored one, others built on the stack).
-template <class F>
-decltype(auto) with_core(const Shape& shape, F&& f) {
-  if (const auto* polygon = std::get_if<Polygon>(&shape.variant())) return f(polygon->core());
-  return f(shape.core());
-}
-
 /// The rectangle of `other` in the chain's frame grown by `reach`.
 Aabb reach_in_chain_frame(const Pose& chain_pose, const Shape& other, const Pose& other_pose, Real reach) {
   return other.world_aabb(relative(chain_pose, other_pose)).inflated(reach);
@@ -43,7 +36,7 @@ DistanceResult chain_distance(const Chain& chain, const Pose& pose_a, const Shap
   for (int i = 0; i < chain.segment_count(); ++i) {
     const ConvexCore segment = chain.segment(i).core();
     if (b.is_convex()) {
-      with_core(b, [&](const ConvexCore& core) { offer(core_distance(segment, pose_a, core, pose_b), i, -1); });
+      offer(core_distance(segment, pose_a, b.core(), pose_b), i, -1);
       continue;
     }
     const Chain& other = b.chain();
@@ -71,9 +64,7 @@ int chain_manifolds(const Chain& chain, const Pose& pose_a, const Shape& b, cons
       if (out != nullptr) out->push_back(m);
     };
     if (b.is_convex()) {
-      with_core(b, [&](const ConvexCore& core) {
-        add(chain_segment_manifold(s, pose_a, core, pose_b, contact_distance), -1);
-      });
+      add(chain_segment_manifold(s, pose_a, b.core(), pose_b, contact_distance), -1);
       return;
     }
     const Chain& other = b.chain();
@@ -88,9 +79,7 @@ int chain_manifolds(const Chain& chain, const Pose& pose_a, const Shape& b, cons
 DistanceResult distance(const Shape& a, const Pose& pose_a, const Shape& b, const Pose& pose_b) {
   if (!a.is_convex()) return chain_distance(a.chain(), pose_a, b, pose_b);
   if (!b.is_convex()) return mirrored(chain_distance(b.chain(), pose_b, a, pose_a));
-  return with_core(a, [&](const ConvexCore& ca) {
-    return with_core(b, [&](const ConvexCore& cb) { return core_distance(ca, pose_a, cb, pose_b); });
-  });
+  return core_distance(a.core(), pose_a, b.core(), pose_b);
 }
 
 bool intersect(const Shape& a, const Pose& pose_a, const Shape& b, const Pose& pose_b) {
@@ -105,9 +94,7 @@ Manifold collide(const Shape& a, const Pose& pose_a, const Shape& b, const Pose&
     return deepest;
   }
   if (!b.is_convex()) return mirrored(collide(b, pose_b, a, pose_a, contact_distance));
-  return with_core(a, [&](const ConvexCore& ca) {
-    return with_core(b, [&](const ConvexCore& cb) { return core_manifold(ca, pose_a, cb, pose_b, contact_distance); });
-  });
+  return core_manifold(a.core(), pose_a, b.core(), pose_b, contact_distance);
 }
 
 int collide_all(const Shape& a, const Pose& pose_a, const Shape& b, const Pose& pose_b, Real contact_distance,
@@ -126,8 +113,7 @@ int collide_all(const Shape& a, const Pose& pose_a, const Shape& b, const Pose& 
 }
 
 std::optional<RayHit> raycast(const Shape& shape, const Pose& pose, const Ray& ray, Real max_t) {
-  if (shape.is_convex())
-    return with_core(shape, [&](const ConvexCore& c) { return core_raycast(c, pose, ray, max_t); });
+  if (shape.is_convex()) return core_raycast(shape.core(), pose, ray, max_t);
   std::optional<RayHit> best;
   const Chain& chain = shape.chain();
   for (int i = 0; i < chain.segment_count(); ++i) {
@@ -138,12 +124,11 @@ std::optional<RayHit> raycast(const Shape& shape, const Pose& pose, const Ray& r
 }
 
 bool contains(const Shape& shape, const Pose& pose, const Vec2& point) {
-  return shape.is_convex() && with_core(shape, [&](const ConvexCore& c) { return core_contains(c, pose, point); });
+  return shape.is_convex() && core_contains(shape.core(), pose, point);
 }
 
 SurfacePoint closest_point(const Shape& shape, const Pose& pose, const Vec2& point) {
-  if (shape.is_convex())
-    return with_core(shape, [&](const ConvexCore& c) { return core_closest_point(c, pose, point); });
+  if (shape.is_convex()) return core_closest_point(shape.core(), pose, point);
   SurfacePoint best;
   best.signed_distance = std::numeric_limits<Real>::infinity();
   const Chain& chain = shape.chain();

@@ -17,11 +17,11 @@ const char* to_string(ShapeType type) {
   return "unknown";
 }
 
-ConvexCore Shape::core() const {
+const ConvexCore& Shape::core() const {
   return std::visit(
-      [](const auto& s) -> ConvexCore {
+      [](const auto& s) -> const ConvexCore& {
         if constexpr (std::is_same_v<std::decay_t<decltype(s)>, Chain>) {
-          return s.segment(0).core();
+          return s.first_segment_core();
         } else {
           return s.core();
         }
@@ -31,7 +31,6 @@ ConvexCore Shape::core() const {
 
 Aabb Shape::world_aabb(const Pose& pose) const {
   if (type() == ShapeType::Chain) return chain().world_aabb(pose);
-  if (type() == ShapeType::Polygon) return std::get<Polygon>(value_).core().world_aabb(pose);
   return core().world_aabb(pose);
 }
 

@@ -13,7 +13,8 @@
 /// | Capsule | 2 vertices (1 if equal) | > 0    |
 /// | Polygon | 3–16 vertices           | >= 0   |
 ///
-/// All coordinates are in the shape's local frame; lengths have the caller's unit.
+/// All coordinates are in the shape's local frame; lengths have the caller's unit. Each shape
+/// stores its core, so the algorithms take it by reference, never rebuilding it per query.
 
 #include <proxima/core/result.hpp>
 #include <proxima/d2/math.hpp>
@@ -63,13 +64,13 @@ class Point {
   /// Validated construction: finite position within kMaxCoordinate (field "position").
   static Result<Point> create(const Vec2& position = Vec2(Real(0)));
   /// The point, local frame.
-  Vec2 position() const { return position_; }
+  Vec2 position() const { return core_.vertices[0]; }
   /// The core: one vertex, radius 0.
-  ConvexCore core() const;
+  const ConvexCore& core() const { return core_; }
 
  private:
-  explicit Point(const Vec2& p) : position_(p) {}
-  Vec2 position_;
+  explicit Point(const ConvexCore& core) : core_(core) {}
+  ConvexCore core_;
 };
 
 /// A solid disc: the points within `radius` of its centre.
@@ -79,16 +80,15 @@ class Circle {
   /// "center").
   static Result<Circle> create(Real radius, const Vec2& center = Vec2(Real(0)));
   /// Radius (> 0).
-  Real radius() const { return radius_; }
+  Real radius() const { return core_.radius; }
   /// Centre, local frame.
-  Vec2 center() const { return center_; }
+  Vec2 center() const { return core_.vertices[0]; }
   /// The core: the centre, with the circle's radius.
-  ConvexCore core() const;
+  const ConvexCore& core() const { return core_; }
 
  private:
-  Circle(Real r, const Vec2& c) : radius_(r), center_(c) {}
-  Real radius_;
-  Vec2 center_;
+  explicit Circle(const ConvexCore& core) : core_(core) {}
+  ConvexCore core_;
 };
 
 /// A closed segment (no area), two-sided.
@@ -98,16 +98,15 @@ class Segment {
   /// differ (field "vertices": Degenerate when equal).
   static Result<Segment> create(const Vec2& a, const Vec2& b);
   /// First end point, local frame.
-  Vec2 a() const { return a_; }
+  Vec2 a() const { return core_.vertices[0]; }
   /// Second end point, local frame.
-  Vec2 b() const { return b_; }
+  Vec2 b() const { return core_.vertices[1]; }
   /// The core: the two end points, radius 0.
-  ConvexCore core() const;
+  const ConvexCore& core() const { return core_; }
 
  private:
-  Segment(const Vec2& a, const Vec2& b) : a_(a), b_(b) {}
-  Vec2 a_;
-  Vec2 b_;
+  explicit Segment(const ConvexCore& core) : core_(core) {}
+  ConvexCore core_;
 };
 
 /// A capsule (stadium): the points within `radius` of the segment a–b.
@@ -117,19 +116,17 @@ class Capsule {
   /// may be equal, giving a circle), radius finite and > 0 (field "radius").
   static Result<Capsule> create(const Vec2& a, const Vec2& b, Real radius);
   /// First end of the core segment, local frame.
-  Vec2 a() const { return a_; }
+  Vec2 a() const { return core_.vertices[0]; }
   /// Second end of the core segment, local frame.
-  Vec2 b() const { return b_; }
+  Vec2 b() const { return core_.vertices[core_.count - 1]; }
   /// Radius (> 0).
-  Real radius() const { return radius_; }
+  Real radius() const { return core_.radius; }
   /// The core: the two end points (one when they are equal), with the radius.
-  ConvexCore core() const;
+  const ConvexCore& core() const { return core_; }
 
  private:
-  Capsule(const Vec2& a, const Vec2& b, Real r) : a_(a), b_(b), radius_(r) {}
-  Vec2 a_;
-  Vec2 b_;
-  Real radius_;
+  explicit Capsule(const ConvexCore& core) : core_(core) {}
+  ConvexCore core_;
 };
 
 /// A convex polygon with 3 to 16 vertices, optionally rounded by a radius. Built as the

@@ -34,8 +34,9 @@ class Shape {
   bool is_convex() const { return type() != ShapeType::Chain; }
   /// The alternative (std::get / std::visit on it).
   const Variant& variant() const { return value_; }
-  /// The core of a convex shape. Precondition: is_convex().
-  ConvexCore core() const;
+  /// The core of a convex shape (stored in it). Precondition: is_convex(); a chain gives its
+  /// first segment's core.
+  const ConvexCore& core() const;
   /// The chain. Precondition: type() == ShapeType::Chain.
   const Chain& chain() const { return std::get<Chain>(value_); }
   /// Tight rectangle under `pose` (O(points) for a chain).
