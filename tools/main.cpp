@@ -27,6 +27,7 @@
 #include "mesh_info.hpp"
 #include "query.hpp"
 #include "query_operations.hpp"
+#include "world2d_session.hpp"
 #include "world_session.hpp"
 
 namespace {
@@ -92,8 +93,10 @@ std::string world_footer() {
   return text;
 }
 
+/// Runs a world session (3D: WorldSession, 2D: WorldSession2d) over `input`.
+template <class Session>
 int run_world(const proxima::tool::WorldOptions& options, const std::string& input) {
-  auto session = proxima::tool::WorldSession::create(options);
+  auto session = Session::create(options);
   if (!session.ok()) {
     std::cerr << "proxima world: " << session.error().what() << "\n";
     return 1;
@@ -199,6 +202,8 @@ int run(int argc, char** argv) {
       ->check(kFinite & CLI::Range(0.0, 1e18));
   world_cmd->add_flag("--sensors-sense-sensors", world.settings.sensors_sense_sensors,
                       "Two sensors report enter / exit of each other");
+  bool world_2d = false;
+  world_cmd->add_flag("--2d", world_2d, "A 2D world: 2D shapes and poses (docs/world-protocol.md, \"2D worlds\")");
   world_cmd->footer(world_footer());
 
   proxima::tool::BenchBroadphaseOptions bench_broadphase;
@@ -245,7 +250,8 @@ int run(int argc, char** argv) {
     if (query_cmd->parsed()) return run_query(query_input);
     if (world_cmd->parsed()) {
       world.settings.contact_distance = static_cast<proxima::Real>(world_contact_distance);
-      return run_world(world, world_input);
+      return world_2d ? run_world<proxima::tool::WorldSession2d>(world, world_input)
+                      : run_world<proxima::tool::WorldSession>(world, world_input);
     }
     if (mesh_info_cmd->parsed()) {
       mesh_info.repair = !mesh_info_no_repair;

@@ -16,8 +16,9 @@ struct DocExample {
   int block = 0;        ///< which plain code block (0, 1, ...) holds it
 };
 
-/// The examples of the document at `path`, in document order.
-inline std::vector<DocExample> read_doc_examples(const std::string& path) {
+/// The examples of the document at `path`, in document order: those of the plain code blocks,
+/// or with `tag` those of the blocks opened by ```tag (the 2D world's examples: "world2d").
+inline std::vector<DocExample> read_doc_examples(const std::string& path, const std::string& tag = "") {
   std::ifstream in(path);
   std::vector<DocExample> examples;
   std::string line;
@@ -31,7 +32,7 @@ inline std::vector<DocExample> read_doc_examples(const std::string& path) {
       if (in_plain_block || in_other_block) {
         if (in_plain_block) ++blocks;
         in_plain_block = in_other_block = false;
-      } else if (line == "```") {
+      } else if (line == "```" + tag) {
         in_plain_block = true;
       } else {
         in_other_block = true;
