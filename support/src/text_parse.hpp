@@ -180,7 +180,8 @@ inline Header parse_header(Source& src) {
   return h;
 }
 
-/// Every kind of FORMATS.md that these readers know (W1..W8), for "wrong kind" messages.
+/// Every kind of FORMATS.md that these readers know (W1..W8, W9's sprites), for "wrong
+/// kind" messages.
 inline constexpr const char* kKnownKinds[] = {"broadphase",
                                               "convex_shapes",
                                               "convex_pairs",
@@ -191,7 +192,10 @@ inline constexpr const char* kKnownKinds[] = {"broadphase",
                                               "sphere_pairs",
                                               "capsule_pairs",
                                               "world",
-                                              "world_bullets_expected"};
+                                              "world_bullets_expected",
+                                              "sprite_masks",
+                                              "sprites",
+                                              "sprites_expected"};
 
 /// Reads the header and checks that it is `kind` version 1.
 inline Header expect_header(Source& src, const char* kind) {
