@@ -6,13 +6,14 @@
 /// Steps:
 ///   1. the axis-aligned box of B's turned, scaled set rectangle, widened by a pixel
 ///      (turned_bounds), and A's set rectangle bound the screen rows and columns to visit;
-///   2. per screen row, the column of B that the rule maps pixel X to is a monotonic
-///      function of X (each rounded operation is monotonic), and so is the row of B: the
-///      pixels that map into B's set rectangle form one span of X. Its ends are found by
-///      evaluating the rule itself, starting from the analytic solution of the rule for the
-///      rectangle's edges (gallop from the guess, then bisect), so the span is exact;
-///   3. A's set pixels in the span (walked word by word, lowest bit first) are mapped by the
-///      rule and looked up in B.
+///   2. per screen row, the pixels whose centres map into B's set rectangle form one span
+///      of X (the map is affine); its ends are solved from the rule analytically and
+///      widened by two pixels, so that rounding cannot leave a pixel out;
+///   3. A's set pixels in the span (walked word by word, lowest bit first) are mapped and
+///      looked up in B. The map is computed with a multiplication by 1 / scale, and with the
+///      rule's own division (exactly as written) whenever the product lands within 1e-7 of
+///      a pixel edge: the two differ by far less than that, so every pixel gets the rule's
+///      answer.
 /// Pixels are visited in increasing (Y, X), so the first hit is the smallest.
 
 #include <proxima/d2/sprite_overlap.hpp>
@@ -30,6 +31,9 @@ struct Span {
   std::int64_t x1 = 0;  ///< one past the last column
 };
 
+/// Distance to the nearest integer below which the fast mapping defers to the rule itself.
+constexpr double kNearEdge = 1e-7;
+
 /// B's placement and set rectangle in the terms of the rule.
 class TurnedRule {
  public:
@@ -37,6 +41,7 @@ class TurnedRule {
       : c_(p.cos()),
         s_(p.sin()),
         scale_(p.scale()),
+        inverse_scale_(1.0 / p.scale()),
         half_w_(b.width() / 2.0),
         half_h_(b.height() / 2.0),
         cx_(static_cast<double>(p.position().x) + b.width() / 2.0),
@@ -49,98 +54,58 @@ class TurnedRule {
     s_dy_ = s_ * dy;
     c_dy_ = c_ * dy;
   }
-  /// Column of B that pixel X of the current row maps to: floor(u + wB / 2), in double.
-  double column(std::int64_t x) const {
-    const double dx = (static_cast<double>(x) + 0.5) - cx_;
-    const double u = (c_ * dx + s_dy_) / scale_;
-    return std::floor(u + half_w_);
+
+  /// The columns of the current row, within `limits`, whose centres can map into B's set
+  /// rectangle: the analytic solution of the rule for the rectangle's edges, widened by
+  /// two pixels (more where the map is nearly flat) so that rounding cannot leave one out.
+  Span span(Span limits) const {
+    const Span by_column = span_of(limits, c_, s_dy_, half_w_, set_.x0, set_.x1);
+    const Span by_row = span_of(limits, -s_, c_dy_, half_h_, set_.y0, set_.y1);
+    return {std::max(by_column.x0, by_row.x0), std::min(by_column.x1, by_row.x1)};
   }
-  /// Row of B that pixel X of the current row maps to: floor(v + hB / 2), in double.
-  double row(std::int64_t x) const {
+
+  /// True when the rule maps pixel X of the current row to a set pixel of B. The map is
+  /// first computed with a multiplication by 1 / scale; when that lands within kNearEdge
+  /// of a pixel edge, the rule's own division decides.
+  bool covers(const SpriteMask& b, std::int64_t x) const {
     const double dx = (static_cast<double>(x) + 0.5) - cx_;
-    const double v = (-s_ * dx + c_dy_) / scale_;
-    return std::floor(v + half_h_);
+    const double p = c_ * dx + s_dy_, q = -s_ * dx + c_dy_;
+    const std::int64_t col = fast_floor(p * inverse_scale_ + half_w_, b.width(), p, half_w_);
+    const std::int64_t row = fast_floor(q * inverse_scale_ + half_h_, b.height(), q, half_h_);
+    return b.get(col, row);
   }
-  /// The columns of the current row, within `limits`, that map into B's set rectangle.
-  Span span(Span limits) const;
 
  private:
-  template <class Map>
-  Span span_of(Span limits, Map map, double slope, double offset, double half, std::int64_t lo, std::int64_t hi) const;
+  /// floor(t) for t = p / scale + half when it is in [0, side), else -1. `t` is that
+  /// value computed with 1 / scale: it is within 1e-10 of the rule's value whenever that
+  /// value is anywhere near [0, side].
+  std::int64_t fast_floor(double t, std::int32_t side, double p, double half) const {
+    if (!(t >= -0.5 && t < side + 0.5)) return -1;
+    const std::int64_t whole = static_cast<std::int64_t>(t + 1.0) - 1;
+    const double fraction = t - static_cast<double>(whole);
+    if (fraction < kNearEdge || fraction > 1.0 - kNearEdge)
+      return static_cast<std::int64_t>(std::floor(p / scale_ + half));
+    return whole;
+  }
 
-  double c_, s_, scale_, half_w_, half_h_, cx_, cy_;
+  /// The columns X in `limits` where lo <= floor((slope dx + offset) / scale + half) < hi
+  /// can hold, dx = X + 0.5 - cx, widened by the margin of span().
+  Span span_of(Span limits, double slope, double offset, double half, std::int64_t lo, std::int64_t hi) const {
+    if (std::abs(slope) < 1e-12) return limits;  // nearly flat: the whole row may map inside
+    const auto edge = [&](std::int64_t value) {
+      return cx_ - 0.5 + ((static_cast<double>(value) - half) * scale_ - offset) / slope;
+    };
+    const double a = edge(lo), b = edge(hi), margin = 2.0 + 1e-6 * scale_ / std::abs(slope);
+    const auto clamp = [&](double x) {
+      return static_cast<std::int64_t>(std::clamp(x, static_cast<double>(limits.x0), static_cast<double>(limits.x1)));
+    };
+    return {clamp(std::floor(std::min(a, b) - margin)), clamp(std::ceil(std::max(a, b) + margin))};
+  }
+
+  double c_, s_, scale_, inverse_scale_, half_w_, half_h_, cx_, cy_;
   PixelRect set_;
   double s_dy_ = 0, c_dy_ = 0;
 };
-
-/// The smallest X in [x0, x1] with pred(X) true, x1 when none in [x0, x1); pred must be
-/// monotonic (false, then true). Starts at `guess`, gallops, then bisects.
-template <class Pred>
-std::int64_t first_true(Pred pred, std::int64_t x0, std::int64_t x1, std::int64_t guess) {
-  if (x0 >= x1) return x1;
-  guess = std::clamp(guess, x0, x1 - 1);
-  std::int64_t known_false = x0 - 1, known_true = x1;
-  if (pred(guess)) {
-    known_true = guess;
-    for (std::int64_t step = 1; known_true - step >= x0; step *= 2) {
-      if (!pred(known_true - step)) {
-        known_false = known_true - step;
-        break;
-      }
-      known_true -= step;
-    }
-  } else {
-    known_false = guess;
-    for (std::int64_t step = 1; known_false + step < x1; step *= 2) {
-      if (pred(known_false + step)) {
-        known_true = known_false + step;
-        break;
-      }
-      known_false += step;
-    }
-  }
-  while (known_true - known_false > 1) {
-    const std::int64_t mid = known_false + (known_true - known_false) / 2;
-    (pred(mid) ? known_true : known_false) = mid;
-  }
-  return known_true;
-}
-
-/// ceil(x) clamped to [lo, hi]; lo when x is not finite.
-std::int64_t clamped_ceil(double x, std::int64_t lo, std::int64_t hi) {
-  if (!std::isfinite(x)) return lo;
-  return static_cast<std::int64_t>(std::clamp(std::ceil(x), static_cast<double>(lo), static_cast<double>(hi)));
-}
-
-/// The columns X in `limits` where lo <= map(X) < hi, for map(X) = floor((slope dx +
-/// offset) / scale + half) with dx = X + 0.5 - cx: monotonic, increasing when slope >= 0.
-template <class Map>
-Span TurnedRule::span_of(Span limits, Map map, double slope, double offset, double half, std::int64_t lo,
-                         std::int64_t hi) const {
-  const auto edge = [&](std::int64_t value) {  // the X where map reaches `value`, unrounded
-    if (slope == 0) return limits.x0;
-    return clamped_ceil(cx_ - 0.5 + ((static_cast<double>(value) - half) * scale_ - offset) / slope, limits.x0,
-                        limits.x1);
-  };
-  const auto at_least = [&](std::int64_t value) {
-    return first_true([&](std::int64_t x) { return map(x) >= static_cast<double>(value); }, limits.x0, limits.x1,
-                      edge(value));
-  };
-  const auto below = [&](std::int64_t value) {
-    return first_true([&](std::int64_t x) { return map(x) < static_cast<double>(value); }, limits.x0, limits.x1,
-                      edge(value));
-  };
-  if (slope >= 0) return {at_least(lo), at_least(hi)};
-  return {below(hi), below(lo)};
-}
-
-Span TurnedRule::span(Span limits) const {
-  const Span by_column = span_of(
-      limits, [&](std::int64_t x) { return column(x); }, c_, s_dy_, half_w_, set_.x0, set_.x1);
-  const Span by_row = span_of(
-      limits, [&](std::int64_t x) { return row(x); }, -s_, c_dy_, half_h_, set_.y0, set_.y1);
-  return {std::max(by_column.x0, by_row.x0), std::min(by_column.x1, by_row.x1)};
-}
 
 /// Calls visit(X, Y) for every screen pixel set in A and in the turned B, in increasing
 /// (Y, X), until visit returns true.
@@ -164,8 +129,7 @@ void for_each_common_pixel(const SpriteMask& a, PixelPoint pa, const SpriteMask&
       if (k == last >> 6) bits &= ~std::uint64_t{0} >> (63 - (last & 63));
       for (; bits != 0; bits &= bits - 1) {
         const std::int64_t x = pa.x + 64 * k + std::countr_zero(bits);
-        if (!b.get(static_cast<std::int64_t>(rule.column(x)), static_cast<std::int64_t>(rule.row(x)))) continue;
-        if (visit(x, y)) return;
+        if (rule.covers(b, x) && visit(x, y)) return;
       }
     }
   }
