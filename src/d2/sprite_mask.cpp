@@ -129,12 +129,16 @@ Result<SpriteMask> SpriteMask::from_rgba(std::int32_t width, std::int32_t height
 
 void SpriteMask::summarize() {
   set_count_ = 0;
+  row_words_.assign(static_cast<std::size_t>(height_), WordRange{});
   std::int64_t x0 = width_, y0 = height_, x1 = 0, y1 = 0;
   for (std::int32_t y = 0; y < height_; ++y) {
     const std::uint64_t* words = row(y);
+    WordRange& range = row_words_[static_cast<std::size_t>(y)];
     for (std::int32_t k = 0; k < words_per_row_; ++k) {
       if (words[k] == 0) continue;
       set_count_ += static_cast<std::uint64_t>(std::popcount(words[k]));
+      if (range.first == range.last) range.first = k;
+      range.last = k + 1;
       x0 = std::min<std::int64_t>(x0, 64 * k + std::countr_zero(words[k]));
       x1 = std::max<std::int64_t>(x1, 64 * k + 64 - std::countl_zero(words[k]));
       y0 = std::min<std::int64_t>(y0, y);

@@ -4,8 +4,9 @@
 ///
 /// Translation only (integer offsets):
 ///   1. intersect the bounding rectangles of both masks' set pixels on screen; none: done;
-///   2. for each common row, AND each of A's words in the common columns with the 64 bits
-///      of B's row that fall on the same screen pixels (two words of B joined by shifts);
+///   2. for each common row, AND each of A's words where both rows hold set pixels with
+///      the 64 bits of B's row that fall on the same screen pixels (two words of B joined
+///      by shifts of the same amount for every word);
 ///   3. popcount the results; the first non-zero word, lowest bit first, gives the first
 ///      pixel in (y, x) order.
 /// Turned and scaled B:
@@ -31,19 +32,17 @@ namespace {
 /// the range where the spans below are exact to a pixel.
 constexpr double kMaxScale = 1048576.0;
 
-/// Word `index` of a row of `count` words, 0 outside.
-std::uint64_t word_or_zero(const std::uint64_t* row, std::int64_t count, std::int64_t index) {
-  return index >= 0 && index < count ? row[index] : 0;
-}
-
-/// The 64 bits of a row starting at pixel `first` (any integer; pixels outside are 0):
-/// bit i of the result is pixel first + i.
-std::uint64_t bits_from(const std::uint64_t* row, std::int64_t count, std::int64_t first) {
-  const std::int64_t word = first >> 6;  // floor division (C++20: arithmetic shift)
-  const int shift = static_cast<int>(first & 63);
-  const std::uint64_t low = word_or_zero(row, count, word);
-  if (shift == 0) return low;
-  return (low >> shift) | (word_or_zero(row, count, word + 1) << (64 - shift));
+/// Number of set bits: the processor's instruction when the build targets it, else the
+/// branch-free SWAR sum (no library call).
+inline int count_bits(std::uint64_t x) {
+#if defined(__POPCNT__) || !defined(__x86_64__)
+  return std::popcount(x);
+#else
+  x -= (x >> 1) & 0x5555555555555555u;
+  x = (x & 0x3333333333333333u) + ((x >> 2) & 0x3333333333333333u);
+  x = (x + (x >> 4)) & 0x0f0f0f0f0f0f0f0fu;
+  return static_cast<int>((x * 0x0101010101010101u) >> 56);
+#endif
 }
 
 /// A mask's set rectangle on screen when placed at `position`.
@@ -52,21 +51,50 @@ PixelRect placed_bounds(const SpriteMask& mask, PixelPoint position) {
   return {r.x0 + position.x, r.y0 + position.y, r.x1 + position.x, r.y1 + position.y};
 }
 
+/// B's bits under A's word k of one row, for a fixed shift: word k + word_shift of B's row
+/// shifted down by bit_shift, joined with the next word's low bits (words outside B's
+/// non-zero range read as 0).
+class ShiftedRow {
+ public:
+  ShiftedRow(const std::uint64_t* row, WordRange range, std::int64_t shift)
+      : row_(row), range_(range), word_shift_(shift >> 6), bit_shift_(static_cast<int>(shift & 63)) {}
+  /// The first word of A that can meet a non-zero word of B.
+  std::int64_t first_a_word() const { return range_.first - word_shift_ - (bit_shift_ != 0 ? 1 : 0); }
+  /// One past the last such word of A.
+  std::int64_t last_a_word() const { return range_.last - word_shift_; }
+  /// The 64 bits of B under A's word k.
+  std::uint64_t under(std::int64_t k) const {
+    const std::uint64_t low = word(k + word_shift_);
+    if (bit_shift_ == 0) return low;
+    return (low >> bit_shift_) | (word(k + word_shift_ + 1) << (64 - bit_shift_));
+  }
+
+ private:
+  std::uint64_t word(std::int64_t index) const {
+    return index >= range_.first && index < range_.last ? row_[index] : 0;
+  }
+  const std::uint64_t* row_;
+  WordRange range_;
+  std::int64_t word_shift_;
+  int bit_shift_;
+};
+
 /// Calls visit(Y, x_of_bit_0, common_bits) for every non-zero AND of A's words with B's
-/// aligned bits, rows then words in increasing order, until visit returns true.
+/// aligned bits, rows then words in increasing order, until visit returns true. Per row,
+/// only the words where both rows hold set pixels are visited.
 template <class Visit>
 void for_each_common_word(const SpriteMask& a, PixelPoint pa, const SpriteMask& b, PixelPoint pb, Visit visit) {
   const PixelRect common = intersection(placed_bounds(a, pa), placed_bounds(b, pb));
   if (common.is_empty()) return;
-  const std::int64_t first_word = (common.x0 - pa.x) >> 6;
-  const std::int64_t last_word = (common.x1 - 1 - pa.x) >> 6;
   const std::int64_t shift = pa.x - pb.x;  // B's pixel under A's pixel x is x + shift
   for (std::int64_t y = common.y0; y < common.y1; ++y) {
-    const std::uint64_t* row_a = a.row(static_cast<std::int32_t>(y - pa.y));
-    const std::uint64_t* row_b = b.row(static_cast<std::int32_t>(y - pb.y));
-    for (std::int64_t k = first_word; k <= last_word; ++k) {
-      if (row_a[k] == 0) continue;
-      const std::uint64_t both = row_a[k] & bits_from(row_b, b.words_per_row(), 64 * k + shift);
+    const auto ya = static_cast<std::int32_t>(y - pa.y), yb = static_cast<std::int32_t>(y - pb.y);
+    const std::uint64_t* row_a = a.row(ya);
+    const ShiftedRow row_b(b.row(yb), b.row_words(yb), shift);
+    const std::int64_t first = std::max<std::int64_t>(a.row_words(ya).first, row_b.first_a_word());
+    const std::int64_t last = std::min<std::int64_t>(a.row_words(ya).last, row_b.last_a_word());
+    for (std::int64_t k = first; k < last; ++k) {
+      const std::uint64_t both = row_a[k] & row_b.under(k);
       if (both != 0 && visit(y, pa.x + 64 * k, both)) return;
     }
   }
@@ -97,7 +125,7 @@ SpriteOverlap sprite_overlap(const SpriteMask& a, PixelPoint position_a, const S
   SpriteOverlap result;
   for_each_common_word(a, position_a, b, position_b, [&](std::int64_t y, std::int64_t x, std::uint64_t both) {
     if (!result.first) result.first = PixelPoint{x + std::countr_zero(both), y};
-    result.count += static_cast<std::uint64_t>(std::popcount(both));
+    result.count += static_cast<std::uint64_t>(count_bits(both));
     return false;
   });
   result.overlap = result.count > 0;

@@ -44,6 +44,12 @@ inline PixelRect intersection(const PixelRect& a, const PixelRect& b) {
   return {a.x0 > b.x0 ? a.x0 : b.x0, a.y0 > b.y0 ? a.y0 : b.y0, a.x1 < b.x1 ? a.x1 : b.x1, a.y1 < b.y1 ? a.y1 : b.y1};
 }
 
+/// A range of word indices [first, last) within one row of a SpriteMask.
+struct WordRange {
+  std::int32_t first = 0;  ///< first word
+  std::int32_t last = 0;   ///< one past the last word
+};
+
 /// A bit mask of width x height pixels (frame and storage in the file comment). Immutable
 /// after construction; its set count and the bounding rectangle of its set pixels are
 /// computed once.
@@ -88,6 +94,9 @@ class SpriteMask {
   const std::uint64_t* row(std::int32_t y) const {
     return words_.data() + static_cast<std::size_t>(y) * static_cast<std::size_t>(words_per_row_);
   }
+  /// The words of row y (0 <= y < height) that hold set pixels: [first, last) word indices,
+  /// first == last when the row is clear.
+  WordRange row_words(std::int32_t y) const { return row_words_[static_cast<std::size_t>(y)]; }
   /// Number of set pixels.
   std::uint64_t set_count() const { return set_count_; }
   /// The smallest rectangle holding every set pixel, in mask pixels; empty ({0, 0, 0, 0})
@@ -111,6 +120,7 @@ class SpriteMask {
   std::int32_t height_;
   std::int32_t words_per_row_;
   std::vector<std::uint64_t> words_;
+  std::vector<WordRange> row_words_;
   std::uint64_t set_count_ = 0;
   PixelRect bounds_{};
 };
