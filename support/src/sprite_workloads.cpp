@@ -1,7 +1,9 @@
 // Readers of the W9 sprite files (shared/bench/FORMATS.md):
 //   1. check the header (kind, version 1, the keys needed);
-//   2. sprite_masks: per mask, a `mask <id> <w> <h>` line (ids in order) and h hex rows,
-//      turned into a SpriteMask (its own validation names the row at fault);
+//   2. sprite_masks: per mask, a `mask <id> <w> <h>` line (ids in order) and h hex rows of
+//      ceil(w / 4) digits each (a row of another length fails at its line), turned into a
+//      SpriteMask (its own validation names the row and digit of a bad digit or padding
+//      bit, reported at the mask's last line);
 //   3. sprites: `maskA xA yA maskB xB yB [rot=<deg> scale=<s>]` lines, ids checked against
 //      the masks file the header names (same folder);
 //   4. sprites_expected: `<query> <0|1> <count>` lines;
@@ -49,6 +51,10 @@ d2::SpriteMask read_one_mask(Source& src, std::uint64_t id) {
   for (std::uint64_t y = 0; y < height; ++y) {
     if (!src.next_raw(line)) fail(src.path(), src.line(), "file ends inside mask " + std::to_string(id));
     while (!line.empty() && is_space(line.back())) line.remove_suffix(1);
+    if (line.size() != (width + 3) / 4) {
+      src.fail_here("row " + std::to_string(y) + " of mask " + std::to_string(id) +
+                    " must have ceil(w / 4) = " + std::to_string((width + 3) / 4) + " hex digits");
+    }
     rows.emplace_back(line);
   }
   auto mask = d2::SpriteMask::from_hex_rows(static_cast<std::int32_t>(width), rows);

@@ -6,6 +6,7 @@
 #include <proxima/d2/sprite_overlap.hpp>
 
 #include <filesystem>
+#include <fstream>
 
 #include "d2/sprite_reference.hpp"
 #include "support/sprite_workloads.hpp"
@@ -51,6 +52,44 @@ TEST(SpriteWorkload, ReaderSeesTheHeaders) {
   for (const SpriteQuery& q : w->distinct) turned += q.turned ? 1 : 0;
   EXPECT_GT(turned, 1000u);
   EXPECT_LT(turned, 4000u);
+}
+
+/// Writes `text` to a file of the test's temporary folder and returns its path.
+std::string write_file(const std::string& name, const std::string& text) {
+  const std::string path = (std::filesystem::temp_directory_path() / name).string();
+  std::ofstream(path) << text;
+  return path;
+}
+
+TEST(SpriteWorkload, MalformedFilesNameTheLine) {
+  const std::string masks =
+      write_file("proxima_w9_masks.txt", "sprite_masks 1 count=2\nmask 0 5 1\nf8\nmask 1 4 2\n0\n00\n");
+  const auto bad_row = bench::read_sprite_masks(masks);
+  ASSERT_FALSE(bad_row.ok());
+  EXPECT_EQ(bad_row.error().field, masks + ":6");
+  EXPECT_NE(bad_row.error().message.find("row 1 of mask 1"), std::string::npos) << bad_row.error().message;
+  write_file("proxima_w9_masks.txt", "sprite_masks 1 count=1\nmask 0 5 2\nf8\nfc\n");
+  const auto bad_padding = bench::read_sprite_masks(masks);
+  ASSERT_FALSE(bad_padding.ok());
+  EXPECT_NE(bad_padding.error().message.find("rows[1]"), std::string::npos) << bad_padding.error().message;
+  write_file("proxima_w9_masks.txt", "sprite_masks 1 count=1\nmask 0 4 1\nf\n");
+  const std::string queries = write_file(
+      "proxima_w9_sprites.txt", "sprites 1 count=2 repeat=5 masks=proxima_w9_masks.txt\n0 1 2 0 3 4\n0 1 2 1 3 4\n");
+  const auto bad_id = bench::read_sprite_workload(queries);
+  ASSERT_FALSE(bad_id.ok());
+  EXPECT_EQ(bad_id.error().field, queries + ":3");
+  write_file("proxima_w9_sprites.txt",
+             "sprites 1 count=1 repeat=5 masks=proxima_w9_masks.txt\n0 1 2 0 3 4 rot=30 scale=-1\n");
+  const auto bad_scale = bench::read_sprite_workload(queries);
+  ASSERT_FALSE(bad_scale.ok());
+  EXPECT_EQ(bad_scale.error().field, queries + ":2");
+  write_file("proxima_w9_sprites.txt",
+             "sprites 1 count=1 repeat=5 masks=proxima_w9_masks.txt\n0 1 2 0 3 4 rot=30 scale=1.5\n");
+  const SpriteWorkload good = bench::read_sprite_workload(queries).value();
+  ASSERT_EQ(good.query_count(), 5u);
+  EXPECT_TRUE(good.query(4).turned);
+  EXPECT_EQ(good.query(4).angle_degrees, 30.0);
+  EXPECT_EQ(good.query(4).scale, 1.5);
 }
 
 TEST(SpriteWorkload, EveryQueryMatchesPerPixelLoop) {
