@@ -81,8 +81,9 @@ class TurnedPlacement {
 };
 
 /// The overlap of A at `position_a` and B at `position_b` (translation only). Steps: the
-/// bounding rectangles of the set pixels reject; then, per common row, A's words are ANDed
-/// with B's row shifted to A's bit alignment and the results counted (popcount). Time
+/// bounding rectangles of the set pixels reject; then, per common row, A's words where both
+/// rows hold set pixels are ANDed with B's row shifted to A's bit alignment and the results
+/// counted (popcount). Time
 /// O(common rows x words per row); no allocation. Positions must lie within
 /// +-kMaxSpritePosition.
 SpriteOverlap sprite_overlap(const SpriteMask& a, PixelPoint position_a, const SpriteMask& b, PixelPoint position_b);
@@ -91,10 +92,11 @@ SpriteOverlap sprite_overlap(const SpriteMask& a, PixelPoint position_a, const S
 bool sprites_overlap(const SpriteMask& a, PixelPoint position_a, const SpriteMask& b, PixelPoint position_b);
 
 /// The overlap of A at `position_a` and B turned and scaled by `placement_b` (rule in the
-/// file comment). Steps: the set pixels of A are intersected with the axis-aligned box of
-/// B's turned, scaled rectangle; per screen row, the span of columns whose centres can map
-/// inside B is solved from the rule (widened by one pixel), and only A's set pixels in that
-/// span are mapped, each exactly by the rule. Time O(A's set pixels in the spans); no
+/// file comment). Steps: A's set rectangle is intersected with turned_bounds(b); per screen
+/// row, the span of columns whose centres can map into B's set rectangle is solved from the
+/// rule and widened by two pixels, and only A's set pixels in that span are mapped, each
+/// getting exactly the rule's answer (a multiplication by 1 / scale, and the rule's own
+/// division within 1e-7 of a pixel edge). Time O(A's set pixels in the spans); no
 /// allocation.
 SpriteOverlap sprite_overlap(const SpriteMask& a, PixelPoint position_a, const SpriteMask& b,
                              const TurnedPlacement& placement_b);
@@ -103,9 +105,9 @@ SpriteOverlap sprite_overlap(const SpriteMask& a, PixelPoint position_a, const S
 bool sprites_overlap(const SpriteMask& a, PixelPoint position_a, const SpriteMask& b,
                      const TurnedPlacement& placement_b);
 
-/// The screen pixels that the turned, scaled B can cover: those whose centres lie in the
-/// axis-aligned box of B's turned, scaled rectangle, widened by one pixel on every side
-/// (a superset; empty when B has no set pixel).
+/// The screen pixels whose set pixels of the turned, scaled B can cover: those whose centres
+/// lie in the axis-aligned box of the turned, scaled rectangle of B's set pixels, widened by
+/// one pixel on every side (a superset; empty when B has no set pixel).
 PixelRect turned_bounds(const SpriteMask& b, const TurnedPlacement& placement_b);
 
 }  // namespace proxima::d2
