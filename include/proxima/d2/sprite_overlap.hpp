@@ -83,9 +83,8 @@ class TurnedPlacement {
 /// The overlap of A at `position_a` and B at `position_b` (translation only). Steps: the
 /// bounding rectangles of the set pixels reject; then, per common row, A's words where both
 /// rows hold set pixels are ANDed with B's row shifted to A's bit alignment and the results
-/// counted (popcount). Time
-/// O(common rows x words per row); no allocation. Positions must lie within
-/// +-kMaxSpritePosition.
+/// counted (popcount). Time O(common rows x words per row); no allocation. Positions must
+/// lie within +-kMaxSpritePosition.
 SpriteOverlap sprite_overlap(const SpriteMask& a, PixelPoint position_a, const SpriteMask& b, PixelPoint position_b);
 /// True when A at `position_a` and B at `position_b` share a set screen pixel: as
 /// sprite_overlap, stopping at the first common word.
