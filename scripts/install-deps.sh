@@ -11,10 +11,13 @@ packages=(
   libglm-dev libqhull-dev            # the library: math, convex hulls
   libcli11-dev nlohmann-json3-dev    # the proxima tool
   libassimp-dev                      # the proxima tool: mesh files (OBJ, STL, PLY, glTF)
+  libpng-dev                         # the proxima tool: sprite masks from PNG files
   libgtest-dev libgmock-dev          # tests
   libcgal-dev                        # exact reference computations in tests
   clang clang-format                 # the sanitizer build (clang), the formatting test
   libbenchmark-dev                   # benchmarks
+  python3-pygame                     # reference answers and timings of the sprite tests and benchmark
+                                     # (run with /usr/bin/python3, Debian's interpreter)
   libtbb-dev                         # the oneTBB executor example (examples/tbb_executor.cpp)
   # Peer libraries: references for the cross-validation tests and the side-by-side
   # benchmarks only; the library never links them.

@@ -9,6 +9,7 @@
 #include "query_ccd_ops.hpp"
 #include "query_pair_ops.hpp"
 #include "query_shape_ops.hpp"
+#include "query_sprite_ops.hpp"
 
 namespace proxima::tool {
 
@@ -46,6 +47,9 @@ const std::array kOperations = {
               "normal, depth, status, iterations"},
     Operation{"safe_step", op_safe_step,
               "a, b (each shape, pose, linear_velocity?, angular_velocity?), target_distance? -> dt (null: never)"},
+    Operation{"sprite_overlap", op_sprite_overlap,
+              "a (mask, position), b (mask, position, angle_degrees?, scale?) -> overlap, count, first (screen "
+              "pixels, y down)"},
 };
 
 }  // namespace

@@ -192,7 +192,10 @@ inline constexpr const char* kKnownKinds[] = {"broadphase",
                                               "capsule_pairs",
                                               "world",
                                               "world_bullets_expected",
-                                              "polygons2d_pairs"};
+                                              "polygons2d_pairs",
+                                              "sprite_masks",
+                                              "sprites",
+                                              "sprites_expected"};
 
 /// Reads the header and checks that it is `kind` version 1.
 inline Header expect_header(Source& src, const char* kind) {
