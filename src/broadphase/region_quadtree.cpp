@@ -173,17 +173,18 @@ void RegionQuadtree::add(std::int32_t node, int depth, ProxyId id, const Aabb& b
 }
 
 bool RegionQuadtree::split_pays(std::int32_t leaf, const Real (&mid)[2]) const {
-  // The boxes not covering the cell must mostly fall into one quadrant each: boxes
-  // straddling the split lines are copied into several children (and split again there), so
-  // splitting a cell crowded with them would multiply entries without separating anything.
+  // The pair tests of the four children (n_q boxes each, boxes straddling the split lines
+  // counted in every quadrant they meet) must be at most half those of the leaf:
+  // sum n_q^2 <= n^2 / 2. Coincident boxes, or a crowd straddling the split lines, would
+  // only be copied into the children (and split again there: the region quadtree's blow-up).
   const Node& n = nodes_[std::size_t(leaf)];
-  std::uint32_t copies = 0;
+  std::uint64_t in[4] = {0, 0, 0, 0};
   for (std::uint32_t e = n.first; e != kNone; e = entries_[e].next) {
-    if (entries_[e].covers) continue;
     const Aabb& box = proxies_[entries_[e].id].box;
-    for (int q = 0; q < 4; ++q) copies += meets(quadrant_of(n.cell, mid, q), box) ? 1 : 0;
+    for (int q = 0; q < 4; ++q) in[q] += meets(quadrant_of(n.cell, mid, q), box) ? 1 : 0;
   }
-  return copies <= 2 * n.partial;
+  const std::uint64_t tests = in[0] * in[0] + in[1] * in[1] + in[2] * in[2] + in[3] * in[3];
+  return 2 * tests <= std::uint64_t(n.count) * n.count;
 }
 
 void RegionQuadtree::split(std::int32_t leaf, int depth) {
@@ -287,15 +288,38 @@ BroadPhaseStatus RegionQuadtree::remove(ProxyId id) {
   return proxies_.remove(id);
 }
 
+bool RegionQuadtree::same_leaves(ProxyId id, const Aabb& box) const {
+  // The lowest ancestor of an entry's leaf holding the box off its edges (or the root holding
+  // it) has every leaf the box meets below it; when each entry's leaf meets the box and their
+  // number is that of the leaves met, the two sets are equal.
+  const Entry& first = entries_[first_own_[id]];
+  std::int32_t top = first.leaf;
+  if (first.next_own == kNone && inside(nodes_[std::size_t(top)].cell, box)) return true;  // one leaf, off its edges
+  while (top != root_ && !inside(nodes_[std::size_t(top)].cell, box)) top = nodes_[std::size_t(top)].parent;
+  if (top == root_ && !holds(nodes_[std::size_t(root_)].cell, box)) return false;
+  std::size_t own = 0;
+  for (std::uint32_t e = first_own_[id]; e != kNone; e = entries_[e].next_own) {
+    if (!meets(nodes_[std::size_t(entries_[e].leaf)].cell, box)) return false;
+    ++own;
+  }
+  bool complete = true;
+  return leaves_met(top, box, complete) == own && complete;
+}
+
 BroadPhaseStatus RegionQuadtree::update(ProxyId id, const Aabb& box) {
   const BroadPhaseStatus status = proxies_.check_update(id, box);
   if (status != BroadPhaseStatus::Ok) return status;
   proxies_[id].box = box;
-  const Entry& first = entries_[first_own_[id]];
-  const Cell& cell = nodes_[std::size_t(first.leaf)].cell;
-  // One leaf whose cell holds the new box off its edges (so it meets no other cell), in the
-  // same covering state: nothing to move.
-  if (first.next_own == kNone && inside(cell, box) && covers(box, cell) == first.covers) {
+  if (same_leaves(id, box)) {
+    // Only the covering flags may change (a leaf that gains partial boxes splits at its next
+    // insertion).
+    for (std::uint32_t e = first_own_[id]; e != kNone; e = entries_[e].next_own) {
+      Entry& en = entries_[e];
+      Node& leaf = nodes_[std::size_t(en.leaf)];
+      const bool now = covers(box, leaf.cell);
+      if (now != en.covers) leaf.partial = now ? leaf.partial - 1 : leaf.partial + 1;
+      en.covers = now;
+    }
     return status;
   }
   remove_entries(id);

@@ -94,19 +94,33 @@ TEST(RegionQuadtree, StraddlingBoxesAreReportedOnce) {
   EXPECT_EQ(hits, (std::vector<ProxyId>{0, 1, 2}));
 }
 
-TEST(RegionQuadtree, CoincidentBoxesStopAtTheDepthLimit) {
-  // Coincident points never straddle a split line: their leaf splits down to the limit.
-  RegionQuadtree s(2, 6);
+TEST(RegionQuadtree, LatticeSplitsDownToTheDepthLimit) {
+  // 32 x 32 points 0.5 apart under a root of edge 16: depth 4 leaves (edge 1) still hold 4
+  // points each, more than the bucket, but the depth limit stops there.
+  RegionQuadtree s(2, 4);
+  ASSERT_EQ(s.insert(5000, {Vec3(-8), Vec3(8)}, ProxyKind::Static, {}), BroadPhaseStatus::Ok);
+  for (ProxyId id = 0; id < 1024; ++id) {
+    const Vec3 p(Real(id % 32) * Real(0.5) - Real(7.75), Real(id / 32) * Real(0.5) - Real(7.75), 0);
+    ASSERT_EQ(s.insert(id, Aabb::from_point(p), ProxyKind::Moving, {}), BroadPhaseStatus::Ok);
+  }
+  EXPECT_TRUE(s.validate());
+  EXPECT_EQ(s.depth(), 4);
+  std::vector<ProxyPair> pairs;
+  s.find_pairs(pairs);
+  EXPECT_EQ(pairs.size(), 1024u);  // each point with the static box only
+}
+
+TEST(RegionQuadtree, CoincidentBoxesAreNotSplit) {
+  RegionQuadtree s(2, 12);
   ASSERT_EQ(s.insert(50, {Vec3(-8), Vec3(8)}, ProxyKind::Static, {}), BroadPhaseStatus::Ok);
   for (ProxyId id = 0; id < 50; ++id) {
     ASSERT_EQ(s.insert(id, Aabb::from_point(Vec3(Real(0.3))), ProxyKind::Moving, {}), BroadPhaseStatus::Ok);
   }
-  ASSERT_EQ(s.insert(51, {Vec3(7), Vec3(8)}, ProxyKind::Moving, {}), BroadPhaseStatus::Ok);
   EXPECT_TRUE(s.validate());
-  EXPECT_EQ(s.depth(), 6);
+  EXPECT_EQ(s.node_count(), 1u);  // splitting would not separate them
   std::vector<ProxyPair> pairs;
   s.find_pairs(pairs);
-  EXPECT_EQ(pairs.size(), 50u * 49u / 2u + 50u + 1u);
+  EXPECT_EQ(pairs.size(), 50u * 49u / 2u + 50u);
 }
 
 TEST(RegionQuadtree, OverlappingCrowdsAreNotSplit) {

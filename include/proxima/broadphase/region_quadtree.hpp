@@ -11,11 +11,12 @@
 /// the smallest cell containing it: a box straddling a centre line would then sit at the
 /// root, whatever its size; the loose quadtree, "quadtree", is the one-node-per-box answer to
 /// that). A leaf splits when more than `bucket` of its boxes do not cover its whole cell
-/// (boxes covering the cell go to every child, so splitting never separates them) and those
-/// boxes would go to at most two quadrants each on average (a cell crowded with boxes
-/// straddling its centre lines would only multiply its entries: the region quadtree's blow-up
-/// on heavily overlapping boxes), unless it is at the maximum depth below the root or its
-/// cell is too small to halve. Leaves are
+/// (boxes covering the cell go to every child, so splitting never separates them) and the
+/// split at least halves the pair tests (sum over the quadrants of the squared box counts,
+/// boxes straddling the centre lines counted in each quadrant they meet): coincident boxes,
+/// or a crowd straddling the centre lines, are not split at all (the region quadtree's
+/// blow-up on heavily overlapping boxes), unless it is at the maximum depth below the root or
+/// its cell is too small to halve. Leaves are
 /// deleted when they empty; the root region doubles towards a box that leaves it (no fixed
 /// world region, no overflow list). Nodes and leaf entries live in pools addressed by index.
 ///
@@ -59,8 +60,9 @@ class RegionQuadtree : public BroadPhaseQueries<RegionQuadtree> {
   BroadPhaseStatus insert(ProxyId id, const Aabb& box, ProxyKind kind = ProxyKind::Moving, ProxyFilter filter = {});
   /// Removes a proxy (leaves left empty are deleted). O(leaves it was in).
   BroadPhaseStatus remove(ProxyId id);
-  /// Moves a proxy: kept in place when it sits in one leaf whose cell still holds the new box,
-  /// else taken out of its leaves and added again. O(depth + leaves overlapped).
+  /// Moves a proxy: its entries are kept when the new box meets the same leaves (the common
+  /// case of small moves), else it is taken out of its leaves and added again.
+  /// O(depth + leaves overlapped).
   BroadPhaseStatus update(ProxyId id, const Aabb& box);
   /// Moves many proxies, all or nothing. O(m (depth + leaves overlapped)).
   BroadPhaseStatus update(std::span<const ProxyUpdate> updates);
@@ -168,6 +170,7 @@ class RegionQuadtree : public BroadPhaseQueries<RegionQuadtree> {
   void prune(std::int32_t node);
   void gather();
   void leaf_pairs(std::size_t leaf, std::vector<ProxyPair>& out, std::uint64_t& tested) const;
+  bool same_leaves(ProxyId id, const Aabb& box) const;
   bool check_node(std::int32_t node, std::size_t& entries) const;
   bool check_proxy(ProxyId id) const;
   std::size_t leaves_met(std::int32_t node, const Aabb& box, bool& complete) const;
