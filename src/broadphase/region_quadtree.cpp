@@ -190,12 +190,19 @@ bool RegionQuadtree::split_pays(std::int32_t leaf, const Real (&mid)[2]) const {
 void RegionQuadtree::split(std::int32_t leaf, int depth) {
   Node& n = nodes_[std::size_t(leaf)];
   if (n.partial <= bucket_ || depth >= max_depth_) return;
+  if (n.retry_in > 0) {
+    --n.retry_in;  // a refused split is weighed again after count / 2 more insertions
+    return;
+  }
   Real mid[2];
   for (int k = 0; k < 2; ++k) {
     mid[k] = n.cell.lo[k] + (n.cell.hi[k] - n.cell.lo[k]) * Real(0.5);
     if (!(mid[k] > n.cell.lo[k] && mid[k] < n.cell.hi[k])) return;  // too small to halve
   }
-  if (!split_pays(leaf, mid)) return;
+  if (!split_pays(leaf, mid)) {
+    n.retry_in = n.count / 2;
+    return;
+  }
   std::uint32_t e = n.first;
   n.leaf = false;
   n.mid[0] = mid[0];

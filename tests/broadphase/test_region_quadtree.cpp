@@ -72,9 +72,9 @@ TEST(RegionQuadtree, StraddlingBoxesAreReportedOnce) {
   ASSERT_EQ(s.insert(1, {Vec3(-40, -1, 0), Vec3(40, 1, 0)}, ProxyKind::Moving, {}), BroadPhaseStatus::Ok);
   ASSERT_EQ(s.insert(2, {Vec3(-1, -40, 0), Vec3(1, 40, 0)}, ProxyKind::Moving, {}), BroadPhaseStatus::Ok);
   ProxyId id = 3;
-  for (int i = 0; i < 6; ++i) {
-    for (int j = 0; j < 6; ++j) {
-      const Vec3 c(Real(i * 15 - 37), Real(j * 15 - 37), 0);
+  for (int i = 0; i < 10; ++i) {
+    for (int j = 0; j < 10; ++j) {
+      const Vec3 c(Real(i * 8 - 36), Real(j * 8 - 36), 0);
       ASSERT_EQ(s.insert(id++, Aabb::from_center_half_extents(c, Vec3(Real(0.5), Real(0.5), 0)), ProxyKind::Static, {}),
                 BroadPhaseStatus::Ok);
     }

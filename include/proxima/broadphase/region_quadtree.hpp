@@ -16,7 +16,8 @@
 /// boxes straddling the centre lines counted in each quadrant they meet): coincident boxes,
 /// or a crowd straddling the centre lines, are not split at all (the region quadtree's
 /// blow-up on heavily overlapping boxes), unless it is at the maximum depth below the root or
-/// its cell is too small to halve. Leaves are
+/// its cell is too small to halve. A refused split is weighed again after count / 2 more
+/// insertions into the leaf (amortised O(1) per insertion). Leaves are
 /// deleted when they empty; the root region doubles towards a box that leaves it (no fixed
 /// world region, no overflow list). Nodes and leaf entries live in pools addressed by index.
 ///
@@ -109,6 +110,7 @@ class RegionQuadtree : public BroadPhaseQueries<RegionQuadtree> {
     std::uint32_t count = 0;      // leaf: entries
     std::uint32_t partial = 0;    // leaf: entries whose box does not cover the cell
     std::uint32_t children = 0;   // internal: live children
+    std::uint32_t retry_in = 0;   // leaf: insertions before a refused split is weighed again
     bool leaf = true;
     bool live = true;
   };
