@@ -4,16 +4,18 @@
 /// Collision Detection, 7.3: objects straddling cells stored in every cell they overlap,
 /// pairs reported once through a reference point as for the grids of 7.1).
 ///
-/// Steps: 1. the root cell covers the boxes' x-y extent, doubling towards any box outside
-/// it (the old root becomes one quadrant of the new one, its bounds kept exactly); 2. a box
-/// descends into every quadrant whose closed cell its x-y extent overlaps and is linked into
-/// each leaf reached (children created on demand); 3. a leaf whose boxes not covering its
-/// cell exceed the bucket splits: its entries move to the quadrants they overlap (one more
-/// entry per extra quadrant), recursively; 4. child cells are the parent's bounds cut at its
-/// stored split lines, so cells nest and tile exactly despite rounding, and the once-only
-/// rule (half-open owner cells, header) names one leaf per point; 5. removal unlinks the
-/// proxy's entries and deletes the leaves left empty, and internal nodes left childless;
-/// 6. find_pairs gathers the leaves' boxes and tests each leaf's boxes pairwise.
+/// Steps: 1. the root cell covers the boxes' x-y extent, doubling towards any box outside it (the
+/// old root becomes one quadrant of the new one, its bounds kept exactly); 2. a box descends into
+/// every quadrant whose closed cell its x-y extent overlaps and is linked into each leaf reached
+/// (children created on demand); 3. a leaf whose boxes not covering its cell exceed the bucket
+/// splits when that at least halves its pair tests (header; a refusal is weighed again after
+/// count / 2 insertions): its entries move to the quadrants they overlap (one more entry per extra
+/// quadrant), recursively; 4. a move that leaves a box in the same leaves only refreshes its
+/// entries' covering flags; 5. child cells are the parent's bounds cut at its stored split lines,
+/// so cells nest and tile exactly despite rounding, and the once-only rule (half-open owner cells,
+/// header) names one leaf per point; 6. removal unlinks the proxy's entries and deletes the leaves
+/// left empty, and internal nodes left childless; 7. find_pairs gathers the leaves' boxes and tests
+/// each leaf's boxes pairwise.
 
 #include <proxima/broadphase/pair_tracker.hpp>
 #include <proxima/broadphase/parallel_pairs.hpp>
