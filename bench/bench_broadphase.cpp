@@ -34,6 +34,7 @@
 #include <proxima/broadphase/dynamic_aabb_tree.hpp>
 #include <proxima/broadphase/kd_tree.hpp>
 #include <proxima/broadphase/loose_octree.hpp>
+#include <proxima/broadphase/region_quadtree.hpp>
 #include <proxima/broadphase/uniform_grid.hpp>
 #include <proxima/core/executor.hpp>
 
@@ -399,6 +400,7 @@ std::vector<Contestant> contestants() {
   proxima("hgrid", std::type_identity<proxima::HierarchicalGrid>{});
   proxima("octree", std::type_identity<proxima::LooseOctree>{});
   proxima("quadtree", std::type_identity<proxima::LooseQuadtree>{});
+  proxima("region_quadtree", std::type_identity<proxima::RegionQuadtree>{});
   proxima("tree", std::type_identity<proxima::DynamicAabbTree>{});
   proxima("kdtree", std::type_identity<proxima::KdTree>{});
 #if defined(PROXIMA_BENCH_HAVE_REGISTRY)

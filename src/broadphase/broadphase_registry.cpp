@@ -8,6 +8,7 @@
 #include <proxima/broadphase/dynamic_aabb_tree.hpp>
 #include <proxima/broadphase/kd_tree.hpp>
 #include <proxima/broadphase/loose_octree.hpp>
+#include <proxima/broadphase/region_quadtree.hpp>
 #include <proxima/broadphase/sweep_and_prune.hpp>
 #include <proxima/broadphase/uniform_grid.hpp>
 
@@ -48,6 +49,8 @@ const std::array kRegistry = {
     BroadPhaseEntry{"octree", "loose octree, looseness 2", [] { return make_adapter<LooseOctree>("octree"); }},
     BroadPhaseEntry{"quadtree", "loose quadtree on x and y (flat worlds)",
                     [] { return make_adapter<LooseQuadtree>("quadtree"); }},
+    BroadPhaseEntry{"region_quadtree", "bucket region quadtree on x and y, boxes in every leaf they overlap",
+                    [] { return make_adapter<RegionQuadtree>("region_quadtree"); }},
     // Further structures: add their line here.
 };
 

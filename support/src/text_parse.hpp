@@ -1,8 +1,10 @@
 #pragma once
-// Parsing machinery shared by the workload readers (workloads.cpp, world_workloads.cpp):
-// internal to proxima_support, not installed. Every reader body runs inside guarded(),
-// which turns the internal ParseFailure into the Error of the Result it returns.
+// Parsing machinery shared by the workload readers (workloads.cpp, world_workloads.cpp,
+// world2d_workloads.cpp): internal to proxima_support, not installed. Every reader body runs
+// inside guarded(), which turns the internal ParseFailure into the Error of the Result it
+// returns.
 #include <algorithm>
+#include <array>
 #include <charconv>
 #include <cmath>
 #include <fstream>
@@ -195,7 +197,8 @@ inline constexpr const char* kKnownKinds[] = {"broadphase",
                                               "polygons2d_pairs",
                                               "sprite_masks",
                                               "sprites",
-                                              "sprites_expected"};
+                                              "sprites_expected",
+                                              "world2d"};
 
 /// Reads the header and checks that it is `kind` version 1.
 inline Header expect_header(Source& src, const char* kind) {
@@ -215,6 +218,39 @@ inline const std::string& require_key(const Source& src, const Header& h, const 
   const auto it = h.keys.find(key);
   if (it == h.keys.end()) fail(src.path(), 1, std::string("header lacks the key ") + key + "=");
   return it->second;
+}
+
+/// A header value of N finite numbers joined by commas, no spaces (`lo=0,0,0`).
+template <std::size_t N>
+std::array<double, N> require_numbers(const Source& src, const Header& h, const char* key) {
+  const std::string& text = require_key(src, h, key);
+  const std::string what = std::string("header key ") + key + "=" + text + " is not " + std::to_string(N) +
+                           " finite numbers joined by commas";
+  std::array<double, N> v{};
+  std::size_t start = 0;
+  for (std::size_t a = 0; a < N; ++a) {
+    const std::size_t comma = text.find(',', start);
+    if ((a + 1 < N) != (comma != std::string::npos)) fail(src.path(), 1, what);
+    const std::string_view part = std::string_view(text).substr(start, a + 1 < N ? comma - start : std::string::npos);
+    const auto [ptr, ec] = std::from_chars(part.data(), part.data() + part.size(), v[a]);
+    if (part.empty() || ec != std::errc() || ptr != part.data() + part.size() || !std::isfinite(v[a])) {
+      fail(src.path(), 1, what);
+    }
+    start = comma + 1;
+  }
+  return v;
+}
+
+/// Splits a record at '|' into its fields.
+inline std::vector<std::string_view> split_fields(std::string_view line) {
+  std::vector<std::string_view> parts;
+  std::size_t start = 0;
+  while (true) {
+    const std::size_t bar = line.find('|', start);
+    parts.push_back(line.substr(start, bar == std::string_view::npos ? std::string_view::npos : bar - start));
+    if (bar == std::string_view::npos) return parts;
+    start = bar + 1;
+  }
 }
 
 inline std::uint64_t require_count(const Source& src, const Header& h, const char* key) {

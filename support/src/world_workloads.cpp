@@ -16,40 +16,6 @@ using namespace detail;
 
 namespace {
 
-/// Splits a record at '|' into its fields.
-std::vector<std::string_view> split_fields(std::string_view line) {
-  std::vector<std::string_view> parts;
-  std::size_t start = 0;
-  while (true) {
-    const std::size_t bar = line.find('|', start);
-    parts.push_back(line.substr(start, bar == std::string_view::npos ? std::string_view::npos : bar - start));
-    if (bar == std::string_view::npos) return parts;
-    start = bar + 1;
-  }
-}
-
-/// A header value `x,y,z` (three numbers joined by commas).
-Vec3d require_corner(const Source& src, const Header& h, const char* key) {
-  const std::string& text = require_key(src, h, key);
-  Vec3d v;
-  std::size_t start = 0;
-  for (int a = 0; a < 3; ++a) {
-    const std::size_t comma = text.find(',', start);
-    if ((a < 2) != (comma != std::string::npos)) {
-      fail(src.path(), 1, std::string("header key ") + key + "=" + text + " is not three numbers 'x,y,z'");
-    }
-    const std::string_view part = std::string_view(text).substr(start, a < 2 ? comma - start : std::string::npos);
-    double value = 0;
-    const auto [ptr, ec] = std::from_chars(part.data(), part.data() + part.size(), value);
-    if (part.empty() || ec != std::errc() || ptr != part.data() + part.size() || !std::isfinite(value)) {
-      fail(src.path(), 1, std::string("header key ") + key + "=" + text + " is not three finite numbers 'x,y,z'");
-    }
-    v[a] = value;
-    start = comma + 1;
-  }
-  return v;
-}
-
 WorldShape parse_world_shape(const Source& src, std::string_view text) {
   const auto t = split(text);
   if (t.empty()) src.fail_here("empty shape field");
@@ -102,8 +68,10 @@ World parse_world(const std::string& path, std::uint64_t hull_limit, const std::
   w.frames = static_cast<int>(frames);
   w.dt = require_number(src, h, "dt");
   if (!(w.dt > 0)) fail(path, 1, "dt= must be > 0");
-  w.lo = require_corner(src, h, "lo");
-  w.hi = require_corner(src, h, "hi");
+  const auto lo = require_numbers<3>(src, h, "lo");
+  const auto hi = require_numbers<3>(src, h, "hi");
+  w.lo = {lo[0], lo[1], lo[2]};
+  w.hi = {hi[0], hi[1], hi[2]};
   if (!(w.lo.x < w.hi.x && w.lo.y < w.hi.y && w.lo.z < w.hi.z)) {
     fail(path, 1, "lo= must be smaller than hi= on every axis");
   }

@@ -90,6 +90,7 @@ enum class SceneLayout {
   LineY,        ///< centres on the y axis line
   HugeAndTiny,  ///< edge lengths log-uniform over five orders of magnitude (some span the world)
   ZeroSize,     ///< many point boxes and flat boxes, on a coarse lattice so they coincide
+  Flat,         ///< a 2D world: centres and boxes in the plane z = 0 (z extent [0, 0])
 };
 
 /// A seeded broad-phase scene (see the file comment). Lengths in world units.
@@ -193,6 +194,19 @@ inline std::vector<Scene> standard_scenes() {
       // inserts still happen: see run_differential (at least one per frame)
       {.name = "from_empty_churn", .seed = 117, .count = 0, .extent = Real(10), .churn = 0.0},
       {.name = "fast_movers", .seed = 118, .count = 300, .extent = Real(60), .step = Real(30), .resize_fraction = 0.5},
+      {.name = "flat_2d", .seed = 119, .layout = SceneLayout::Flat, .count = 400, .extent = Real(40)},
+      {.name = "flat_2d_lattice_static_mix",
+       .seed = 120,
+       .layout = SceneLayout::Flat,
+       .count = 300,
+       .extent = Real(16),
+       .min_size = Real(0.5),
+       .max_size = Real(3),
+       .quantum = Real(0.5),
+       .static_fraction = 0.5,
+       .filters = true,
+       .step = Real(0.5),
+       .rebuild_every = 4},
   };
 }
 
@@ -223,6 +237,9 @@ class SceneGenerator {
       }
       case SceneLayout::LineX: c = Vec3(rng_.uniform(-s.extent, s.extent), Real(0), Real(0)); break;
       case SceneLayout::LineY: c = Vec3(Real(0), rng_.uniform(-s.extent, s.extent), Real(0)); break;
+      case SceneLayout::Flat:
+        c = Vec3(rng_.uniform(-s.extent, s.extent), rng_.uniform(-s.extent, s.extent), Real(0));
+        break;
       default: c = rng_.vec3(-s.extent, s.extent); break;
     }
     return make_box(c, size());
@@ -235,6 +252,7 @@ class SceneGenerator {
     Vec3 d = rng_.vec3(-s.step, s.step);
     if (s.layout == SceneLayout::LineX) d.y = d.z = Real(0);
     if (s.layout == SceneLayout::LineY) d.x = d.z = Real(0);
+    if (s.layout == SceneLayout::Flat) d.z = Real(0);
     Vec3 c = old_c + d;
     for (int a = 0; a < 3; ++a) {
       if (c[a] > s.extent || c[a] < -s.extent) c[a] = old_c[a] - d[a];
@@ -266,6 +284,7 @@ class SceneGenerator {
       return Vec3(base) * rng_.vec3(Real(0.5), Real(1));
     }
     Vec3 e = rng_.vec3(s.min_size, s.max_size);
+    if (s.layout == SceneLayout::Flat) e.z = Real(0);
     if (s.layout == SceneLayout::ZeroSize) {
       const double u = chance();
       if (u < 0.4) {

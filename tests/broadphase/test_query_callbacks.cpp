@@ -11,6 +11,7 @@
 #include <proxima/broadphase/dynamic_aabb_tree.hpp>
 #include <proxima/broadphase/kd_tree.hpp>
 #include <proxima/broadphase/loose_octree.hpp>
+#include <proxima/broadphase/region_quadtree.hpp>
 #include <proxima/broadphase/sweep_and_prune.hpp>
 #include <proxima/broadphase/uniform_grid.hpp>
 
@@ -30,7 +31,7 @@ class QueryCallbackTest : public testing::Test {};
 
 using Structures =
     testing::Types<BruteForceBroadPhase, SweepAndPrune, SortedSweep, MultiBoxPruning, UniformGrid, SpatialHash,
-                   HierarchicalGrid, LooseOctree, LooseQuadtree, KdTree, BspTree, DynamicAabbTree>;
+                   HierarchicalGrid, LooseOctree, LooseQuadtree, RegionQuadtree, KdTree, BspTree, DynamicAabbTree>;
 TYPED_TEST_SUITE(QueryCallbackTest, Structures);
 
 /// 800 proxies of a uniform scene (a quarter static), found once.
