@@ -15,7 +15,6 @@
 #include <cmath>
 #include <regex>
 #include <set>
-
 #include <support/world2d_workloads.hpp>
 
 #include "d2/d2_reference.hpp"
@@ -97,7 +96,8 @@ std::vector<IdPair> reference_pairs(const World2d& w, const std::vector<RefShape
       if (std::hypot(a.x - b.x, a.y - b.y) > a.r + b.r + 1e-9L) continue;
       if (w.objects[a.id].is_static && w.objects[b.id].is_static) continue;
       const IdPair pair = a.id < b.id ? IdPair{a.id, b.id} : IdPair{b.id, a.id};
-      const LD d = d2::test::signed_distance(shapes[pair.first], poses[pair.first], shapes[pair.second], poses[pair.second]);
+      const LD d =
+          d2::test::signed_distance(shapes[pair.first], poses[pair.first], shapes[pair.second], poses[pair.second]);
       distances[pair] = d;
       if (d <= 0) out.push_back(pair);
     }
@@ -165,8 +165,8 @@ TEST(World2dPairs, FramesZeroAndLastMatchTheManifest) {
       EXPECT_TRUE(sizeof(Real) == 4 && d != distances.end() && d->second <= kFloatSlack)
           << "extra pair " << p.first << "," << p.second;
     }
-    std::cout << "[ world2d  ] frame " << frame << ": " << truth.size() << " pairs, library disagrees on " << disagreements
-              << "\n";
+    std::cout << "[ world2d  ] frame " << frame << ": " << truth.size() << " pairs, library disagrees on "
+              << disagreements << "\n";
   }
 }
 
