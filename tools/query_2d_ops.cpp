@@ -9,6 +9,7 @@
 #include <string>
 
 #include "json_shapes_2d.hpp"
+#include "pair_names.hpp"
 
 namespace proxima::tool {
 
@@ -17,20 +18,6 @@ namespace {
 PlacedShape2d member_shape(const Json& request, std::string_view key) {
   return read_placed_shape_2d(require_member(request, "", key), std::string(key));
 }
-
-const char* status_name(PairStatus status) {
-  switch (status) {
-    case PairStatus::Separated: return "separated";
-    case PairStatus::Touching: return "touching";
-    case PairStatus::Penetrating: return "penetrating";
-    case PairStatus::MaxIterations: return "max_iterations";
-    case PairStatus::Degenerate: return "degenerate";
-    case PairStatus::InvalidInput: return "invalid_input";
-  }
-  return "unknown";
-}
-
-const char* method_name(PairMethod method) { return method == PairMethod::Sat ? "sat" : "gjk"; }
 
 void put_parts(Json& answer, d2::PartIndex a, d2::PartIndex b) {
   if (a >= 0) answer["part_a"] = Json{{"segment", a}};

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "json_shapes.hpp"
+#include "pair_names.hpp"
 
 namespace proxima::tool {
 
@@ -25,29 +26,6 @@ Json sub_json(const PlacedShape& side, const SubShapeId& sub) {
   if (sub.child != kNoIndex) j["child"] = sub.child;
   if (sub.triangle != kNoIndex) j["triangle"] = sub.triangle;
   return j;
-}
-
-const char* status_name(PairStatus status) {
-  switch (status) {
-    case PairStatus::Separated: return "separated";
-    case PairStatus::Touching: return "touching";
-    case PairStatus::Penetrating: return "penetrating";
-    case PairStatus::MaxIterations: return "max_iterations";
-    case PairStatus::Degenerate: return "degenerate";
-    case PairStatus::InvalidInput: return "invalid_input";
-  }
-  return "unknown";
-}
-
-const char* method_name(PairMethod method) {
-  switch (method) {
-    case PairMethod::Analytic: return "analytic";
-    case PairMethod::Gjk: return "gjk";
-    case PairMethod::Epa: return "epa";
-    case PairMethod::Sat: return "sat";
-    case PairMethod::Support: return "support";
-  }
-  return "unknown";
 }
 
 }  // namespace
