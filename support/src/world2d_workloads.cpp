@@ -5,6 +5,8 @@
 // operations, so the positions are the reference's to the last bit.
 #include "support/world2d_workloads.hpp"
 
+#include <cmath>
+
 #include "support/world_workloads.hpp"
 #include "text_parse.hpp"
 
@@ -142,6 +144,30 @@ Pose2d pose2d_at_time(const World2dObject& object, double t, const Vec2d& lo, co
 
 Pose2d pose2d_at_frame(const World2d& world, std::size_t index, int frame) {
   return pose2d_at_time(world.objects[index], frame_time(frame, world.dt), world.lo, world.hi);
+}
+
+Result<d2::Shape> to_d2_shape(const World2dShape& s) {
+  std::vector<Vec2> points;
+  for (const Vec2d& p : s.points) points.push_back({static_cast<Real>(p.x), static_cast<Real>(p.y)});
+  const Real r = static_cast<Real>(s.radius);
+  const auto shape = [](auto result) -> Result<d2::Shape> {
+    if (!result.ok()) return result.error();
+    return d2::Shape(std::move(result).value());
+  };
+  switch (s.kind) {
+    case World2dShapeKind::Circle: return shape(d2::Circle::create(r));
+    case World2dShapeKind::Capsule2d: return shape(d2::Capsule::create(points[0], points[1], r));
+    case World2dShapeKind::Segment2d: return shape(d2::Segment::create(points[0], points[1]));
+    case World2dShapeKind::Polygon: return shape(d2::Polygon::create(points, r));
+    case World2dShapeKind::Box2d:
+      return shape(d2::Polygon::box(static_cast<Real>(s.half_extents.x), static_cast<Real>(s.half_extents.y), r));
+  }
+  return Error{ErrorCode::InvalidArgument, "kind", "unknown W9 shape kind"};
+}
+
+d2::Pose to_d2_pose(const Pose2d& p) {
+  return {{static_cast<Real>(p.position.x), static_cast<Real>(p.position.y)},
+          {static_cast<Real>(std::cos(p.angle)), static_cast<Real>(std::sin(p.angle))}};
 }
 
 }  // namespace proxima::bench

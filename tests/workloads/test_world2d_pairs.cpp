@@ -49,27 +49,7 @@ RefShape reference_shape(const World2dShape& s) {
   return r;
 }
 
-/// The library's shape of a W9 shape.
-d2::Shape library_shape(const World2dShape& s) {
-  std::vector<Vec2> points;
-  for (const Vec2d& p : s.points) points.push_back({static_cast<Real>(p.x), static_cast<Real>(p.y)});
-  const Real r = static_cast<Real>(s.radius);
-  switch (s.kind) {
-    case World2dShapeKind::Circle: return d2::Circle::create(r).value();
-    case World2dShapeKind::Capsule2d: return d2::Capsule::create(points[0], points[1], r).value();
-    case World2dShapeKind::Segment2d: return d2::Segment::create(points[0], points[1]).value();
-    case World2dShapeKind::Polygon: return d2::Polygon::create(points, r).value();
-    case World2dShapeKind::Box2d:
-      return d2::Polygon::box(static_cast<Real>(s.half_extents.x), static_cast<Real>(s.half_extents.y), r).value();
-  }
-  return d2::Circle::create(Real(1)).value();
-}
-
 RefPose reference_pose(const Pose2d& p) { return {p.position.x, p.position.y, p.angle}; }
-
-d2::Pose library_pose(const Pose2d& p) {
-  return d2::Pose::from({static_cast<Real>(p.position.x), static_cast<Real>(p.position.y)}, static_cast<Real>(p.angle));
-}
 
 /// The reference's touching pairs of frame k (not both static) and every pair's signed distance.
 std::vector<IdPair> reference_pairs(const World2d& w, const std::vector<RefShape>& shapes, int frame,
@@ -122,7 +102,7 @@ TEST(World2dPairs, FramesZeroAndLastMatchTheManifest) {
   for (std::size_t i = 0; i < n; ++i) {
     const World2dObject& o = w->objects[i];
     ref_shapes.push_back(reference_shape(o.shape));
-    d2::ObjectDesc desc{library_shape(o.shape), library_pose(pose2d_at_frame(*w, i, 0))};
+    d2::ObjectDesc desc{to_d2_shape(o.shape).value(), to_d2_pose(pose2d_at_frame(*w, i, 0))};
     desc.kind = o.is_static ? d2::ObjectKind::Static : d2::ObjectKind::Moving;
     ASSERT_EQ(world.add(desc).value().index, i);
   }
@@ -141,7 +121,7 @@ TEST(World2dPairs, FramesZeroAndLastMatchTheManifest) {
     if (frame != 0) {
       for (std::size_t i = 0; i < n; ++i) {
         if (!w->objects[i].is_static) {
-          ASSERT_FALSE(world.move({static_cast<std::uint32_t>(i), 0}, library_pose(pose2d_at_frame(*w, i, frame))));
+          ASSERT_FALSE(world.move({static_cast<std::uint32_t>(i), 0}, to_d2_pose(pose2d_at_frame(*w, i, frame))));
         }
       }
     }

@@ -3,11 +3,14 @@
 /// The W9 2D collision world of shared/bench/FORMATS.md (`world2d_mixed_20k.txt`): the
 /// `world2d` reader into plain structs (shape kind and numbers, pose, velocities) and the W9
 /// motion rule (position folded into [lo, hi] as W8, angle0 + w t), in double precision
-/// exactly as FORMATS.md writes it. No 2D shapes are built here.
+/// exactly as FORMATS.md writes it; and the conversion of a record's shape and pose to the 2D
+/// module's (to_d2_shape, to_d2_pose).
 ///
 /// As for W1..W8 (workloads.hpp): the header checked (kind, version 1, the keys needed;
 /// unknown keys ignored), blank and `#` lines skipped, and a malformed file gives an Error
 /// whose field is "<path>:<line>".
+
+#include <proxima/d2/shape.hpp>
 
 #include <cstdint>
 #include <string>
@@ -85,5 +88,12 @@ Result<World2d> read_world2d(const std::string& path);
 Pose2d pose2d_at_time(const World2dObject& object, double t, const Vec2d& lo, const Vec2d& hi);
 /// The pose of object `index` at frame k (t = frame_time(k, dt), world_workloads.hpp).
 Pose2d pose2d_at_frame(const World2d& world, std::size_t index, int frame);
+
+/// The 2D module's shape of a W9 shape (coordinates rounded to Real): Circle, Capsule,
+/// Segment, or Polygon (box2d through Polygon::box). Errors: those of the shape's create.
+Result<d2::Shape> to_d2_shape(const World2dShape& shape);
+/// The 2D module's pose (position rounded to Real; the angle's cosine and sine computed in
+/// double, then rounded).
+d2::Pose to_d2_pose(const Pose2d& pose);
 
 }  // namespace proxima::bench
