@@ -30,6 +30,7 @@
 #include <string>
 #include <vector>
 
+#include "d2/d2_reference.hpp"
 #include "support/polygons2d_workloads.hpp"
 #include "support/workloads.hpp"
 
@@ -46,14 +47,8 @@ using LD = long double;
 // ---------------------------------------------------------------------------------------
 // The exact reference (long double, from the file's numbers)
 
-/// A point or vector of the plane in long double.
-struct P {
-  LD x = 0;
-  LD y = 0;
-};
-P operator-(const P& a, const P& b) { return {a.x - b.x, a.y - b.y}; }
-LD cross(const P& a, const P& b) { return a.x * b.y - a.y * b.x; }
-LD dot(const P& a, const P& b) { return a.x * b.x + a.y * b.y; }
+// Points, hulls and the origin's signed distance to a hull come from d2_reference.hpp.
+using d2::test::P;
 
 /// A core (vertices, world frame) and its radius.
 struct RefShape {
@@ -82,55 +77,12 @@ RefShape ref_shape(const pb::Polygons2dShape& s, const pb::Polygons2dPose& pose)
   return r;
 }
 
-/// Convex hull (Andrew's monotone chain), counter-clockwise, collinear points dropped.
-std::vector<P> hull(std::vector<P> pts) {
-  std::sort(pts.begin(), pts.end(), [](const P& a, const P& b) { return a.x < b.x || (a.x == b.x && a.y < b.y); });
-  pts.erase(std::unique(pts.begin(), pts.end(), [](const P& a, const P& b) { return a.x == b.x && a.y == b.y; }),
-            pts.end());
-  if (pts.size() < 3) return pts;
-  std::vector<P> h(2 * pts.size());
-  std::size_t k = 0;
-  const auto add = [&](const P& p, std::size_t floor) {
-    while (k >= floor && cross(h[k - 1] - h[k - 2], p - h[k - 2]) <= 0) --k;
-    h[k++] = p;
-  };
-  for (const P& p : pts) add(p, 2);  // lower hull
-  const std::size_t lower = k + 1;
-  for (std::size_t i = pts.size() - 1; i-- > 0;) add(pts[i], lower);  // upper hull
-  --k;                                                                // the first point closes the upper hull
-  h.resize(k);
-  return h;
-}
-
-/// Distance from the origin to the segment [a, b].
-LD origin_to_segment(const P& a, const P& b) {
-  const P e = b - a;
-  const LD ee = dot(e, e);
-  const LD t = ee > 0 ? std::clamp(-dot(a, e) / ee, LD(0), LD(1)) : LD(0);
-  const P q{a.x + t * e.x, a.y + t * e.y};
-  return std::sqrt(dot(q, q));
-}
-
-/// Signed distance from the origin to the boundary of a convex hull (negative inside).
-LD origin_signed_distance(const std::vector<P>& h) {
-  if (h.size() == 1) return std::sqrt(dot(h[0], h[0]));
-  LD d = std::numeric_limits<LD>::infinity();
-  bool inside = h.size() >= 3;
-  for (std::size_t i = 0; i < h.size(); ++i) {
-    const P& a = h[i];
-    const P& b = h[(i + 1) % h.size()];
-    d = std::min(d, origin_to_segment(a, b));
-    inside = inside && cross(b - a, P{} - a) >= 0;
-  }
-  return inside ? -d : d;
-}
-
 /// The exact signed distance of two rounded convex shapes (> 0 apart, < 0 overlapping).
 LD ref_signed_distance(const RefShape& a, const RefShape& b) {
   std::vector<P> diff;
   for (const P& pa : a.vertices)
     for (const P& pbv : b.vertices) diff.push_back(pbv - pa);
-  return origin_signed_distance(hull(diff)) - a.radius - b.radius;
+  return d2::test::point_polygon_signed_distance(P{}, d2::test::hull(diff)) - a.radius - b.radius;
 }
 
 /// Signed distance from a world point to the shape's surface (< 0 inside).
