@@ -49,6 +49,43 @@ int count_tunnelled(const PlatformerRun& run) {
   return n;
 }
 
+/// The sprite pair at its first pixel contact, in the sky of the panel: a screen pixel is
+/// 0.1 m, the sprites' pixel row 0 at 10.5 m; the ring's set pixels blue, the turned cross's
+/// (each of its pixels drawn where W9's rule puts its centre) orange, the first common pixel red.
+void draw_sprites(SvgWriter& svg, const SpriteEncounter& e, double top) {
+  if (e.pixels_frame < 0) return;
+  constexpr double kPixel = 0.1;
+  const auto at = [&](double px, double py) { return to_svg({Real(px * kPixel), Real(10.5 - py * kPixel)}, top); };
+  const double side = kPixel * kScale;
+  for (int y = 0; y < e.ring.height(); ++y) {
+    for (int x = 0; x < e.ring.width(); ++x) {
+      if (!e.ring.get(x, y)) continue;
+      const SvgPoint p = at(e.start_a + e.pixels_frame + x, e.row + y);
+      svg.rect(p.x, p.y, side, side, "#3b7dd8");
+    }
+  }
+  const d2::TurnedPlacement b = e.placement_b(e.pixels_frame);
+  const double cx = static_cast<double>(b.position().x) + e.cross.width() / 2.0;
+  const double cy = static_cast<double>(b.position().y) + e.cross.height() / 2.0;
+  for (int v = 0; v < e.cross.height(); ++v) {
+    for (int u = 0; u < e.cross.width(); ++u) {
+      if (!e.cross.get(u, v)) continue;
+      const double lu = u + 0.5 - e.cross.width() / 2.0, lv = v + 0.5 - e.cross.height() / 2.0;
+      const double dx = b.scale() * (b.cos() * lu - b.sin() * lv), dy = b.scale() * (b.sin() * lu + b.cos() * lv);
+      const SvgPoint p = at(cx + dx - 0.5, cy + dy - 0.5);
+      svg.rect(p.x, p.y, side, side, "#ff7f0e", "none", 0, 0);
+    }
+  }
+  const SvgPoint f = at(static_cast<double>(e.first_pixel.x), static_cast<double>(e.first_pixel.y));
+  svg.rect(f.x, f.y, side, side, "#d62728");
+  char label[160];
+  std::snprintf(label, sizeof(label),
+                "sprites: rectangles meet at frame %d, pixels at frame %d (%llu common, first in red)",
+                e.rectangles_frame, e.pixels_frame, static_cast<unsigned long long>(e.pixels));
+  const SvgPoint l = at(static_cast<double>(e.start_b - e.pixels_frame) + 40, static_cast<double>(e.row) + 18);
+  svg.text(l.x, l.y, label, 11, "#444");
+}
+
 }  // namespace
 
 std::string render_platformer_svg(const PlatformerRun& continuous, const PlatformerRun& discrete) {
@@ -61,6 +98,7 @@ std::string render_platformer_svg(const PlatformerRun& continuous, const Platfor
       count_stopped(continuous), static_cast<int>(continuous.projectiles.size()), continuous.ground.size() - 1,
       continuous.catches);
   draw_run(svg, continuous, 0, title);
+  draw_sprites(svg, continuous.sprites, 0);
   std::snprintf(title, sizeof(title), "discrete detection: %d of %d projectiles passed through the wall (dashed)",
                 count_tunnelled(discrete), static_cast<int>(discrete.projectiles.size()));
   draw_run(svg, discrete, kPanel + 10, title);
@@ -73,10 +111,13 @@ std::string platformer_report(const PlatformerRun& continuous, const PlatformerR
       text, sizeof(text),
       "platformer: %d frames, ground of %zu tiles (chain with ghost vertices), player %d ground contacts, %d catches\n"
       "  continuous: %d of %d projectiles stopped at the wall, %d tunnelled\n"
-      "  discrete:   %d of %d projectiles stopped, %d tunnelled\n",
+      "  discrete:   %d of %d projectiles stopped, %d tunnelled\n"
+      "  sprites: bounding rectangles meet at frame %d, the pixels at frame %d (%llu common pixels)\n",
       continuous.steps, continuous.ground.size() - 1, continuous.ground_contacts, continuous.catches,
       count_stopped(continuous), static_cast<int>(continuous.projectiles.size()), count_tunnelled(continuous),
-      count_stopped(discrete), static_cast<int>(discrete.projectiles.size()), count_tunnelled(discrete));
+      count_stopped(discrete), static_cast<int>(discrete.projectiles.size()), count_tunnelled(discrete),
+      continuous.sprites.rectangles_frame, continuous.sprites.pixels_frame,
+      static_cast<unsigned long long>(continuous.sprites.pixels));
   return text;
 }
 

@@ -1,6 +1,8 @@
 #include "platformer_scene.hpp"
 
 #include <cmath>
+#include <string>
+#include <vector>
 
 namespace proxima::tool {
 
@@ -46,7 +48,49 @@ void resolve_player(const d2::CollisionWorld& world, d2::ObjectHandle player, Ve
   position += push;
 }
 
+d2::SpriteMask mask_where(int w, int h, bool (*set)(int, int)) {
+  std::vector<std::string> rows;
+  for (int y = 0; y < h; ++y) {
+    std::string row;
+    for (int x = 0; x < w; ++x) row += set(x, y) ? '1' : '0';
+    rows.push_back(row);
+  }
+  return d2::SpriteMask::from_rows(rows).value();
+}
+
+/// The ring and the spinning cross, run frame by frame until the pixels meet.
+SpriteEncounter run_sprites(int frames) {
+  SpriteEncounter e;
+  e.ring = mask_where(32, 32, [](int x, int y) {
+    const double r = std::hypot(x + 0.5 - 16, y + 0.5 - 16);
+    return r <= 15.5 && r >= 11.5;
+  });
+  e.cross = mask_where(32, 32, [](int x, int y) { return (x >= 13 && x < 19) || (y >= 13 && y < 19); });
+  e.start_a = 0;
+  e.start_b = 160;
+  e.row = 20;
+  e.spin_degrees = 7;
+  for (int frame = 0; frame < frames && e.pixels_frame < 0; ++frame) {
+    const d2::PixelPoint a{e.start_a + frame, e.row};
+    const d2::TurnedPlacement b = e.placement_b(frame);
+    const d2::PixelRect ra{a.x, a.y, a.x + 32, a.y + 32};
+    const bool rectangles = !d2::intersection(ra, d2::turned_bounds(e.cross, b)).is_empty();
+    if (rectangles && e.rectangles_frame < 0) e.rectangles_frame = frame;
+    const d2::SpriteOverlap o = d2::sprite_overlap(e.ring, a, e.cross, b);
+    if (o.overlap) {
+      e.pixels_frame = frame;
+      e.pixels = o.count;
+      e.first_pixel = *o.first;
+    }
+  }
+  return e;
+}
+
 }  // namespace
+
+d2::TurnedPlacement SpriteEncounter::placement_b(int frame) const {
+  return d2::TurnedPlacement::create({start_b - frame, row}, spin_degrees * frame, 1.0).value();
+}
 
 PlatformerRun run_platformer(const PlatformerConfig& config) {
   PlatformerRun run;
@@ -106,6 +150,7 @@ PlatformerRun run_platformer(const PlatformerConfig& config) {
     run.player_trail.push_back(d2::Pose::from(position, 0));
   }
   for (ProjectileTrack& track : run.projectiles) track.tunnelled = !track.stopped && track.end.x > run.wall_bottom.x;
+  run.sprites = run_sprites(config.frames);
   return run;
 }
 

@@ -5,6 +5,8 @@
 // fast projectiles fired at the wall that the world's continuous detection stops. The same
 // scene runs with continuous detection off to show what it prevents.
 #include <proxima/d2/collision_world.hpp>
+#include <proxima/d2/sprite_mask.hpp>
+#include <proxima/d2/sprite_overlap.hpp>
 
 #include <vector>
 
@@ -27,6 +29,24 @@ struct ProjectileTrack {
   bool tunnelled = false;  ///< passed the wall's line without being stopped
 };
 
+/// Two sprites flying at each other in screen pixels (y down): a ring moving right and a
+/// spinning cross moving left, 1 pixel per frame each; their overlap is pixel-perfect (the
+/// cross turned by W9's rule), their bounding rectangles meet earlier.
+struct SpriteEncounter {
+  d2::SpriteMask ring = d2::SpriteMask::create(1, 1).value();   ///< sprite A (32 x 32 ring)
+  d2::SpriteMask cross = d2::SpriteMask::create(1, 1).value();  ///< sprite B (32 x 32 cross, turned)
+  int start_a = 0;                                              ///< A's x at frame 0 (pixels); A is at start_a + frame
+  int start_b = 0;                                              ///< B's x at frame 0; B is at start_b - frame
+  int row = 0;                                                  ///< both sprites' y (pixels)
+  double spin_degrees = 0;                                      ///< B's turn per frame (clockwise on screen)
+  int rectangles_frame = -1;                                    ///< first frame whose bounding rectangles overlap
+  int pixels_frame = -1;                                        ///< first frame with a common set pixel
+  std::uint64_t pixels = 0;                                     ///< common pixels at that frame
+  d2::PixelPoint first_pixel{};                                 ///< the first common pixel (smallest y, then x)
+  /// B's placement at a frame.
+  d2::TurnedPlacement placement_b(int frame) const;
+};
+
 /// What the run did.
 struct PlatformerRun {
   PlatformerConfig config;
@@ -39,6 +59,7 @@ struct PlatformerRun {
   int ground_contacts = 0;  ///< player–ground manifolds over the run
   int catches = 0;          ///< of them, normals that push the player backwards or sideways (normal.y < 0.7)
   int steps = 0;            ///< world steps
+  SpriteEncounter sprites;  ///< the pixel-perfect sprite pair
 };
 
 /// Runs the scene.

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <sstream>
 
+#include "d2/sprite_reference.hpp"
 #include "demo_platformer.hpp"
 
 namespace proxima::tool {
@@ -30,6 +31,24 @@ TEST(DemoPlatformer, ContinuousDetectionStopsEveryProjectileAndTheGroundNeverCat
     // Held where its surface touches the wall's line: centre 0.05 before x = 50.
     EXPECT_NEAR(t.end.x, run.wall_bottom.x - Real(0.05), Real(2e-3));
   }
+}
+
+TEST(DemoPlatformer, TheSpritesMeetAtTheFirstFrameWithACommonPixel) {
+  const SpriteEncounter e = run_platformer(PlatformerConfig{}).sprites;
+  ASSERT_GT(e.pixels_frame, 0);
+  EXPECT_LE(e.rectangles_frame, e.pixels_frame);
+  // W9's rule written literally (tests/d2/sprite_reference.hpp): no common pixel the frame
+  // before, the same count and first pixel at the frame.
+  const auto at = [&](int frame) {
+    return test::reference_turned(e.ring, {e.start_a + frame, e.row}, e.cross, {e.start_b - frame, e.row},
+                                  e.spin_degrees * frame, 1.0);
+  };
+  EXPECT_EQ(at(e.pixels_frame - 1).count, 0u);
+  const d2::SpriteOverlap hit = at(e.pixels_frame);
+  EXPECT_EQ(hit.count, e.pixels);
+  ASSERT_TRUE(hit.first.has_value());
+  EXPECT_EQ(hit.first->x, e.first_pixel.x);
+  EXPECT_EQ(hit.first->y, e.first_pixel.y);
 }
 
 TEST(DemoPlatformer, WithoutContinuousDetectionTheProjectilesTunnel) {
