@@ -25,9 +25,11 @@
 #include <array>
 #include <cfloat>
 #include <cmath>
+#include <filesystem>
 #include <iostream>
 #include <optional>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include "d2/d2_reference.hpp"
@@ -113,13 +115,17 @@ LD pair_scale(const Pair& p) {
   return s;
 }
 
-/// The workload, read and decided once; null (with `why`) when it cannot be read.
-const Workload* load(std::string& why) {
-  static const std::optional<Workload> workload = [&]() -> std::optional<Workload> {
-    auto raw = pb::read_polygons2d_pairs(pb::workload_path(pb::workload_dir(), "polygons2d_pairs.txt"));
-    if (!raw) return why = raw.error().what(), std::nullopt;
+/// The W9 pairs file in the shared data folder.
+std::string pairs_path() { return pb::workload_path(pb::workload_dir(), "polygons2d_pairs.txt"); }
+
+/// The workload, read and decided once, or the reader's error (a file that is present but
+/// cannot be read fails the tests; only an absent file skips them).
+const std::variant<Workload, std::string>& load() {
+  static const std::variant<Workload, std::string> workload = []() -> std::variant<Workload, std::string> {
+    auto raw = pb::read_polygons2d_pairs(pairs_path());
+    if (!raw) return raw.error().what();
     auto shapes = pb::to_d2_pairs(*raw);
-    if (!shapes) return why = shapes.error().what(), std::nullopt;
+    if (!shapes) return shapes.error().what();
     Workload w;
     w.shapes = std::move(*shapes);
     for (const pb::Polygons2dPair& r : *raw) {
@@ -130,17 +136,17 @@ const Workload* load(std::string& why) {
     }
     return w;
   }();
-  return workload ? &*workload : nullptr;
+  return workload;
 }
 
-/// Loads the workload into `w`, or skips the test when the shared files are absent.
-#define PROXIMA_W9_LOAD(w)                                                                                \
-  std::string w##_why;                                                                                    \
-  const Workload* w = load(w##_why);                                                                      \
-  if (w == nullptr)                                                                                       \
-    GTEST_SKIP() << "no W9 workload (polygons2d_pairs.txt) in " << pb::workload_dir() << ": " << w##_why; \
-  do {                                                                                                    \
-  } while (false)
+/// Loads the workload into `w`: skips the test when the shared file is absent, fails it when
+/// the file is present but cannot be read.
+#define PROXIMA_W9_LOAD(w)                                                                \
+  if (!std::filesystem::exists(pairs_path())) {                                           \
+    GTEST_SKIP() << "no W9 workload (polygons2d_pairs.txt) in " << pb::workload_dir();    \
+  }                                                                                       \
+  ASSERT_TRUE(std::holds_alternative<Workload>(load())) << std::get<std::string>(load()); \
+  const Workload* w = &std::get<Workload>(load())
 
 /// Proxima's accuracy at a pair's scale: a few hundred ulps of Real.
 LD proxima_tolerance(const Pair& p) { return LD(500) * LD(std::numeric_limits<Real>::epsilon()) * p.scale; }
