@@ -253,6 +253,39 @@ inline std::vector<std::string_view> split_fields(std::string_view line) {
   }
 }
 
+/// The fields of a W8 / W9 world record `<id> <static|moving> <shape ...> | <pose> |
+/// <velocities>`, the id checked against the record's index.
+struct ObjectRecord {
+  bool is_static = false;       ///< "static" (else "moving")
+  std::string_view shape;       ///< the shape's tokens, from its kind name on
+  std::string_view pose;        ///< the pose field
+  std::string_view velocities;  ///< the velocities field
+};
+
+/// Splits record `k` of a world file into its fields (errors at the source's line).
+inline ObjectRecord parse_object_record(const Source& src, std::string_view line, std::uint64_t k) {
+  const auto parts = split_fields(line);
+  if (parts.size() != 3) {
+    src.fail_here("expected 3 fields separated by '|' (id kind shape | pose | velocities), found " +
+                  std::to_string(parts.size()));
+  }
+  const auto head = split(parts[0]);
+  if (head.size() < 3) src.fail_here("expected '<id> <static|moving> <shape ...>'");
+  if (parse_unsigned(src, head[0], "object id") != k) {
+    src.fail_here("object id " + std::string(head[0]) + " out of order, expected " + std::to_string(k));
+  }
+  ObjectRecord r;
+  if (head[1] == "static") {
+    r.is_static = true;
+  } else if (head[1] != "moving") {
+    src.fail_here("expected 'static' or 'moving', found " + quoted(head[1]));
+  }
+  r.shape = parts[0].substr(static_cast<std::size_t>(head[2].data() - parts[0].data()));
+  r.pose = parts[1];
+  r.velocities = parts[2];
+  return r;
+}
+
 inline std::uint64_t require_count(const Source& src, const Header& h, const char* key) {
   const std::string& text = require_key(src, h, key);
   std::uint64_t value = 0;

@@ -64,29 +64,15 @@ World2dShape parse_shape2d(const Source& src, std::string_view text) {
 }
 
 World2dObject parse_object2d(const Source& src, std::string_view line, std::uint64_t k) {
-  const auto parts = split_fields(line);
-  if (parts.size() != 3) {
-    src.fail_here("expected 3 fields separated by '|' (id kind shape | pose | velocities), found " +
-                  std::to_string(parts.size()));
-  }
-  const auto head = split(parts[0]);
-  if (head.size() < 3) src.fail_here("expected '<id> <static|moving> <shape ...>'");
+  const ObjectRecord record = parse_object_record(src, line, k);
   World2dObject o;
-  if (parse_unsigned(src, head[0], "object id") != k) {
-    src.fail_here("object id " + std::string(head[0]) + " out of order, expected " + std::to_string(k));
-  }
   o.id = static_cast<std::uint32_t>(k);
-  if (head[1] == "static") {
-    o.is_static = true;
-  } else if (head[1] != "moving") {
-    src.fail_here("expected 'static' or 'moving', found " + quoted(head[1]));
-  }
-  const std::size_t shape_start = static_cast<std::size_t>(head[2].data() - parts[0].data());
-  o.shape = parse_shape2d(src, parts[0].substr(shape_start));
-  const auto pose = split(parts[1]);
+  o.is_static = record.is_static;
+  o.shape = parse_shape2d(src, record.shape);
+  const auto pose = split(record.pose);
   expect_tokens(src, pose, 3, "x y angle");
   o.pose = {parse_point(src, pose, 0), parse_double(src, pose[2])};
-  const auto velocities = split(parts[2]);
+  const auto velocities = split(record.velocities);
   expect_tokens(src, velocities, 3, "vx vy w");
   o.velocity = parse_point(src, velocities, 0);
   o.angular_velocity = parse_double(src, velocities[2]);

@@ -84,25 +84,11 @@ World parse_world(const std::string& path, std::uint64_t hull_limit, const std::
     if (!src.next_record(line)) {
       fail(path, src.line(), "file ends after " + std::to_string(k) + " of the " + std::to_string(n) + " objects");
     }
-    const auto parts = split_fields(line);
-    if (parts.size() != 3) {
-      src.fail_here("expected 3 fields separated by '|' (id kind shape | pose | velocities), found " +
-                    std::to_string(parts.size()));
-    }
-    const auto head = split(parts[0]);
-    if (head.size() < 3) src.fail_here("expected '<id> <static|moving> <shape ...>'");
+    const ObjectRecord record = parse_object_record(src, line, k);
     WorldObject o;
-    if (parse_unsigned(src, head[0], "object id") != k) {
-      src.fail_here("object id " + std::string(head[0]) + " out of order, expected " + std::to_string(k));
-    }
     o.id = static_cast<std::uint32_t>(k);
-    if (head[1] == "static") {
-      o.is_static = true;
-    } else if (head[1] != "moving") {
-      src.fail_here("expected 'static' or 'moving', found " + quoted(head[1]));
-    }
-    const std::size_t shape_start = static_cast<std::size_t>(head[2].data() - parts[0].data());
-    o.shape = parse_world_shape(src, parts[0].substr(shape_start));
+    o.is_static = record.is_static;
+    o.shape = parse_world_shape(src, record.shape);
     if (o.shape.kind == WorldShapeKind::Hull && o.shape.hull >= hull_limit) {
       src.fail_here("hull id " + std::to_string(o.shape.hull) + " beyond the " + std::to_string(hull_limit) +
                     " shapes of " + hulls_file);
@@ -110,10 +96,10 @@ World parse_world(const std::string& path, std::uint64_t hull_limit, const std::
     if (!o.is_static && (o.shape.kind == WorldShapeKind::Mesh || o.shape.kind == WorldShapeKind::HalfSpace)) {
       src.fail_here("a mesh or half-space object must be static");
     }
-    const auto pose = split(parts[1]);
+    const auto pose = split(record.pose);
     expect_tokens(src, pose, 7, "px py pz qw qx qy qz");
     o.pose = parse_pose(src, pose, 0);
-    const auto velocities = split(parts[2]);
+    const auto velocities = split(record.velocities);
     expect_tokens(src, velocities, 6, "vx vy vz wx wy wz");
     o.velocity = parse_vec3(src, velocities, 0);
     o.angular_velocity = parse_vec3(src, velocities, 3);
