@@ -15,31 +15,14 @@ import argparse
 import json
 import os
 import subprocess
+import sys
 import time
 
 import pygame.mask
 import pygame.version
 
-
-def read_masks(path):
-    """The masks of sprite_masks.txt as pygame masks, in id order."""
-    with open(path) as f:
-        lines = f.read().split("\n")
-    count = int(dict(kv.split("=") for kv in lines[0].split()[2:])["count"])
-    masks, at = [], 1
-    for _ in range(count):
-        _, _, w, h = lines[at].split()
-        w, h = int(w), int(h)
-        mask = pygame.mask.Mask((w, h))
-        for y in range(h):
-            row = lines[at + 1 + y]
-            bits = bin(int(row, 16))[2:].zfill(4 * len(row))
-            for x in range(w):
-                if bits[x] == "1":
-                    mask.set_at((x, y), 1)
-        masks.append(mask)
-        at += 1 + h
-    return masks
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', 'support', 'python'))
+from w9_sprite_masks import read_masks  # noqa: E402
 
 
 def translation_queries(path, masks):
@@ -84,7 +67,7 @@ def main():
     parser.add_argument("--proxima", help="proxima_bench_sprites, to time Proxima and print the ratio")
     parser.add_argument("--repeats", type=int, default=3)
     args = parser.parse_args()
-    masks = read_masks(os.path.join(args.data, "sprite_masks.txt"))
+    masks = read_masks(os.path.join(args.data, "sprite_masks.txt"), pygame)
     queries = translation_queries(os.path.join(args.data, "sprites.txt"), masks)
     per_query, pixels = time_pygame(queries, args.repeats)
     print("pygame %s Mask.overlap_area: %d translation-only queries, %.1f ns/query, %d pixels"

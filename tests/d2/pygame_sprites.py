@@ -12,27 +12,10 @@ import os
 import subprocess
 import sys
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', '..', 'support', 'python'))
+from w9_sprite_masks import read_masks  # noqa: E402
+
 SKIP = 77
-
-
-def read_masks(path, pygame):
-    """The masks of sprite_masks.txt as pygame masks, in id order."""
-    with open(path) as f:
-        lines = f.read().split("\n")
-    count = int(dict(kv.split("=") for kv in lines[0].split()[2:])["count"])
-    masks, at = [], 1
-    for _ in range(count):
-        _, _, w, h = lines[at].split()
-        w, h = int(w), int(h)
-        mask = pygame.mask.Mask((w, h))
-        for y in range(h):
-            bits = bin(int(lines[at + 1 + y], 16))[2:].zfill(4 * len(lines[at + 1 + y]))
-            for x in range(w):
-                if bits[x] == "1":
-                    mask.set_at((x, y), 1)
-        masks.append(mask)
-        at += 1 + h
-    return masks
 
 
 def read_queries(path):
