@@ -45,7 +45,6 @@ Result<Chain> Chain::create(std::span<const Vec2> points, bool loop) {
   chain.points_.assign(points.begin(), points.end());
   chain.loop_ = loop;
   for (const Vec2& p : points) chain.local_aabb_.grow(p);
-  chain.first_segment_core_ = chain.segment(0).core();
   return chain;
 }
 

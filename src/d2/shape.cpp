@@ -1,6 +1,7 @@
 /// @file shape.cpp
 /// The 2D owning shape type: kind names, cores and bounds.
 
+#include <proxima/core/assert.hpp>
 #include <proxima/d2/shape.hpp>
 
 namespace proxima::d2 {
@@ -21,7 +22,9 @@ const ConvexCore& Shape::core() const {
   return std::visit(
       [](const auto& s) -> const ConvexCore& {
         if constexpr (std::is_same_v<std::decay_t<decltype(s)>, Chain>) {
-          return s.first_segment_core();
+          PROXIMA_ASSERT(false && "Shape::core() of a chain");
+          static const ConvexCore kNoCore{};
+          return kNoCore;
         } else {
           return s.core();
         }

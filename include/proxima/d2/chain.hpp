@@ -55,13 +55,10 @@ class Chain {
   Aabb local_aabb() const { return local_aabb_; }
   /// Tight rectangle of the chain under `pose` (O(points)).
   Aabb world_aabb(const Pose& pose) const;
-  /// The core of segment 0 (kept so that Shape::core() of a chain has one to give).
-  const ConvexCore& first_segment_core() const { return first_segment_core_; }
 
  private:
   Chain() = default;
   std::vector<Vec2> points_;
-  ConvexCore first_segment_core_{};
   bool loop_ = false;
   Aabb local_aabb_;
 };

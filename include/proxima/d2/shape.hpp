@@ -34,8 +34,8 @@ class Shape {
   bool is_convex() const { return type() != ShapeType::Chain; }
   /// The alternative (std::get / std::visit on it).
   const Variant& variant() const { return value_; }
-  /// The core of a convex shape (stored in it). Precondition: is_convex(); a chain gives its
-  /// first segment's core.
+  /// The core of a convex shape (stored in it). Precondition: is_convex() (a chain, which has
+  /// no single core, fails PROXIMA_ASSERT and gives an empty core).
   const ConvexCore& core() const;
   /// The chain. Precondition: type() == ShapeType::Chain.
   const Chain& chain() const { return std::get<Chain>(value_); }
