@@ -8,6 +8,7 @@
 #include <limits>
 #include <string>
 
+#include "json_search_options.hpp"
 #include "json_shapes_2d.hpp"
 #include "pair_names.hpp"
 
@@ -58,34 +59,6 @@ MovingSide2d read_moving_side(const Json& request, std::string_view key) {
     side.motion.rotation = end_angle - angle;
   }
   return side;
-}
-
-void read_toi_options(const Json& request, d2::ToiOptions& options) {
-  if (const Json* d = find_member(request, "target_distance"))
-    options.target_distance = read_real(*d, "target_distance");
-  if (const Json* t = find_member(request, "tolerance")) options.tolerance = read_real(*t, "tolerance");
-  if (const Json* m = find_member(request, "max_iterations")) {
-    if (!m->is_number_integer()) throw FieldError("max_iterations", "wrong_type", "must be an integer");
-    const long long n = m->get<long long>();
-    options.max_iterations = static_cast<int>(std::clamp<long long>(n, 0, std::numeric_limits<int>::max()));
-  }
-}
-
-/// A library field prefix and the request member that stands for it.
-struct Rename {
-  std::string_view from;
-  std::string_view to;
-};
-
-/// Throws the library's error with its field named as the request names it.
-[[noreturn]] void throw_renamed(Error error, std::initializer_list<Rename> renames) {
-  for (const Rename& r : renames) {
-    if (error.field.rfind(r.from, 0) != 0) continue;
-    error.field = std::string(r.to) + error.field.substr(r.from.size());
-    if (!error.field.empty() && error.field[0] == '.') error.field.erase(0, 1);
-    break;
-  }
-  throw_library_error("", error);
 }
 
 /// The answer of toi (with the bracket) or cast (with t), members in the 3D order.
@@ -218,7 +191,7 @@ Json op_toi_2d(const Json& request) {
   reject_unknown_fields(request, "", {"id", "op", "a", "b", "target_distance", "tolerance", "max_iterations"});
   const MovingSide2d a = read_moving_side(request, "a"), b = read_moving_side(request, "b");
   d2::ToiOptions options;
-  read_toi_options(request, options);
+  read_search_options(request, options);
   Result<d2::ToiResult> result = d2::time_of_impact(a.shape, a.motion, b.shape, b.motion, options);
   if (!result.ok()) {
     throw_renamed(result.error(), {{"motion_a.start", "a.pose"},
@@ -227,7 +200,7 @@ Json op_toi_2d(const Json& request) {
                                    {"motion_b.start", "b.pose"},
                                    {"motion_b.translation", "b.pose_end.position"},
                                    {"motion_b.rotation", "b.pose_end.angle"},
-                                   {"options.", ""}});
+                                   {"options", ""}});
   }
   return toi_answer(result.value(), true);
 }
@@ -238,13 +211,13 @@ Json op_cast_2d(const Json& request) {
   const PlacedShape2d a = member_shape(request, "a"), b = member_shape(request, "b");
   const Vec2 translation = read_vec2(require_member(request, "", "translation"), "translation");
   d2::ToiOptions options;
-  read_toi_options(request, options);
+  read_search_options(request, options);
   Result<d2::ToiResult> result = d2::shape_cast(a.shape, a.pose, translation, b.shape, b.pose, options);
   if (!result.ok()) {
     throw_renamed(result.error(), {{"motion_a.start", "a.pose"},
                                    {"motion_a.translation", "translation"},
                                    {"motion_b.start", "b.pose"},
-                                   {"options.", ""}});
+                                   {"options", ""}});
   }
   return toi_answer(result.value(), false);
 }

@@ -12,35 +12,12 @@
 #include <string>
 #include <string_view>
 
+#include "json_search_options.hpp"
 #include "json_shapes.hpp"
 
 namespace proxima::tool {
 
 namespace {
-
-// The library names its inputs by its own parameters ("motion_a.end.rotation",
-// "pose_b.position", "options.tolerance"); the protocol names the request's members
-// ("a.pose_end.rotation", "b.pose.position", "tolerance").
-struct Rename {
-  std::string_view from;  ///< library field prefix
-  std::string to;         ///< request path that replaces it ("" for top-level members)
-};
-
-[[noreturn]] void throw_renamed(Error error, std::initializer_list<Rename> renames) {
-  for (const Rename& r : renames) {
-    const std::string& f = error.field;
-    if (f.rfind(r.from, 0) != 0) continue;
-    if (f.size() == r.from.size()) {
-      error.field = r.to;
-    } else if (f[r.from.size()] == '.') {
-      error.field = join_path(r.to, f.substr(r.from.size() + 1));
-    } else {
-      continue;
-    }
-    break;
-  }
-  throw_library_error("", error);
-}
 
 // {"child":…, "triangle":…} of a mesh or compound side (null for a convex side).
 Json part_json(const Shape& shape, const SubShapeId& sub) {
@@ -101,17 +78,6 @@ BodySide read_body_side(const Json& request, std::string_view key) {
   return side;
 }
 
-// "max_iterations": an integer; values below 1 go to the library, which rejects them.
-int read_max_iterations(const Json& value) {
-  if (!value.is_number_integer()) throw FieldError("max_iterations", "wrong_type", "must be an integer");
-  constexpr long long kMax = std::numeric_limits<int>::max();
-  if (value.is_number_unsigned() ? value.get<unsigned long long>() > static_cast<unsigned long long>(kMax)
-                                 : value.get<long long>() > kMax) {
-    throw FieldError("max_iterations", "out_of_range", "must be at most " + std::to_string(kMax));
-  }
-  return static_cast<int>(std::max(value.get<long long>(), 0LL));
-}
-
 bool read_bool(const Json& value, const std::string& path) {
   if (!value.is_boolean()) throw FieldError(path, "wrong_type", "must be true or false");
   return value.get<bool>();
@@ -125,16 +91,6 @@ void add_contact(Json& answer, const R& r, const Shape& a, const Shape& b) {
   if (r.status == CcdStatus::InitiallyOverlapping) answer["depth"] = to_json(r.depth);
   if (Json p = part_json(a, r.sub_a); !p.is_null()) answer["part_a"] = std::move(p);
   if (Json p = part_json(b, r.sub_b); !p.is_null()) answer["part_b"] = std::move(p);
-}
-
-// The members ToiOptions and CastOptions share: target_distance, tolerance, max_iterations.
-template <class Options>
-void read_search_options(const Json& request, Options& options) {
-  if (const Json* d = find_member(request, "target_distance")) {
-    options.target_distance = read_real(*d, "target_distance");
-  }
-  if (const Json* t = find_member(request, "tolerance")) options.tolerance = read_real(*t, "tolerance");
-  if (const Json* m = find_member(request, "max_iterations")) options.max_iterations = read_max_iterations(*m);
 }
 
 bool in_contact(CcdStatus status) { return status == CcdStatus::Hit || status == CcdStatus::InitiallyOverlapping; }
