@@ -98,6 +98,7 @@ struct WorldState;
 /// be read but not changed from a callback (changes are refused with an Error).
 class WorldListener {
  public:
+  /// A listener is destroyed through this base.
   virtual ~WorldListener() = default;
   /// A pair began touching.
   virtual void on_contact_begin(const CollisionWorld& world, const ContactEvent& event) { (void)world, (void)event; }
@@ -125,8 +126,11 @@ class CollisionWorld {
   /// A world with these settings; errors name "settings.<field>" (validate_world_settings)
   /// or "settings.broadphase" (no such structure).
   static Result<CollisionWorld> create(const WorldSettings& settings = {});
+  /// Worlds move (their objects and handles with them); they are not copied.
   CollisionWorld(CollisionWorld&&) noexcept;
+  /// Move assignment (the moved-from world may only be destroyed or assigned).
   CollisionWorld& operator=(CollisionWorld&&) noexcept;
+  /// Releases the world.
   ~CollisionWorld();
 
   /// Adds an object; its handle, or an Error naming the field ("desc.pose" not finite,

@@ -26,15 +26,15 @@ using PartIndex = std::int32_t;
 
 /// Answer of `distance`: signed distance with witness points on each surface.
 struct DistanceResult {
-  Real signed_distance = Real(0);  ///< > 0 gap, < 0 penetration (= -depth), length units
-  Vec2 point_a{Real(0)};           ///< witness on A's surface, world frame
-  Vec2 point_b{Real(0)};           ///< witness on B's surface, world frame
-  Vec2 normal{Real(1), Real(0)};   ///< unit, A to B, world frame
-  PairStatus status = PairStatus::Separated;
-  PairMethod method = PairMethod::Gjk;
-  int iterations = 0;     ///< GJK iterations (0 for the SAT penetration alone)
-  PartIndex part_a = -1;  ///< chain segment of A holding point_a (-1: convex A)
-  PartIndex part_b = -1;  ///< chain segment of B holding point_b (-1: convex B)
+  Real signed_distance = Real(0);             ///< > 0 gap, < 0 penetration (= -depth), length units
+  Vec2 point_a{Real(0)};                      ///< witness on A's surface, world frame
+  Vec2 point_b{Real(0)};                      ///< witness on B's surface, world frame
+  Vec2 normal{Real(1), Real(0)};              ///< unit, A to B, world frame
+  PairStatus status = PairStatus::Separated;  ///< separated, touching, penetrating or invalid input
+  PairMethod method = PairMethod::Gjk;        ///< Gjk (cores apart) or Sat (cores overlapping)
+  int iterations = 0;                         ///< GJK iterations (0 for the SAT penetration alone)
+  PartIndex part_a = -1;                      ///< chain segment of A holding point_a (-1: convex A)
+  PartIndex part_b = -1;                      ///< chain segment of B holding point_b (-1: convex B)
 };
 
 /// One contact point of a 2D manifold.
@@ -52,12 +52,12 @@ inline constexpr int kMaxManifoldPoints = 2;
 
 /// Answer of `collide`: up to two contact points sharing one normal.
 struct Manifold {
-  std::array<ContactPoint, kMaxManifoldPoints> points{};
-  int count = 0;                  ///< valid entries; 0 when apart by more than the contact distance
-  Vec2 normal{Real(1), Real(0)};  ///< unit, A to B, world frame
-  PairMethod method = PairMethod::Sat;
-  PartIndex part_a = -1;  ///< chain segment of A (-1: convex A)
-  PartIndex part_b = -1;  ///< chain segment of B (-1: convex B)
+  std::array<ContactPoint, kMaxManifoldPoints> points{};  ///< the points (first `count`)
+  int count = 0;                        ///< valid entries; 0 when apart by more than the contact distance
+  Vec2 normal{Real(1), Real(0)};        ///< unit, A to B, world frame
+  PairMethod method = PairMethod::Sat;  ///< Sat (clipped edges) or Gjk (one point from the distance)
+  PartIndex part_a = -1;                ///< chain segment of A (-1: convex A)
+  PartIndex part_b = -1;                ///< chain segment of B (-1: convex B)
 };
 
 /// A ray: the points origin + t direction for t in [0, max_t] (t in units of the
