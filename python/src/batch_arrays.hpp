@@ -45,6 +45,10 @@ py::ssize_t common_rows(const RowReader& a, const char* field_a, const RowReader
 /// quaternion that is not unit (within 1e-3) raises proxima.Error naming "field[i]".
 std::vector<Transform> read_poses(const RowReader& rows, py::ssize_t n, const char* field);
 
+/// A thread pool of `threads` threads, made on first use and kept; a forked child
+/// (multiprocessing) makes its own, since a parent's threads do not exist in it.
+Executor& thread_pool(std::size_t threads);
+
 /// Calls task(begin, end) over [0, n) with the GIL released, on the calling thread when
 /// threads resolves to 1 or n is small, else on a thread pool of that many threads.
 void parallel_for(std::size_t n, long threads, RangeTask task);

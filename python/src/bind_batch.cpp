@@ -85,11 +85,7 @@ std::vector<Transform> read_poses(const RowReader& rows, py::ssize_t n, const ch
   return poses;
 }
 
-namespace {
-
-/// A pool per thread count, made on first use and kept; a forked child (multiprocessing)
-/// makes its own, since a parent's threads do not exist in it.
-Executor& pool(std::size_t threads) {
+Executor& thread_pool(std::size_t threads) {
   static std::mutex mutex;
   static std::map<std::size_t, std::unique_ptr<ThreadPool>>* pools = nullptr;
   static pid_t owner = 0;
@@ -103,8 +99,6 @@ Executor& pool(std::size_t threads) {
   return *p;
 }
 
-}  // namespace
-
 void parallel_for(std::size_t n, long threads, RangeTask task) {
   const std::size_t count = resolve_threads(threads);
   py::gil_scoped_release release;
@@ -112,7 +106,7 @@ void parallel_for(std::size_t n, long threads, RangeTask task) {
     if (n > 0) task(0, n);
     return;
   }
-  pool(count).run(n, task);
+  thread_pool(count).run(n, task);
 }
 
 namespace {

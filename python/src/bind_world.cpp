@@ -1,4 +1,657 @@
+// proxima.CollisionWorld: objects by integer handle, filters, the step, its events as numpy
+// structured arrays, callbacks into Python, scene queries (single and batched on numpy
+// arrays) and snapshots (bytes; the world pickles through them).
+//
+// Callbacks: the step runs with the GIL released; the listener re-takes it for each call.
+// An exception raised by a Python callback stops further callbacks of that step and is
+// raised again from step() once the library's step has finished (never thrown through it).
+#include <proxima/core/validate.hpp>
+#include <proxima/world/collision_world.hpp>
+
+#include <limits>
+#include <pybind11/stl.h>
+#include <sstream>
+
+#include "batch_arrays.hpp"
 #include "module_parts.hpp"
+#include "shape_object.hpp"
+
 namespace proxima::python {
-void bind_world(py::module_&) {}
+namespace {
+
+struct ContactEventRow {
+  std::uint64_t a, b, user_data_a, user_data_b;
+};
+struct SensorEventRow {
+  std::uint64_t sensor, other, user_data_sensor, user_data_other;
+};
+struct ImpactEventRow {
+  std::uint64_t a, b;
+  double toi;
+  double point[3];
+  double normal[3];
+  std::uint64_t user_data_a, user_data_b;
+};
+struct ContactPointRow {
+  std::uint64_t a, b;
+  double normal[3];
+  double point_a[3];
+  double point_b[3];
+  double depth;
+  std::uint32_t id;
+  std::uint8_t persisted;
+};
+struct WorldHitRow {
+  std::uint8_t hit;
+  std::uint64_t object;
+  std::uint64_t user_data;
+  double t;
+  double point[3];
+  double normal[3];
+};
+struct WorldClosestRow {
+  std::uint8_t found;
+  std::uint64_t object;
+  std::uint64_t user_data;
+  double signed_distance;
+  double point_object[3];
+  double normal[3];
+};
+
+void put(double (&out)[3], const Vec3& v) { out[0] = double(v.x), out[1] = double(v.y), out[2] = double(v.z); }
+
+/// Forwards the world's callbacks to a Python object's on_* methods (those it has).
+class PyListener final : public WorldListener {
+ public:
+  py::object target;   ///< the Python listener, or None
+  py::object pending;  ///< the first exception a callback raised during this step
+  void on_contact_begin(CollisionWorld&, const ContactEvent& e) override { call("on_contact_begin", e); }
+  void on_contact_persist(CollisionWorld&, const ContactEvent& e) override { call("on_contact_persist", e); }
+  void on_contact_end(CollisionWorld&, const ContactEvent& e) override { call("on_contact_end", e); }
+  void on_sensor_enter(CollisionWorld&, const SensorEvent& e) override { call("on_sensor_enter", e); }
+  void on_sensor_exit(CollisionWorld&, const SensorEvent& e) override { call("on_sensor_exit", e); }
+  void on_impact(CollisionWorld&, const ImpactEvent& e) override { call("on_impact", e); }
+
+ private:
+  template <class E>
+  void call(const char* name, const E& event) {
+    py::gil_scoped_acquire gil;
+    if (target.is_none() || !pending.is_none() || !py::hasattr(target, name)) return;
+    try {
+      target.attr(name)(event);
+    } catch (py::error_already_set& e) {
+      pending = py::make_tuple(e.type(), e.value(), e.trace());
+    }
+  }
+};
+
+/// The world and what the bindings keep beside it.
+struct PyWorld {
+  std::unique_ptr<CollisionWorld> world;
+  PyListener listener;
+};
+
+ObjectHandle handle_of(std::uint64_t h) { return ObjectHandle::from_integer(h); }
+
+QueryFilter query_filter(std::uint64_t mask, std::int32_t group, py::handle ignore) {
+  QueryFilter f;
+  f.mask = mask;
+  f.group = group;
+  if (!ignore.is_none()) f.ignore = handle_of(ignore.cast<std::uint64_t>());
+  return f;
+}
+
+QueryMode query_mode(const std::string& mode) {
+  if (mode == "closest") return QueryMode::Closest;
+  if (mode == "any") return QueryMode::Any;
+  if (mode == "all") return QueryMode::All;
+  raise_argument_error("mode", "expected 'closest', 'any' or 'all'");
+}
+
+template <class T>
+py::array_t<T> rows_of(std::size_t n) {
+  return py::array_t<T>(static_cast<py::ssize_t>(n));
+}
+
+py::array contact_events(const std::vector<ContactEvent>& events) {
+  auto out = rows_of<ContactEventRow>(events.size());
+  ContactEventRow* r = out.mutable_data();
+  for (const ContactEvent& e : events) {
+    *r++ = {e.pair.a.to_integer(), e.pair.b.to_integer(), e.user_data_a, e.user_data_b};
+  }
+  return out;
+}
+
+py::array sensor_events(const std::vector<SensorEvent>& events) {
+  auto out = rows_of<SensorEventRow>(events.size());
+  SensorEventRow* r = out.mutable_data();
+  for (const SensorEvent& e : events) {
+    *r++ = {e.sensor.to_integer(), e.other.to_integer(), e.user_data_sensor, e.user_data_other};
+  }
+  return out;
+}
+
+py::array impact_events(const std::vector<ImpactEvent>& events) {
+  auto out = rows_of<ImpactEventRow>(events.size());
+  ImpactEventRow* r = out.mutable_data();
+  for (const ImpactEvent& e : events) {
+    r->a = e.a.to_integer(), r->b = e.b.to_integer(), r->toi = double(e.toi);
+    put(r->point, e.point);
+    put(r->normal, e.normal);
+    r->user_data_a = e.user_data_a, r->user_data_b = e.user_data_b;
+    ++r;
+  }
+  return out;
+}
+
+py::array contact_points(std::span<const WorldManifold> manifolds) {
+  std::size_t n = 0;
+  for (const WorldManifold& m : manifolds) n += static_cast<std::size_t>(m.count);
+  auto out = rows_of<ContactPointRow>(n);
+  ContactPointRow* r = out.mutable_data();
+  for (const WorldManifold& m : manifolds) {
+    for (int i = 0; i < m.count; ++i) {
+      const WorldContactPoint& p = m.points[static_cast<std::size_t>(i)];
+      r->a = m.pair.a.to_integer(), r->b = m.pair.b.to_integer();
+      put(r->normal, m.normal);
+      put(r->point_a, p.contact.point_a);
+      put(r->point_b, p.contact.point_b);
+      r->depth = double(p.contact.depth), r->id = p.id, r->persisted = p.persisted;
+      ++r;
+    }
+  }
+  return out;
+}
+
+py::dict events_dict(const StepEvents& e) {
+  py::dict d;
+  d["begin"] = contact_events(e.begin);
+  d["persist"] = contact_events(e.persist);
+  d["end"] = contact_events(e.end);
+  d["sensor_enter"] = sensor_events(e.sensor_enter);
+  d["sensor_exit"] = sensor_events(e.sensor_exit);
+  d["impacts"] = impact_events(e.impacts);
+  return d;
+}
+
+WorldSettings settings_of(const std::string& broadphase, Real contact_distance, int max_contacts,
+                          bool sensors_sense_sensors, bool continuous, Real ccd_safety_factor, Real ccd_tolerance) {
+  WorldSettings s;
+  s.broadphase = broadphase;
+  s.contact_distance = contact_distance;
+  s.max_contacts = max_contacts;
+  s.sensors_sense_sensors = sensors_sense_sensors;
+  s.continuous = continuous;
+  s.ccd_safety_factor = ccd_safety_factor;
+  s.ccd_tolerance = ccd_tolerance;
+  return s;
+}
+
+std::unique_ptr<PyWorld> wrap_world(CollisionWorld&& world) {
+  auto w = std::make_unique<PyWorld>();
+  w->world = std::make_unique<CollisionWorld>(std::move(world));
+  w->listener.target = py::none();
+  w->listener.pending = py::none();
+  return w;
+}
+
+py::bytes save_world(const PyWorld& w) {
+  std::ostringstream out(std::ios::binary);
+  check(w.world->save(out));
+  return py::bytes(out.str());
+}
+
+std::unique_ptr<PyWorld> load_world(const py::bytes& data) {
+  std::istringstream in(std::string(data), std::ios::binary);
+  return wrap_world(take(CollisionWorld::load(in)));
+}
+
+}  // namespace
+}  // namespace proxima::python
+
+namespace proxima::python {
+namespace {
+
+void bind_world_types(py::module_& m) {
+  py::enum_<ObjectKind>(m, "ObjectKind", "How an object takes part in the step.")
+      .value("Static", ObjectKind::Static)
+      .value("Moving", ObjectKind::Moving);
+  py::enum_<CcdMode>(m, "CcdMode", "Continuous detection of a world object.")
+      .value("Off", CcdMode::Off)
+      .value("Auto", CcdMode::Auto)
+      .value("Bullet", CcdMode::Bullet);
+  py::class_<CollisionFilter>(m, "CollisionFilter",
+                              "Which objects pair: (a.layer & b.mask) and (b.layer & a.mask) non-zero, and not the "
+                              "same non-zero group.")
+      .def(py::init([](std::uint64_t layer, std::uint64_t mask, std::int32_t group) {
+             return CollisionFilter{layer, mask, group};
+           }),
+           py::arg("layer") = 1, py::arg("mask") = ~0ull, py::arg("group") = 0)
+      .def_readonly("layer", &CollisionFilter::layer)
+      .def_readonly("mask", &CollisionFilter::mask)
+      .def_readonly("group", &CollisionFilter::group)
+      .def("__eq__", [](const CollisionFilter& a, const CollisionFilter& b) { return a == b; })
+      .def("__repr__", [](const CollisionFilter& f) {
+        return "CollisionFilter(layer=" + std::to_string(f.layer) + ", mask=" + std::to_string(f.mask) +
+               ", group=" + std::to_string(f.group) + ")";
+      });
+  py::class_<ContactEvent>(m, "ContactEvent", "A pair that began, kept or stopped touching (a < b).")
+      .def_property_readonly("a", [](const ContactEvent& e) { return e.pair.a.to_integer(); })
+      .def_property_readonly("b", [](const ContactEvent& e) { return e.pair.b.to_integer(); })
+      .def_readonly("user_data_a", &ContactEvent::user_data_a)
+      .def_readonly("user_data_b", &ContactEvent::user_data_b)
+      .def("__repr__", [](const ContactEvent& e) {
+        return "ContactEvent(a=" + std::to_string(e.pair.a.to_integer()) +
+               ", b=" + std::to_string(e.pair.b.to_integer()) + ")";
+      });
+  py::class_<SensorEvent>(m, "SensorEvent", "An object that entered or left a sensor.")
+      .def_property_readonly("sensor", [](const SensorEvent& e) { return e.sensor.to_integer(); })
+      .def_property_readonly("other", [](const SensorEvent& e) { return e.other.to_integer(); })
+      .def_readonly("user_data_sensor", &SensorEvent::user_data_sensor)
+      .def_readonly("user_data_other", &SensorEvent::user_data_other);
+  py::class_<ImpactEvent>(m, "ImpactEvent", "The first impact of a fast object during a step.")
+      .def_property_readonly("a", [](const ImpactEvent& e) { return e.a.to_integer(); })
+      .def_property_readonly("b", [](const ImpactEvent& e) { return e.b.to_integer(); })
+      .def_readonly("toi", &ImpactEvent::toi, "Fraction of the step in [0, 1].")
+      .def_property_readonly("point", [](const ImpactEvent& e) { return to_numpy(e.point); })
+      .def_property_readonly("normal", [](const ImpactEvent& e) { return to_numpy(e.normal); })
+      .def_readonly("user_data_a", &ImpactEvent::user_data_a)
+      .def_readonly("user_data_b", &ImpactEvent::user_data_b);
+  py::class_<WorldHit>(m, "WorldHit", "An object hit by a ray or a sweep (world frame).")
+      .def_property_readonly("object", [](const WorldHit& h) { return h.object.to_integer(); })
+      .def_readonly("user_data", &WorldHit::user_data)
+      .def_readonly("t", &WorldHit::t, "Ray: parameter; sweep: fraction of the translation.")
+      .def_property_readonly("point", [](const WorldHit& h) { return to_numpy(h.point); })
+      .def_property_readonly("normal", [](const WorldHit& h) { return to_numpy(h.normal); })
+      .def_property_readonly("part", [](const WorldHit& h) { return part_index(h.sub); })
+      .def("__repr__", [](const WorldHit& h) {
+        return "WorldHit(object=" + std::to_string(h.object.to_integer()) + ", t=" + std::to_string(h.t) + ")";
+      });
+  py::class_<WorldClosest>(m, "WorldClosest", "The object nearest a point or a shape (world frame).")
+      .def_property_readonly("object", [](const WorldClosest& c) { return c.object.to_integer(); })
+      .def_readonly("user_data", &WorldClosest::user_data)
+      .def_readonly("signed_distance", &WorldClosest::signed_distance)
+      .def_property_readonly("point_query", [](const WorldClosest& c) { return to_numpy(c.point_query); })
+      .def_property_readonly("point_object", [](const WorldClosest& c) { return to_numpy(c.point_object); })
+      .def_property_readonly("normal", [](const WorldClosest& c) { return to_numpy(c.normal); });
+  py::class_<ObjectDesc>(m, "ObjectInfo", "What the world holds of one object.")
+      .def_property_readonly("geometry", [](const ObjectDesc& d) { return wrap_shape(d.geometry); })
+      .def_readonly("pose", &ObjectDesc::pose)
+      .def_readonly("kind", &ObjectDesc::kind)
+      .def_readonly("filter", &ObjectDesc::filter)
+      .def_readonly("sensor", &ObjectDesc::sensor)
+      .def_readonly("ccd", &ObjectDesc::ccd)
+      .def_readonly("user_data", &ObjectDesc::user_data)
+      .def_property_readonly("parent", [](const ObjectDesc& d) -> py::object {
+        return d.parent.is_set() ? py::object(py::int_(d.parent.to_integer())) : py::object(py::none());
+      });
+  PYBIND11_NUMPY_DTYPE(ContactEventRow, a, b, user_data_a, user_data_b);
+  PYBIND11_NUMPY_DTYPE(SensorEventRow, sensor, other, user_data_sensor, user_data_other);
+  PYBIND11_NUMPY_DTYPE(ImpactEventRow, a, b, toi, point, normal, user_data_a, user_data_b);
+  PYBIND11_NUMPY_DTYPE(ContactPointRow, a, b, normal, point_a, point_b, depth, id, persisted);
+  PYBIND11_NUMPY_DTYPE(WorldHitRow, hit, object, user_data, t, point, normal);
+  PYBIND11_NUMPY_DTYPE(WorldClosestRow, found, object, user_data, signed_distance, point_object, normal);
+  m.attr("CONTACT_EVENT_DTYPE") = py::dtype::of<ContactEventRow>();
+  m.attr("SENSOR_EVENT_DTYPE") = py::dtype::of<SensorEventRow>();
+  m.attr("IMPACT_EVENT_DTYPE") = py::dtype::of<ImpactEventRow>();
+  m.attr("CONTACT_POINT_DTYPE") = py::dtype::of<ContactPointRow>();
+  m.attr("WORLD_HIT_DTYPE") = py::dtype::of<WorldHitRow>();
+  m.attr("WORLD_CLOSEST_DTYPE") = py::dtype::of<WorldClosestRow>();
+}
+
+std::uint64_t add_object(PyWorld& w, py::handle geometry, py::handle pose, ObjectKind kind,
+                         const CollisionFilter& filter, bool sensor, CcdMode ccd, std::uint64_t user_data,
+                         py::handle parent, py::handle local_pose) {
+  ObjectDesc d;
+  d.geometry = *to_shape(geometry, "geometry").shape;
+  d.pose = to_transform(pose, "pose");
+  d.kind = kind;
+  d.filter = filter;
+  d.sensor = sensor;
+  d.ccd = ccd;
+  d.user_data = user_data;
+  if (!parent.is_none()) d.parent = handle_of(parent.cast<std::uint64_t>());
+  d.local_pose = to_transform(local_pose, "local_pose");
+  return take(w.world->add(d)).to_integer();
+}
+
+void move_batch(PyWorld& w, py::handle handles, py::handle poses) {
+  const py::array_t<std::uint64_t, py::array::forcecast> h =
+      py::array_t<std::uint64_t, py::array::forcecast>::ensure(handles);
+  if (!h || h.ndim() != 1) raise_argument_error("objects", "expected a 1-D array of handles");
+  const RowReader rows(poses, 7, "poses", false);
+  if (rows.rows() != h.shape(0)) raise_argument_error("poses", "needs one row per object");
+  const std::vector<Transform> list = read_poses(rows, rows.rows(), "poses");
+  std::vector<ObjectMove> moves(list.size());
+  for (std::size_t i = 0; i < list.size(); ++i) moves[i] = {handle_of(h.at(static_cast<py::ssize_t>(i))), list[i]};
+  check(w.world->move(moves));
+}
+
+void step(PyWorld& w, Real dt, long threads) {
+  const std::size_t count = resolve_threads(threads);
+  std::optional<Error> error;
+  {
+    py::gil_scoped_release release;
+    error = count <= 1 ? w.world->step(dt) : w.world->step(dt, thread_pool(count));
+  }
+  if (!w.listener.pending.is_none()) {
+    const py::tuple e = w.listener.pending;
+    w.listener.pending = py::none();
+    PyErr_Restore(py::object(e[0]).release().ptr(), py::object(e[1]).release().ptr(), py::object(e[2]).release().ptr());
+    throw py::error_already_set();
+  }
+  check(error);
+}
+
+}  // namespace
+}  // namespace proxima::python
+
+namespace proxima::python {
+namespace {
+
+py::array world_raycast_batch(const PyWorld& w, py::handle rays, py::handle max_t, std::uint64_t mask,
+                              std::int32_t group, py::handle ignore, long threads) {
+  const RowReader r(rays, 6, "rays", false);
+  const py::array_t<double, py::array::forcecast> limits = py::array_t<double, py::array::forcecast>::ensure(max_t);
+  if (!limits || (limits.ndim() != 0 && (limits.ndim() != 1 || limits.shape(0) != r.rows()))) {
+    raise_argument_error("max_t", "expected a number or one per ray");
+  }
+  std::vector<WorldRay> list(static_cast<std::size_t>(r.rows()));
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    const auto k = static_cast<py::ssize_t>(i);
+    list[i].origin = {Real(r.at(k, 0)), Real(r.at(k, 1)), Real(r.at(k, 2))};
+    list[i].direction = {Real(r.at(k, 3)), Real(r.at(k, 4)), Real(r.at(k, 5))};
+    const double m = limits.ndim() == 0 ? *limits.data() : limits.at(k);
+    list[i].max_t = m > double(kRealMax) ? kRealMax : Real(m);
+  }
+  std::vector<WorldHit> hits(list.size());
+  const QueryFilter filter = query_filter(mask, group, ignore);
+  const std::size_t count = resolve_threads(threads);
+  Result<std::size_t> done = std::size_t(0);
+  {
+    py::gil_scoped_release release;
+    done = count <= 1 ? w.world->raycast_batch(list, hits, filter)
+                      : w.world->raycast_batch(list, hits, filter, thread_pool(count));
+  }
+  take(std::move(done));
+  auto out = rows_of<WorldHitRow>(hits.size());
+  WorldHitRow* row = out.mutable_data();
+  for (const WorldHit& h : hits) {
+    row->hit = h.object.is_set();
+    row->object = h.object.to_integer();
+    row->user_data = h.user_data;
+    row->t = double(h.t);
+    put(row->point, h.point);
+    put(row->normal, h.normal);
+    ++row;
+  }
+  return out;
+}
+
+py::array world_closest_point_batch(const PyWorld& w, py::handle points, Real max_distance, std::uint64_t mask,
+                                    std::int32_t group, py::handle ignore, long threads) {
+  const RowReader r(points, 3, "points", false);
+  std::vector<Vec3> list(static_cast<std::size_t>(r.rows()));
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    const auto k = static_cast<py::ssize_t>(i);
+    list[i] = {Real(r.at(k, 0)), Real(r.at(k, 1)), Real(r.at(k, 2))};
+  }
+  std::vector<WorldClosest> nearest(list.size());
+  const QueryFilter filter = query_filter(mask, group, ignore);
+  const std::size_t count = resolve_threads(threads);
+  Result<std::size_t> done = std::size_t(0);
+  {
+    py::gil_scoped_release release;
+    done = count <= 1 ? w.world->closest_point_batch(list, max_distance, nearest, filter)
+                      : w.world->closest_point_batch(list, max_distance, nearest, filter, thread_pool(count));
+  }
+  take(std::move(done));
+  auto out = rows_of<WorldClosestRow>(nearest.size());
+  WorldClosestRow* row = out.mutable_data();
+  for (const WorldClosest& c : nearest) {
+    row->found = c.object.is_set();
+    row->object = c.object.to_integer();
+    row->user_data = c.user_data;
+    row->signed_distance = double(c.signed_distance);
+    put(row->point_object, c.point_object);
+    put(row->normal, c.normal);
+    ++row;
+  }
+  return out;
+}
+
+template <class C>
+C& def_queries(C& c) {
+  c.def(
+       "raycast",
+       [](const PyWorld& w, py::handle origin, py::handle direction, Real max_t, std::uint64_t mask, std::int32_t group,
+          py::handle ignore, const std::string& mode) {
+         const Ray ray{to_vec3(origin, "origin"), to_vec3(direction, "direction")};
+         return take(w.world->raycast(ray, max_t, query_filter(mask, group, ignore), query_mode(mode)));
+       },
+       py::arg("origin"), py::arg("direction"), py::arg("max_t") = Real(1), py::kw_only(), py::arg("mask") = ~0ull,
+       py::arg("group") = 0, py::arg("ignore") = py::none(), py::arg("mode") = "closest",
+       "Objects hit by the ray within [0, max_t] (t in units of the direction's length): a list of WorldHit, "
+       "sorted by t (mode 'closest': at most one; 'any': the first found; 'all': every one).")
+      .def(
+          "line_of_sight",
+          [](const PyWorld& w, py::handle from, py::handle to, std::uint64_t mask, std::int32_t group,
+             py::handle ignore) {
+            return take(
+                w.world->line_of_sight(to_vec3(from, "from"), to_vec3(to, "to"), query_filter(mask, group, ignore)));
+          },
+          py::arg("from_"), py::arg("to"), py::kw_only(), py::arg("mask") = ~0ull, py::arg("group") = 0,
+          py::arg("ignore") = py::none(), "True when nothing the filter sees touches the segment.")
+      .def(
+          "overlap",
+          [](const PyWorld& w, py::handle geometry, py::handle pose, std::uint64_t mask, std::int32_t group,
+             py::handle ignore) {
+            const auto found = take(w.world->overlap(to_shape(geometry, "geometry").ref(), to_transform(pose, "pose"),
+                                                     query_filter(mask, group, ignore)));
+            std::vector<std::uint64_t> handles;
+            for (const WorldOverlap& o : found) handles.push_back(o.object.to_integer());
+            return handles;
+          },
+          py::arg("geometry"), py::arg("pose") = py::none(), py::kw_only(), py::arg("mask") = ~0ull,
+          py::arg("group") = 0, py::arg("ignore") = py::none(),
+          "Handles of the objects the placed geometry touches or overlaps, ascending.")
+      .def(
+          "overlap_box",
+          [](const PyWorld& w, const Aabb& box, std::uint64_t mask, std::int32_t group, py::handle ignore) {
+            const auto found = take(w.world->overlap_box(box, query_filter(mask, group, ignore)));
+            std::vector<std::uint64_t> handles;
+            for (const WorldOverlap& o : found) handles.push_back(o.object.to_integer());
+            return handles;
+          },
+          py::arg("box"), py::kw_only(), py::arg("mask") = ~0ull, py::arg("group") = 0, py::arg("ignore") = py::none(),
+          "Handles of the objects whose geometry meets the world-frame box.")
+      .def(
+          "overlap_point",
+          [](const PyWorld& w, py::handle point, std::uint64_t mask, std::int32_t group, py::handle ignore) {
+            const auto found = take(w.world->overlap_point(to_vec3(point, "point"), query_filter(mask, group, ignore)));
+            std::vector<std::uint64_t> handles;
+            for (const WorldOverlap& o : found) handles.push_back(o.object.to_integer());
+            return handles;
+          },
+          py::arg("point"), py::kw_only(), py::arg("mask") = ~0ull, py::arg("group") = 0,
+          py::arg("ignore") = py::none(), "Handles of the objects containing or touching the point.")
+      .def(
+          "sweep",
+          [](const PyWorld& w, py::handle geometry, py::handle pose, py::handle translation, std::uint64_t mask,
+             std::int32_t group, py::handle ignore, const std::string& mode) {
+            return take(w.world->sweep(to_shape(geometry, "geometry").ref(), to_transform(pose, "pose"),
+                                       to_vec3(translation, "translation"), query_filter(mask, group, ignore),
+                                       query_mode(mode)));
+          },
+          py::arg("geometry"), py::arg("pose"), py::arg("translation"), py::kw_only(), py::arg("mask") = ~0ull,
+          py::arg("group") = 0, py::arg("ignore") = py::none(), py::arg("mode") = "closest",
+          "Objects hit by the convex geometry moved along translation (t: fraction of it).")
+      .def(
+          "closest_point",
+          [](const PyWorld& w, py::handle point, Real max_distance, std::uint64_t mask, std::int32_t group,
+             py::handle ignore) {
+            return take(
+                w.world->closest_point(to_vec3(point, "point"), max_distance, query_filter(mask, group, ignore)));
+          },
+          py::arg("point"), py::arg("max_distance"), py::kw_only(), py::arg("mask") = ~0ull, py::arg("group") = 0,
+          py::arg("ignore") = py::none(), "The object nearest the point within max_distance, or None.")
+      .def(
+          "closest",
+          [](const PyWorld& w, py::handle geometry, py::handle pose, Real max_distance, std::uint64_t mask,
+             std::int32_t group, py::handle ignore) {
+            return take(w.world->closest(to_shape(geometry, "geometry").ref(), to_transform(pose, "pose"), max_distance,
+                                         query_filter(mask, group, ignore)));
+          },
+          py::arg("geometry"), py::arg("pose"), py::arg("max_distance"), py::kw_only(), py::arg("mask") = ~0ull,
+          py::arg("group") = 0, py::arg("ignore") = py::none(),
+          "The object nearest the placed geometry within max_distance, or None.")
+      .def("raycast_batch", &world_raycast_batch, py::arg("rays"), py::arg("max_t") = Real(1), py::kw_only(),
+           py::arg("mask") = ~0ull, py::arg("group") = 0, py::arg("ignore") = py::none(), py::arg("threads") = 0,
+           "The closest hit of each ray of an (N, 6) array (origin, direction): an array of WORLD_HIT_DTYPE "
+           "(hit, object, user_data, t, point, normal). The GIL is released; threads as in distance_batch.")
+      .def("closest_point_batch", &world_closest_point_batch, py::arg("points"), py::arg("max_distance"), py::kw_only(),
+           py::arg("mask") = ~0ull, py::arg("group") = 0, py::arg("ignore") = py::none(), py::arg("threads") = 0,
+           "closest_point of each point of an (N, 3) array: an array of WORLD_CLOSEST_DTYPE (found, object, "
+           "user_data, signed_distance, point_object, normal).");
+  return c;
+}
+
+}  // namespace
+}  // namespace proxima::python
+
+namespace proxima::python {
+
+void bind_world(py::module_& m) {
+  bind_world_types(m);
+  using World = py::class_<PyWorld, std::unique_ptr<PyWorld>>;
+  World c(m, "CollisionWorld",
+          "The collision world: objects by integer handle, a step that reports contacts, sensors and impacts, "
+          "scene queries and snapshots. Lengths in the caller's units, poses local -> world.");
+  c.def(py::init([](const std::string& broadphase, Real contact_distance, int max_contacts, bool sensors_sense_sensors,
+                    bool continuous, Real ccd_safety_factor, Real ccd_tolerance) {
+          return wrap_world(
+              take(CollisionWorld::create(settings_of(broadphase, contact_distance, max_contacts, sensors_sense_sensors,
+                                                      continuous, ccd_safety_factor, ccd_tolerance))));
+        }),
+        py::arg("broadphase") = "tree", py::arg("contact_distance") = Real(0), py::arg("max_contacts") = 4,
+        py::arg("sensors_sense_sensors") = false, py::arg("continuous") = true,
+        py::arg("ccd_safety_factor") = Real(0.25), py::arg("ccd_tolerance") = Real(0))
+      .def("add", &add_object, py::arg("geometry"), py::arg("pose") = py::none(), py::kw_only(),
+           py::arg("kind") = ObjectKind::Moving, py::arg("filter") = CollisionFilter{}, py::arg("sensor") = false,
+           py::arg("ccd") = CcdMode::Auto, py::arg("user_data") = 0, py::arg("parent") = py::none(),
+           py::arg("local_pose") = py::none(),
+           "Adds an object; returns its handle (an int). A half-space or a mesh only as kind=ObjectKind.Static.")
+      .def(
+          "remove", [](PyWorld& w, std::uint64_t h) { check(w.world->remove(handle_of(h))); }, py::arg("object"))
+      .def(
+          "move",
+          [](PyWorld& w, std::uint64_t h, py::handle pose) {
+            check(w.world->move(handle_of(h), to_transform(pose, "pose")));
+          },
+          py::arg("object"), py::arg("pose"),
+          "Sets the object's pose for the next step (its motion for CCD starts at the old one).")
+      .def("move_batch", &move_batch, py::arg("objects"), py::arg("poses"),
+           "Moves objects[i] to poses[i] ((N, 7) array); all validated first, nothing moved on an error.")
+      .def(
+          "teleport",
+          [](PyWorld& w, std::uint64_t h, py::handle pose) {
+            check(w.world->teleport(handle_of(h), to_transform(pose, "pose")));
+          },
+          py::arg("object"), py::arg("pose"), "Sets the pose with no motion (continuous detection sweeps nothing).")
+      .def(
+          "set_geometry",
+          [](PyWorld& w, std::uint64_t h, py::handle g) {
+            check(w.world->set_geometry(handle_of(h), *to_shape(g, "geometry").shape));
+          },
+          py::arg("object"), py::arg("geometry"))
+      .def(
+          "set_filter",
+          [](PyWorld& w, std::uint64_t h, const CollisionFilter& f) { check(w.world->set_filter(handle_of(h), f)); },
+          py::arg("object"), py::arg("filter"))
+      .def(
+          "set_kind", [](PyWorld& w, std::uint64_t h, ObjectKind k) { check(w.world->set_kind(handle_of(h), k)); },
+          py::arg("object"), py::arg("kind"))
+      .def(
+          "set_ccd", [](PyWorld& w, std::uint64_t h, CcdMode k) { check(w.world->set_ccd(handle_of(h), k)); },
+          py::arg("object"), py::arg("mode"))
+      .def(
+          "set_user_data",
+          [](PyWorld& w, std::uint64_t h, std::uint64_t d) { check(w.world->set_user_data(handle_of(h), d)); },
+          py::arg("object"), py::arg("user_data"))
+      .def(
+          "attach",
+          [](PyWorld& w, std::uint64_t h, std::uint64_t parent, py::handle local) {
+            check(w.world->attach(handle_of(h), handle_of(parent), to_transform(local, "local_pose")));
+          },
+          py::arg("object"), py::arg("parent"), py::arg("local_pose") = py::none(),
+          "Attaches the object to parent at local_pose (parent frame); it then moves with it.")
+      .def(
+          "set_pair_excluded",
+          [](PyWorld& w, std::uint64_t a, std::uint64_t b, bool excluded) {
+            check(w.world->set_pair_excluded(handle_of(a), handle_of(b), excluded));
+          },
+          py::arg("a"), py::arg("b"), py::arg("excluded") = true, "Never pair these two objects (or again allow it).")
+      .def("__len__", [](const PyWorld& w) { return w.world->size(); })
+      .def("__contains__", [](const PyWorld& w, std::uint64_t h) { return w.world->contains(handle_of(h)); })
+      .def(
+          "objects",
+          [](const PyWorld& w) {
+            const std::vector<ObjectHandle> list = w.world->objects();
+            py::array_t<std::uint64_t> out(static_cast<py::ssize_t>(list.size()));
+            for (std::size_t i = 0; i < list.size(); ++i) out.mutable_data()[i] = list[i].to_integer();
+            return out;
+          },
+          "Handles of every object, as a uint64 array.")
+      .def(
+          "object",
+          [](const PyWorld& w, std::uint64_t h) {
+            std::optional<ObjectDesc> d = w.world->object(handle_of(h));
+            if (!d) raise_argument_error("object", "no such object");
+            return *d;
+          },
+          py::arg("object"), "What the world holds of the object (ObjectInfo).")
+      .def(
+          "pose",
+          [](const PyWorld& w, std::uint64_t h) {
+            if (!w.world->contains(handle_of(h))) raise_argument_error("object", "no such object");
+            return w.world->pose(handle_of(h));
+          },
+          py::arg("object"))
+      .def(
+          "bounds",
+          [](const PyWorld& w, std::uint64_t h) {
+            if (!w.world->contains(handle_of(h))) raise_argument_error("object", "no such object");
+            return w.world->bounds(handle_of(h));
+          },
+          py::arg("object"), "The object's world box as the broad phase holds it.")
+      .def("step", &step, py::arg("dt"), py::kw_only(), py::arg("threads") = 1,
+           "Runs the broad and narrow phases and continuous detection over dt seconds, then calls the listener. "
+           "threads: 0 every hardware thread; the GIL is released.")
+      .def_property_readonly(
+          "events", [](const PyWorld& w) { return events_dict(w.world->events()); },
+          "The last step's events: a dict of structured arrays (begin, persist, end: CONTACT_EVENT_DTYPE; "
+          "sensor_enter, sensor_exit: SENSOR_EVENT_DTYPE; impacts: IMPACT_EVENT_DTYPE).")
+      .def(
+          "contacts", [](const PyWorld& w) { return contact_points(w.world->contacts()); },
+          "Every contact point of the touching pairs: an array of CONTACT_POINT_DTYPE.")
+      .def_property_readonly("step_count", [](const PyWorld& w) { return w.world->step_count(); })
+      .def(
+          "set_listener",
+          [](PyWorld& w, py::object listener) {
+            w.listener.target = listener;
+            w.world->set_listener(listener.is_none() ? nullptr : &w.listener);
+          },
+          py::arg("listener"),
+          "An object whose methods on_contact_begin, on_contact_persist, on_contact_end, on_sensor_enter, "
+          "on_sensor_exit, on_impact (those it has) are called with each event during step(); None removes it.")
+      .def(
+          "state_hash", [](const PyWorld& w) { return w.world->state_hash(); },
+          "A hash of the whole state: equal hashes mean equal worlds.")
+      .def("save", &save_world, "The world as a versioned binary snapshot (bytes).")
+      .def_static("load", &load_world, py::arg("snapshot"), "A world from save()'s bytes.")
+      .def(py::pickle([](const PyWorld& w) { return save_world(w); },
+                      [](const py::bytes& data) { return load_world(data); }));
+  def_queries(c);
+}
+
 }  // namespace proxima::python
