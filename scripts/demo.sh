@@ -9,7 +9,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
 cmake --preset release >/dev/null
-cmake --build --preset release --target proxima_cli
+cmake --build --preset release --target proxima_cli proxima_python
 
 svg=proxima-demo.svg
 tunnelling=(--svg)

@@ -18,6 +18,8 @@ packages=(
   libbenchmark-dev                   # benchmarks
   python3-pygame                     # reference answers and timings of the sprite tests and benchmark
                                      # (run with /usr/bin/python3, Debian's interpreter)
+  pybind11-dev python3-dev python3-numpy python3-pytest python3-setuptools
+                                     # the Python package (python/), built for /usr/bin/python3
   libtbb-dev                         # the oneTBB executor example (examples/tbb_executor.cpp)
   # Peer libraries: references for the cross-validation tests and the side-by-side
   # benchmarks only; the library never links them.

@@ -114,8 +114,12 @@ void bind_ccd(py::module_& m) {
         options.target_distance = target_distance;
         options.tolerance = tolerance;
         options.max_iterations = max_iterations;
-        py::gil_scoped_release release;
-        return take(time_of_impact(sa.ref(), ma, sb.ref(), mb, options));
+        std::optional<Result<ToiResult>> r;
+        {
+          py::gil_scoped_release release;
+          r.emplace(time_of_impact(sa.ref(), ma, sb.ref(), mb, options));
+        }
+        return take(std::move(*r));
       },
       py::arg("a"), py::arg("motion_a"), py::arg("b"), py::arg("motion_b"), py::arg("target_distance") = Real(0),
       py::arg("tolerance") = Real(1e-4), py::arg("max_iterations") = 1024,
@@ -133,8 +137,12 @@ void bind_ccd(py::module_& m) {
         options.target_distance = target_distance;
         options.tolerance = tolerance;
         options.max_iterations = max_iterations;
-        py::gil_scoped_release release;
-        return take(shape_cast(sa.ref(), pa, d, sb.ref(), pb, options));
+        std::optional<Result<CastResult>> r;
+        {
+          py::gil_scoped_release release;
+          r.emplace(shape_cast(sa.ref(), pa, d, sb.ref(), pb, options));
+        }
+        return take(std::move(*r));
       },
       py::arg("a"), py::arg("pose_a"), py::arg("translation"), py::arg("b"), py::arg("pose_b"),
       py::arg("target_distance") = Real(0), py::arg("tolerance") = Real(1e-4), py::arg("max_iterations") = 64,

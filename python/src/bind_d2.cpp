@@ -125,17 +125,17 @@ void bind_d2_types(py::module_& d) {
 void bind_d2_shapes(py::module_& d) {
   d.def(
       "Point", [](py::handle p) { return make(d2::Point::create(to_vec2(p, "position"))); },
-      py::arg("position") = py::make_tuple(0.0, 0.0));
+      py::arg("position") = py::make_tuple(0.0, 0.0), "A point at position (local frame).");
   d.def(
       "Circle", [](Real r, py::handle c) { return make(d2::Circle::create(r, to_vec2(c, "center"))); },
-      py::arg("radius"), py::arg("center") = py::make_tuple(0.0, 0.0));
+      py::arg("radius"), py::arg("center") = py::make_tuple(0.0, 0.0), "A disc of radius about center (local frame).");
   d.def(
       "Segment", [](py::handle a, py::handle b) { return make(d2::Segment::create(to_vec2(a, "a"), to_vec2(b, "b"))); },
-      py::arg("a"), py::arg("b"));
+      py::arg("a"), py::arg("b"), "The segment from a to b (local frame); a != b.");
   d.def(
       "Capsule",
       [](py::handle a, py::handle b, Real r) { return make(d2::Capsule::create(to_vec2(a, "a"), to_vec2(b, "b"), r)); },
-      py::arg("a"), py::arg("b"), py::arg("radius"));
+      py::arg("a"), py::arg("b"), py::arg("radius"), "Points within radius of the segment a-b (local frame).");
   d.def(
       "Polygon",
       [](py::handle points, Real radius) {
@@ -162,13 +162,15 @@ void bind_d2_queries(py::module_& d) {
       [](py::handle a, py::handle pa, py::handle b, py::handle pb) {
         return d2::distance(shape_arg(a, "a"), to_pose2(pa, "pose_a"), shape_arg(b, "b"), to_pose2(pb, "pose_b"));
       },
-      py::arg("a"), py::arg("pose_a"), py::arg("b"), py::arg("pose_b"));
+      py::arg("a"), py::arg("pose_a"), py::arg("b"), py::arg("pose_b"),
+      "Signed distance with witness points and the unit normal from A to B (world frame).");
   d.def(
       "intersect",
       [](py::handle a, py::handle pa, py::handle b, py::handle pb) {
         return d2::intersect(shape_arg(a, "a"), to_pose2(pa, "pose_a"), shape_arg(b, "b"), to_pose2(pb, "pose_b"));
       },
-      py::arg("a"), py::arg("pose_a"), py::arg("b"), py::arg("pose_b"));
+      py::arg("a"), py::arg("pose_a"), py::arg("b"), py::arg("pose_b"),
+      "True when the placed shapes touch or overlap.");
   d.def(
       "collide",
       [](py::handle a, py::handle pa, py::handle b, py::handle pb, Real contact_distance) {
@@ -176,7 +178,8 @@ void bind_d2_queries(py::module_& d) {
         return d2::collide(shape_arg(a, "a"), to_pose2(pa, "pose_a"), shape_arg(b, "b"), to_pose2(pb, "pose_b"),
                            contact_distance);
       },
-      py::arg("a"), py::arg("pose_a"), py::arg("b"), py::arg("pose_b"), py::arg("contact_distance") = Real(0));
+      py::arg("a"), py::arg("pose_a"), py::arg("b"), py::arg("pose_b"), py::arg("contact_distance") = Real(0),
+      "The contact manifold (up to 2 points) of shapes touching, overlapping or within contact_distance.");
   d.def(
       "raycast",
       [](py::handle s, py::handle pose, py::handle origin, py::handle direction, Real max_t) {
@@ -185,13 +188,13 @@ void bind_d2_queries(py::module_& d) {
         return d2::raycast(shape_arg(s, "shape"), to_pose2(pose, "pose"), ray, max_t);
       },
       py::arg("shape"), py::arg("pose"), py::arg("origin"), py::arg("direction"),
-      py::arg("max_t") = std::numeric_limits<Real>::max());
+      py::arg("max_t") = std::numeric_limits<Real>::max(), "The first hit with t in [0, max_t], or None.");
   d.def(
       "contains",
       [](py::handle s, py::handle pose, py::handle p) {
         return d2::contains(shape_arg(s, "shape"), to_pose2(pose, "pose"), to_vec2(p, "point"));
       },
-      py::arg("shape"), py::arg("pose"), py::arg("point"));
+      py::arg("shape"), py::arg("pose"), py::arg("point"), "True when the placed shape contains the point.");
   d.def(
       "toi",
       [](py::handle a, py::handle start_a, py::handle translation_a, Real rotation_a, py::handle b, py::handle start_b,
@@ -214,7 +217,8 @@ void bind_d2_queries(py::module_& d) {
         return take(d2::shape_cast(shape_arg(a, "a"), to_pose2(pa, "pose_a"), to_vec2(translation, "translation"),
                                    shape_arg(b, "b"), to_pose2(pb, "pose_b")));
       },
-      py::arg("a"), py::arg("pose_a"), py::arg("translation"), py::arg("b"), py::arg("pose_b"));
+      py::arg("a"), py::arg("pose_a"), py::arg("translation"), py::arg("b"), py::arg("pose_b"),
+      "Where a, moved from pose_a along translation (t in [0, 1]), first meets b at rest.");
 }
 
 }  // namespace

@@ -288,8 +288,12 @@ void bind_mesh(py::module_& m) {
              IndexedMesh mesh{to_points(vertices, "vertices"), to_triangles(triangles, "triangles")};
              MeshCreateOptions options;
              options.repair = repair;
-             py::gil_scoped_release release;  // the BVH build of a large mesh takes a while
-             return hold(TriangleMesh::create(std::move(mesh), options));
+             std::optional<Result<TriangleMesh>> made;
+             {
+               py::gil_scoped_release release;  // the BVH build of a large mesh takes a while
+               made.emplace(TriangleMesh::create(std::move(mesh), options));
+             }
+             return hold(std::move(*made));
            }),
            py::arg("vertices"), py::arg("triangles"), py::arg("repair") = true)
       .def_property_readonly("vertices",
