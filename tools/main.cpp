@@ -93,6 +93,18 @@ std::string world_footer() {
   return text;
 }
 
+/// The exit status after a run: 1 when writing the capture of --record failed.
+template <class Session>
+int record_status(const Session& session, const proxima::tool::WorldOptions& options, int status) {
+  if constexpr (requires { session.record_failed(); }) {
+    if (session.record_failed()) {
+      std::cerr << "proxima world: writing " << options.record_path << " failed\n";
+      return 1;
+    }
+  }
+  return status;
+}
+
 /// Runs a world session (3D: WorldSession, 2D: WorldSession2d) over `input`.
 template <class Session>
 int run_world(const proxima::tool::WorldOptions& options, const std::string& input) {
@@ -101,7 +113,10 @@ int run_world(const proxima::tool::WorldOptions& options, const std::string& inp
     std::cerr << "proxima world: " << session.error().what() << "\n";
     return 1;
   }
-  if (input.empty() || input == "-") return proxima::tool::exit_status(session.value().run(std::cin, std::cout));
+  if (input.empty() || input == "-") {
+    return record_status(session.value(), options,
+                         proxima::tool::exit_status(session.value().run(std::cin, std::cout)));
+  }
   std::ifstream file(input);
   if (!file || std::filesystem::is_directory(input)) {
     std::cerr << "proxima world: cannot open " << input << " (not a readable file)\n";
@@ -112,7 +127,7 @@ int run_world(const proxima::tool::WorldOptions& options, const std::string& inp
     std::cerr << "proxima world: reading " << input << " failed\n";
     return 1;
   }
-  return status;
+  return record_status(session.value(), options, status);
 }
 
 int run(int argc, char** argv) {
@@ -202,6 +217,8 @@ int run(int argc, char** argv) {
       ->check(kFinite & CLI::Range(0.0, 1e18));
   world_cmd->add_flag("--sensors-sense-sensors", world.settings.sensors_sense_sensors,
                       "Two sensors report enter / exit of each other");
+  world_cmd->add_option("--record", world.record_path,
+                        "Write a capture of every step to this file (docs/capture-format.md; 3D worlds)");
   bool world_2d = false;
   world_cmd->add_flag("--2d", world_2d, "A 2D world: 2D shapes and poses (docs/world-protocol.md, \"2D worlds\")");
   world_cmd->footer(world_footer());
@@ -250,6 +267,10 @@ int run(int argc, char** argv) {
     if (query_cmd->parsed()) return run_query(query_input);
     if (world_cmd->parsed()) {
       world.settings.contact_distance = static_cast<proxima::Real>(world_contact_distance);
+      if (world_2d && !world.record_path.empty()) {
+        std::cerr << "proxima world: --record records 3D worlds only\n";
+        return 1;
+      }
       return world_2d ? run_world<proxima::tool::WorldSession2d>(world, world_input)
                       : run_world<proxima::tool::WorldSession>(world, world_input);
     }
