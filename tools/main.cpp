@@ -7,6 +7,7 @@
 //   proxima world [FILE|-]     a collision world driven by JSON requests, one per line
 //   proxima bench broadphase   one broad-phase structure on a W1 workload file
 //   proxima mesh-info FILE     validation/repair report, bounds, volume, BVH of a mesh file
+//   proxima render CAPTURE     a picture (PNG or SVG) of one step of a capture
 #include <proxima/core/config.hpp>
 
 #include <CLI/CLI.hpp>
@@ -20,6 +21,7 @@
 #include <unistd.h>
 
 #include "bench_command.hpp"
+#include "capture_render.hpp"
 #include "demo_billiards.hpp"
 #include "demo_platformer.hpp"
 #include "demo_tunnelling.hpp"
@@ -128,6 +130,40 @@ int run_world(const proxima::tool::WorldOptions& options, const std::string& inp
     return 1;
   }
   return record_status(session.value(), options, status);
+}
+
+/// Options of `proxima render`.
+struct RenderCommand {
+  std::string capture;                   ///< the capture file
+  std::size_t frame = 0;                 ///< the step drawn
+  std::string output;                    ///< .png or .svg
+  std::string view = "auto";             ///< auto, iso, top, front
+  bool no_capture_camera = false;        ///< ignore the capture's camera
+  proxima::tool::RenderOptions options;  ///< size, layers
+};
+
+int run_render(RenderCommand command) {
+  std::ifstream file(command.capture);
+  if (!file || std::filesystem::is_directory(command.capture)) {
+    std::cerr << "proxima render: cannot open " << command.capture << " (not a readable file)\n";
+    return 1;
+  }
+  const auto capture = proxima::tool::read_capture(file);
+  if (!capture.ok()) {
+    std::cerr << "proxima render: " << command.capture << ": " << capture.error().what() << "\n";
+    return 1;
+  }
+  using proxima::tool::RenderView;
+  command.options.view = command.view == "iso"     ? RenderView::Iso
+                         : command.view == "top"   ? RenderView::Top
+                         : command.view == "front" ? RenderView::Front
+                                                   : RenderView::Auto;
+  command.options.capture_camera = !command.no_capture_camera;
+  if (auto e = proxima::tool::render_file(capture.value(), command.frame, command.options, command.output)) {
+    std::cerr << "proxima render: " << e->what() << "\n";
+    return 1;
+  }
+  return 0;
 }
 
 int run(int argc, char** argv) {
@@ -254,6 +290,27 @@ int run(int argc, char** argv) {
       ->capture_default_str();
   mesh_info_cmd->add_flag("--json", mesh_info.json, "Print one JSON object instead of text");
 
+  RenderCommand render;
+  CLI::App* render_cmd = app.add_subcommand(
+      "render", "Draw one step of a capture (docs/capture-format.md) as a PNG or SVG picture with cairo");
+  render_cmd->add_option("capture", render.capture, "Capture file (proxima world --record, the demos)")->required();
+  render_cmd->add_option("--frame", render.frame, "The step drawn (0: the first)")->capture_default_str();
+  render_cmd->add_option("-o,--output", render.output, "Picture file: .png or .svg")->required();
+  render_cmd->add_option("--width", render.options.width, "Pixels")->capture_default_str()->check(CLI::Range(16, 8192));
+  render_cmd->add_option("--height", render.options.height, "Pixels")
+      ->capture_default_str()
+      ->check(CLI::Range(16, 8192));
+  render_cmd
+      ->add_option(
+          "--layers", render.options.layers,
+          "Layers drawn, comma-separated (shapes, bounds, bvh, broadphase, contacts, normals, sweeps, queries, "
+          "text, user); default: all")
+      ->delimiter(',');
+  render_cmd->add_option("--view", render.view, "Default camera: auto, iso, top, front")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"auto", "iso", "top", "front"}));
+  render_cmd->add_flag("--no-capture-camera", render.no_capture_camera, "Ignore the capture's camera");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -265,6 +322,7 @@ int run(int argc, char** argv) {
     if (tunnelling_cmd->parsed()) return proxima::tool::run_tunnelling_demo(tunnelling, std::cout, std::cerr);
     if (platformer_cmd->parsed()) return proxima::tool::run_platformer_demo(platformer, std::cout, std::cerr);
     if (query_cmd->parsed()) return run_query(query_input);
+    if (render_cmd->parsed()) return run_render(render);
     if (world_cmd->parsed()) {
       world.settings.contact_distance = static_cast<proxima::Real>(world_contact_distance);
       if (world_2d && !world.record_path.empty()) {
