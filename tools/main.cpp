@@ -183,6 +183,11 @@ int run(int argc, char** argv) {
       ->check(CLI::Range(0, 1000000));
   demo_cmd->add_option("--svg", demo.svg_path, "Picture of the table and trajectories (empty: none)")
       ->capture_default_str();
+  demo_cmd->add_option("--png", demo.png_path, "Picture of one frame drawn by proxima render (empty: none)")
+      ->capture_default_str();
+  demo_cmd->add_option("--png-frame", demo.png_frame, "The frame drawn in the PNG")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 1000000));
   demo_cmd->add_option("--seed", demo.config.seed, "Jitter of the rack and the shot (0: perfectly symmetric)")
       ->capture_default_str();
   demo_cmd->add_option("--speed", demo.config.cue_speed, "Speed of the cue ball, m/s")

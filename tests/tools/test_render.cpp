@@ -9,6 +9,7 @@
 #include <proxima/debug/capture_recorder.hpp>
 #include <proxima/debug/draw_world.hpp>
 
+#include <cstdio>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -140,6 +141,17 @@ TEST(Render, CliWritesAPngOfTheAskedSize) {
   const test::CliRun bad_file = test::run_cli("render '" + dir + "render_bad.jsonl' -o '" + dir + "x.png' 2>&1");
   EXPECT_EQ(bad_file.status, 1);
   EXPECT_NE(bad_file.output.find("line 2"), std::string::npos) << bad_file.output;
+}
+
+TEST(Render, BilliardsDemoWritesItsPng) {
+  const std::string png = testing::TempDir() + "render_demo.png";
+  std::remove(png.c_str());
+  const test::CliRun run = test::run_cli("demo -q --frames 8 --png-frame 5 --svg '' --png '" + png + "'");
+  ASSERT_EQ(run.status, 0);
+  std::ifstream in(png, std::ios::binary);
+  std::string head(4, '\0');
+  in.read(head.data(), 4);
+  EXPECT_EQ(head.substr(1, 3), "PNG");
 }
 
 }  // namespace proxima::test_render
