@@ -18,7 +18,6 @@
 #include <fstream>
 #include <iostream>
 #include <string>
-#include <unistd.h>
 
 #include "bench_command.hpp"
 #include "capture_render.hpp"
@@ -27,6 +26,7 @@
 #include "demo_tunnelling.hpp"
 #include "json_shapes.hpp"
 #include "mesh_info.hpp"
+#include "progress_bar.hpp"
 #include "query.hpp"
 #include "query_operations.hpp"
 #include "world2d_session.hpp"
@@ -343,7 +343,7 @@ int run(int argc, char** argv) {
     }
     if (bench_broadphase_cmd->parsed()) {
       bench_broadphase.check = !bench_no_check;
-      bench_broadphase.progress = isatty(STDERR_FILENO) != 0;
+      bench_broadphase.progress = proxima::tool::stderr_is_terminal();
       return proxima::tool::run_bench_broadphase(bench_broadphase, std::cout, std::cerr);
     }
   } catch (const std::exception& e) {
