@@ -12,6 +12,7 @@ packages=(
   libcli11-dev nlohmann-json3-dev    # the proxima tool
   libassimp-dev                      # the proxima tool: mesh files (OBJ, STL, PLY, glTF)
   libpng-dev                         # the proxima tool: sprite masks from PNG files
+  libcairo2-dev                      # the proxima tool: pictures of captures (render, demos' PNG)
   libgtest-dev libgmock-dev          # tests
   libcgal-dev                        # exact reference computations in tests
   clang clang-format                 # the sanitizer build (clang), the formatting test

@@ -18,6 +18,7 @@
 #include <sstream>
 #include <string_view>
 
+#include "progress_bar.hpp"
 #include "support/w1_grid_pairs.hpp"
 
 namespace proxima::tool {
@@ -73,14 +74,6 @@ std::string hex(std::uint64_t v) {
 }
 
 std::string describe(const W1Checksum& c) { return "pairs=" + std::to_string(c.pairs) + " hash=" + hex(c.hash); }
-
-void draw_progress(std::ostream& err, int done, int total) {
-  constexpr int kWidth = 40;
-  const int filled = total > 0 ? done * kWidth / total : kWidth;
-  err << "\r[" << std::string(std::size_t(filled), '#') << std::string(std::size_t(kWidth - filled), ' ') << "] "
-      << done << "/" << total << " frames" << std::flush;
-  if (done == total) err << "\n";
-}
 
 using Clock = std::chrono::steady_clock;
 double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
@@ -225,7 +218,7 @@ int run_bench_broadphase(const BenchBroadphaseOptions& options, std::ostream& ou
   std::vector<ProxyPair> pairs;
   ThreadPool pool(options.threads);  // the executor of find_pairs (started before the timing)
   double frame_ms = 0;
-  const bool progress = options.progress && frames >= 2;
+  ProgressBar progress(err, options.progress && frames >= 2, std::size_t(frames), "frames");
   for (int f = 0; f < frames; ++f) {
     advance(state, w.dt, w.lo, w.hi);
     boxes_of(state, false, boxes);
@@ -235,7 +228,7 @@ int run_bench_broadphase(const BenchBroadphaseOptions& options, std::ostream& ou
     s->find_pairs(pairs, pool);
     frame_ms += ms_since(t0);
     for (const ProxyPair& p : pairs) r.checksum.add(p.lo, p.hi, n);
-    if (progress) draw_progress(err, f + 1, frames);
+    progress.update(std::size_t(f) + 1);
   }
   r.ms_per_frame = frame_ms / frames;
   r.pairs_per_frame = double(r.checksum.pairs) / frames;

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "svg_writer.hpp"
+#include "world_picture.hpp"
 
 namespace proxima::tool {
 
@@ -115,6 +116,7 @@ int run_billiards_demo(const DemoOptions& options, std::ostream& out, std::ostre
   const double energy_start = table.kinetic_energy();
   double total_ms = 0.0;
   double max_ms = 0.0;
+  const int png_frame = std::min(options.png_frame, options.config.frames - 1);
   for (int f = 0; f < options.config.frames; ++f) {
     const auto t0 = std::chrono::steady_clock::now();
     table.step();
@@ -122,6 +124,14 @@ int run_billiards_demo(const DemoOptions& options, std::ostream& out, std::ostre
     const double ms = std::chrono::duration<double, std::milli>(t1 - t0).count();
     total_ms += ms;
     max_ms = std::max(max_ms, ms);
+    if (f == png_frame && !options.png_path.empty()) {
+      RenderOptions picture;
+      picture.view = RenderView::Top;
+      if (auto e = write_world_picture(table.world(), options.png_path, picture)) {
+        err << "proxima demo: " << e->what() << "\n";
+        return 1;
+      }
+    }
   }
 
   const BilliardStats& s = table.stats();
@@ -158,6 +168,9 @@ int run_billiards_demo(const DemoOptions& options, std::ostream& out, std::ostre
       return 1;
     }
     if (!options.quiet) out << "picture: " << options.svg_path << "\n";
+  }
+  if (!options.png_path.empty() && png_frame >= 0 && !options.quiet) {
+    out << "frame " << png_frame << " drawn by proxima render: " << options.png_path << "\n";
   }
   return 0;
 }

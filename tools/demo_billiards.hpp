@@ -12,6 +12,8 @@ namespace proxima::tool {
 struct DemoOptions {
   BilliardConfig config;                      ///< scene and simulation settings (frames, seed)
   std::string svg_path = "proxima-demo.svg";  ///< where the picture goes; empty: no picture
+  std::string png_path = "proxima-demo.png";  ///< the world drawn by `proxima render` at png_frame; empty: none
+  int png_frame = 40;                         ///< the frame drawn in the PNG (the last one when fewer are run)
   bool quiet = false;                         ///< print nothing on success
 };
 

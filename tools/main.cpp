@@ -7,6 +7,7 @@
 //   proxima world [FILE|-]     a collision world driven by JSON requests, one per line
 //   proxima bench broadphase   one broad-phase structure on a W1 workload file
 //   proxima mesh-info FILE     validation/repair report, bounds, volume, BVH of a mesh file
+//   proxima render CAPTURE     a picture (PNG or SVG) of one step of a capture
 #include <proxima/core/config.hpp>
 
 #include <CLI/CLI.hpp>
@@ -17,14 +18,15 @@
 #include <fstream>
 #include <iostream>
 #include <string>
-#include <unistd.h>
 
 #include "bench_command.hpp"
+#include "capture_render.hpp"
 #include "demo_billiards.hpp"
 #include "demo_platformer.hpp"
 #include "demo_tunnelling.hpp"
 #include "json_shapes.hpp"
 #include "mesh_info.hpp"
+#include "progress_bar.hpp"
 #include "query.hpp"
 #include "query_operations.hpp"
 #include "world2d_session.hpp"
@@ -93,6 +95,18 @@ std::string world_footer() {
   return text;
 }
 
+/// The exit status after a run: 1 when writing the capture of --record failed.
+template <class Session>
+int record_status(const Session& session, const proxima::tool::WorldOptions& options, int status) {
+  if constexpr (requires { session.record_failed(); }) {
+    if (session.record_failed()) {
+      std::cerr << "proxima world: writing " << options.record_path << " failed\n";
+      return 1;
+    }
+  }
+  return status;
+}
+
 /// Runs a world session (3D: WorldSession, 2D: WorldSession2d) over `input`.
 template <class Session>
 int run_world(const proxima::tool::WorldOptions& options, const std::string& input) {
@@ -101,7 +115,10 @@ int run_world(const proxima::tool::WorldOptions& options, const std::string& inp
     std::cerr << "proxima world: " << session.error().what() << "\n";
     return 1;
   }
-  if (input.empty() || input == "-") return proxima::tool::exit_status(session.value().run(std::cin, std::cout));
+  if (input.empty() || input == "-") {
+    return record_status(session.value(), options,
+                         proxima::tool::exit_status(session.value().run(std::cin, std::cout)));
+  }
   std::ifstream file(input);
   if (!file || std::filesystem::is_directory(input)) {
     std::cerr << "proxima world: cannot open " << input << " (not a readable file)\n";
@@ -112,7 +129,41 @@ int run_world(const proxima::tool::WorldOptions& options, const std::string& inp
     std::cerr << "proxima world: reading " << input << " failed\n";
     return 1;
   }
-  return status;
+  return record_status(session.value(), options, status);
+}
+
+/// Options of `proxima render`.
+struct RenderCommand {
+  std::string capture;                   ///< the capture file
+  std::size_t frame = 0;                 ///< the step drawn
+  std::string output;                    ///< .png or .svg
+  std::string view = "auto";             ///< auto, iso, top, front
+  bool no_capture_camera = false;        ///< ignore the capture's camera
+  proxima::tool::RenderOptions options;  ///< size, layers
+};
+
+int run_render(RenderCommand command) {
+  std::ifstream file(command.capture);
+  if (!file || std::filesystem::is_directory(command.capture)) {
+    std::cerr << "proxima render: cannot open " << command.capture << " (not a readable file)\n";
+    return 1;
+  }
+  const auto capture = proxima::tool::read_capture(file);
+  if (!capture.ok()) {
+    std::cerr << "proxima render: " << command.capture << ": " << capture.error().what() << "\n";
+    return 1;
+  }
+  using proxima::tool::RenderView;
+  command.options.view = command.view == "iso"     ? RenderView::Iso
+                         : command.view == "top"   ? RenderView::Top
+                         : command.view == "front" ? RenderView::Front
+                                                   : RenderView::Auto;
+  command.options.capture_camera = !command.no_capture_camera;
+  if (auto e = proxima::tool::render_file(capture.value(), command.frame, command.options, command.output)) {
+    std::cerr << "proxima render: " << e->what() << "\n";
+    return 1;
+  }
+  return 0;
 }
 
 int run(int argc, char** argv) {
@@ -132,6 +183,11 @@ int run(int argc, char** argv) {
       ->check(CLI::Range(0, 1000000));
   demo_cmd->add_option("--svg", demo.svg_path, "Picture of the table and trajectories (empty: none)")
       ->capture_default_str();
+  demo_cmd->add_option("--png", demo.png_path, "Picture of one frame drawn by proxima render (empty: none)")
+      ->capture_default_str();
+  demo_cmd->add_option("--png-frame", demo.png_frame, "The frame drawn in the PNG")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 1000000));
   demo_cmd->add_option("--seed", demo.config.seed, "Jitter of the rack and the shot (0: perfectly symmetric)")
       ->capture_default_str();
   demo_cmd->add_option("--speed", demo.config.cue_speed, "Speed of the cue ball, m/s")
@@ -202,6 +258,8 @@ int run(int argc, char** argv) {
       ->check(kFinite & CLI::Range(0.0, 1e18));
   world_cmd->add_flag("--sensors-sense-sensors", world.settings.sensors_sense_sensors,
                       "Two sensors report enter / exit of each other");
+  world_cmd->add_option("--record", world.record_path,
+                        "Write a capture of every step to this file (docs/capture-format.md; 3D worlds)");
   bool world_2d = false;
   world_cmd->add_flag("--2d", world_2d, "A 2D world: 2D shapes and poses (docs/world-protocol.md, \"2D worlds\")");
   world_cmd->footer(world_footer());
@@ -237,6 +295,27 @@ int run(int argc, char** argv) {
       ->capture_default_str();
   mesh_info_cmd->add_flag("--json", mesh_info.json, "Print one JSON object instead of text");
 
+  RenderCommand render;
+  CLI::App* render_cmd = app.add_subcommand(
+      "render", "Draw one step of a capture (docs/capture-format.md) as a PNG or SVG picture with cairo");
+  render_cmd->add_option("capture", render.capture, "Capture file (proxima world --record, the demos)")->required();
+  render_cmd->add_option("--frame", render.frame, "The step drawn (0: the first)")->capture_default_str();
+  render_cmd->add_option("-o,--output", render.output, "Picture file: .png or .svg")->required();
+  render_cmd->add_option("--width", render.options.width, "Pixels")->capture_default_str()->check(CLI::Range(16, 8192));
+  render_cmd->add_option("--height", render.options.height, "Pixels")
+      ->capture_default_str()
+      ->check(CLI::Range(16, 8192));
+  render_cmd
+      ->add_option(
+          "--layers", render.options.layers,
+          "Layers drawn, comma-separated (shapes, bounds, bvh, broadphase, contacts, normals, sweeps, queries, "
+          "text, user); default: all")
+      ->delimiter(',');
+  render_cmd->add_option("--view", render.view, "Default camera: auto, iso, top, front")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"auto", "iso", "top", "front"}));
+  render_cmd->add_flag("--no-capture-camera", render.no_capture_camera, "Ignore the capture's camera");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -248,8 +327,13 @@ int run(int argc, char** argv) {
     if (tunnelling_cmd->parsed()) return proxima::tool::run_tunnelling_demo(tunnelling, std::cout, std::cerr);
     if (platformer_cmd->parsed()) return proxima::tool::run_platformer_demo(platformer, std::cout, std::cerr);
     if (query_cmd->parsed()) return run_query(query_input);
+    if (render_cmd->parsed()) return run_render(render);
     if (world_cmd->parsed()) {
       world.settings.contact_distance = static_cast<proxima::Real>(world_contact_distance);
+      if (world_2d && !world.record_path.empty()) {
+        std::cerr << "proxima world: --record records 3D worlds only\n";
+        return 1;
+      }
       return world_2d ? run_world<proxima::tool::WorldSession2d>(world, world_input)
                       : run_world<proxima::tool::WorldSession>(world, world_input);
     }
@@ -259,7 +343,7 @@ int run(int argc, char** argv) {
     }
     if (bench_broadphase_cmd->parsed()) {
       bench_broadphase.check = !bench_no_check;
-      bench_broadphase.progress = isatty(STDERR_FILENO) != 0;
+      bench_broadphase.progress = proxima::tool::stderr_is_terminal();
       return proxima::tool::run_bench_broadphase(bench_broadphase, std::cout, std::cerr);
     }
   } catch (const std::exception& e) {

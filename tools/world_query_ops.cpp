@@ -80,7 +80,9 @@ Json op_world_raycast(WorldSession& session, const Json& request) {
   }
   const QueryFilter filter = member_filter(request);
   const QueryMode mode = member_mode(request, QueryMode::Closest);
-  return hits_to_json(unwrap_world(session.world().raycast(ray, max_t, filter, mode)));
+  const std::vector<WorldHit> hits = unwrap_world(session.world().raycast(ray, max_t, filter, mode));
+  if (session.recorder()) session.recorder()->record_ray(ray, max_t, hits);
+  return hits_to_json(hits);
 }
 
 Json op_world_line_of_sight(WorldSession& session, const Json& request) {

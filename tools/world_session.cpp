@@ -48,13 +48,29 @@ Result<WorldSession> WorldSession::create(const WorldOptions& options) {
   if (!world.ok()) return world.error();
   std::unique_ptr<ThreadPool> pool;
   if (options.threads != 1) pool = std::make_unique<ThreadPool>(options.threads);
-  return WorldSession(std::move(world).value(), std::move(pool));
+  WorldSession session(std::move(world).value(), std::move(pool));
+  if (!options.record_path.empty()) {
+    session.record_file_ = std::make_unique<std::ofstream>(options.record_path, std::ios::trunc);
+    if (!*session.record_file_) {
+      return Error{ErrorCode::InvalidArgument, "record", "cannot write " + options.record_path};
+    }
+    session.recorder_ = std::make_unique<debug::CaptureRecorder>(*session.record_file_);
+  }
+  return session;
+}
+
+void WorldSession::record_step(Real dt) {
+  if (recorder_ && recorder_->record_step(world_, dt)) record_failed_ = true;
 }
 
 Json WorldSession::dispatch(const Json& request) {
   const std::string name = read_op(request);
   for (const WorldOperation& op : kWorldOperations) {
-    if (op.name == name) return op.run(*this, request);
+    if (op.name != name) continue;
+    Json answer = op.run(*this, request);
+    // A new geometry is written again with the next recorded step.
+    if (recorder_ && name == "set_geometry") recorder_->invalidate(read_handle(request["object"], "object"));
+    return answer;
   }
   throw FieldError("op", "unknown_op",
                    "unknown operation \"" + name + "\" (expected one of " + world_operation_names() + ")");

@@ -4,10 +4,12 @@
 // docs/world-protocol.md.
 #include <proxima/core/executor.hpp>
 #include <proxima/core/result.hpp>
+#include <proxima/debug/capture_recorder.hpp>
 #include <proxima/world/collision_world.hpp>
 #include <proxima/world/world_settings.hpp>
 
 #include <cstddef>
+#include <fstream>
 #include <iosfwd>
 #include <memory>
 #include <span>
@@ -21,6 +23,7 @@ namespace proxima::tool {
 /// Options of `proxima world` (its command-line options).
 struct WorldOptions {
   std::size_t threads = 1;  ///< threads of the step's narrow phase (1: on the calling thread)
+  std::string record_path;  ///< write a capture of every step to this file (empty: none)
   WorldSettings settings;   ///< broad phase, contact distance, sensors sensing sensors, ...
 };
 
@@ -47,8 +50,18 @@ class WorldSession {
     if (pool_) return *pool_;
     return serial_executor();
   }
-  /// Replaces the world (by "load"); the executor stays.
-  void replace_world(CollisionWorld world) { world_ = std::move(world); }
+  /// Replaces the world (by "load"); the executor stays; a recording starts its objects anew.
+  void replace_world(CollisionWorld world) {
+    world_ = std::move(world);
+    if (recorder_) recorder_->reset_objects();
+  }
+
+  /// The capture recorder of `--record` (nullptr when not recording).
+  debug::CaptureRecorder* recorder() { return recorder_.get(); }
+  /// Records the step just run (a no-op when not recording); remembers a write failure.
+  void record_step(Real dt);
+  /// True when writing the capture failed (the run then ends with status 1).
+  bool record_failed() const { return record_failed_; }
 
  private:
   WorldSession(CollisionWorld world, std::unique_ptr<ThreadPool> pool)
@@ -57,6 +70,9 @@ class WorldSession {
 
   CollisionWorld world_;
   std::unique_ptr<ThreadPool> pool_;
+  std::unique_ptr<std::ofstream> record_file_;
+  std::unique_ptr<debug::CaptureRecorder> recorder_;
+  bool record_failed_ = false;
 };
 
 /// Answers a request of one world operation: returns the answer's members (without "id"),

@@ -107,6 +107,7 @@ Json op_world_step(WorldSession& session, const Json& request) {
   if (const Json* c = find_member(request, "contacts")) with_contacts = read_bool(*c, "contacts");
   CollisionWorld& world = session.world();
   check_world(world.step(dt, session.executor()));
+  session.record_step(dt);
   const StepEvents& events = world.events();
   Json answer = Json::object();
   answer["begin"] = contact_events(events.begin);

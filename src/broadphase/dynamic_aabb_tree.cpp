@@ -26,6 +26,7 @@
 #include <proxima/geometry/raycast.hpp>
 
 #include <algorithm>
+#include <utility>
 
 #include "broadphase/batch_update_check.hpp"
 
@@ -774,6 +775,22 @@ Aabb DynamicAabbTree::fat_box(ProxyId id) const {
   if (id >= proxies_.size() || proxies_[id].leaf == kNull) return Aabb::empty();
   const Proxy& p = proxies_[id];
   return tree_of(p.kind).nodes[p.leaf].box;
+}
+
+void DynamicAabbTree::visit_nodes(FunctionRef<void(const NodeView&)> visit) const {
+  for (const auto& [tree, kind] : {std::pair{&moving_, ProxyKind::Moving}, std::pair{&static_, ProxyKind::Static}}) {
+    if (tree->root == kNull) continue;
+    std::vector<std::pair<std::uint32_t, int>> stack{{tree->root, 0}};
+    while (!stack.empty()) {
+      const auto [index, depth] = stack.back();
+      stack.pop_back();
+      const Node& node = tree->nodes[index];
+      visit(NodeView{node.box, depth, node.is_leaf(), kind, node.is_leaf() ? node.child2 : ProxyId(0)});
+      if (node.is_leaf()) continue;
+      stack.emplace_back(node.child2, depth + 1);
+      stack.emplace_back(node.child1, depth + 1);
+    }
+  }
 }
 
 }  // namespace proxima

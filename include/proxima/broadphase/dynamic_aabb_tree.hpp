@@ -40,6 +40,7 @@
 #include <proxima/broadphase/pair_tracker.hpp>
 #include <proxima/broadphase/parallel_pairs.hpp>
 #include <proxima/core/executor.hpp>
+#include <proxima/core/function_ref.hpp>
 #include <proxima/geometry/raycast.hpp>
 
 #include <cstdint>
@@ -109,6 +110,18 @@ class DynamicAabbTree : public BroadPhaseQueries<DynamicAabbTree> {
   std::size_t node_count() const;
   /// The fat box of a proxy (its leaf's box); the empty box for an unknown id.
   Aabb fat_box(ProxyId id) const;
+
+  /// One node of a tree, as visit_nodes shows it (for debug drawing).
+  struct NodeView {
+    Aabb box;           ///< the node's box, world frame (a leaf: the proxy's fat box)
+    int depth = 0;      ///< the root of its tree at 0
+    bool leaf = false;  ///< true for a leaf (one proxy)
+    ProxyKind tree{};   ///< which tree: Moving or Static proxies
+    ProxyId proxy = 0;  ///< a leaf's proxy id (0 for an inner node)
+  };
+  /// Calls `visit` for every node in use, the moving tree first, each tree depth first
+  /// (a parent before its children). O(n); allocates a stack of the tree's height.
+  void visit_nodes(FunctionRef<void(const NodeView&)> visit) const;
 
  private:
   friend class BroadPhaseQueries<DynamicAabbTree>;

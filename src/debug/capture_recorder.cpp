@@ -1,0 +1,235 @@
+// CaptureRecorder (debug/capture_recorder.hpp): the capture format of
+// docs/capture-format.md, one JSON line per record.
+//
+// Steps of record_step:
+//   1. first call: the header line, then the scene line (every object with its mesh, the
+//      world's snapshot in base64); the recorder remembers what it wrote of each object;
+//   2. the step line: objects whose pose changed since it was last written ("poses"),
+//      objects new or changed in kind, sensor flag, filter, user data, continuous mode or
+//      geometry ("added", full records), objects gone ("removed"), the step's events and
+//      manifolds, the queries recorded since the last step, and the draw stream (the
+//      manifolds drawn by draw_manifold, then the caller's `extra`).
+#include <proxima/debug/capture_recorder.hpp>
+#include <proxima/debug/draw_contacts.hpp>
+#include <proxima/debug/draw_world.hpp>
+
+#include <ostream>
+#include <set>
+#include <sstream>
+
+#include "debug/capture_json.hpp"
+#include "debug/json_text.hpp"
+
+namespace proxima::debug {
+
+namespace {
+
+std::string filter_record(const CollisionFilter& filter) {
+  // 64-bit masks as decimal strings: JavaScript numbers hold integers exactly only to 2^53.
+  std::string out = "{\"layer\":\"";
+  out.append(std::to_string(filter.layer)).append("\",\"mask\":\"").append(std::to_string(filter.mask));
+  out.append("\",\"group\":").append(std::to_string(filter.group)).append("}");
+  return out;
+}
+
+void pose_members(std::string& out, const Transform& pose) {
+  json::key(out, "position");
+  json::vec3(out, pose.position);
+  json::key(out, "rotation");
+  json::quat(out, pose.rotation);
+}
+
+bool same_pose(const Transform& a, const Transform& b) { return a.position == b.position && a.rotation == b.rotation; }
+
+}  // namespace
+
+CaptureRecorder::CaptureRecorder(std::ostream& out, CaptureOptions options)
+    : out_(&out), options_(std::move(options)) {}
+
+bool CaptureRecorder::write_line(const std::string& line) {
+  if (failed_) return false;
+  *out_ << line << '\n';
+  out_->flush();
+  failed_ = !*out_;
+  return !failed_;
+}
+
+std::string CaptureRecorder::object_record(ObjectHandle handle, const ObjectDesc& desc) const {
+  std::string out = "{\"id\":";
+  json::integer(out, handle.to_integer());
+  json::key(out, "kind");
+  json::string(out, to_string(desc.kind));
+  out += desc.sensor ? ",\"sensor\":true" : ",\"sensor\":false";
+  out.append(",\"filter\":").append(filter_record(desc.filter));
+  out.append(",\"user_data\":\"").append(std::to_string(desc.user_data)).append("\"");
+  json::key(out, "ccd");
+  json::string(out, to_string(desc.ccd));
+  json::key(out, "color");
+  json::color(out, object_color(desc));
+  json::key(out, "geometry");
+  json::geometry(out, desc.geometry);
+  pose_members(out, desc.pose);
+  json::key(out, "mesh");
+  json::mesh(out, tessellate(desc.geometry, options_.tessellation));
+  out += '}';
+  return out;
+}
+
+std::string CaptureRecorder::scene_line(const CollisionWorld& world) {
+  std::string out = "{\"type\":\"scene\",\"objects\":[";
+  bool first = true;
+  for (const ObjectHandle handle : world.objects()) {
+    const std::optional<ObjectDesc> desc = world.object(handle);
+    if (!desc) continue;
+    if (!first) out += ',';
+    first = false;
+    out += object_record(handle, *desc);
+    written_[handle.to_integer()] = {desc->pose, desc->kind, desc->sensor, desc->filter, desc->user_data, desc->ccd};
+  }
+  out += ']';
+  if (options_.snapshot) {
+    std::ostringstream snapshot;
+    if (!world.save(snapshot)) {
+      json::key(out, "snapshot");
+      json::string(out, json::base64(snapshot.str()));
+    }
+  }
+  out += '}';
+  return out;
+}
+
+std::string CaptureRecorder::object_changes(const CollisionWorld& world) {
+  std::string poses, added, removed;
+  std::set<std::uint64_t> live;
+  for (const ObjectHandle handle : world.objects()) {
+    const std::optional<ObjectDesc> desc = world.object(handle);
+    if (!desc) continue;
+    const std::uint64_t id = handle.to_integer();
+    live.insert(id);
+    const Written now{desc->pose, desc->kind, desc->sensor, desc->filter, desc->user_data, desc->ccd};
+    const auto it = written_.find(id);
+    const bool same = it != written_.end() && !it->second.stale && it->second.kind == now.kind &&
+                      it->second.sensor == now.sensor && it->second.filter == now.filter &&
+                      it->second.user_data == now.user_data && it->second.ccd == now.ccd;
+    if (!same) {
+      if (!added.empty()) added += ',';
+      added += object_record(handle, *desc);
+    } else if (!same_pose(it->second.pose, now.pose)) {
+      poses += poses.empty() ? "{\"id\":" : ",{\"id\":";
+      json::integer(poses, id);
+      pose_members(poses, now.pose);
+      poses += '}';
+    }
+    written_[id] = now;
+  }
+  for (auto it = written_.begin(); it != written_.end();) {
+    if (live.count(it->first)) {
+      ++it;
+      continue;
+    }
+    if (!removed.empty()) removed += ',';
+    json::integer(removed, it->first);
+    it = written_.erase(it);
+  }
+  std::string out = ",\"poses\":[";
+  out.append(poses).append("],\"added\":[").append(added).append("],\"removed\":[").append(removed).append("]");
+  return out;
+}
+
+std::string CaptureRecorder::step_line(const CollisionWorld& world, Real dt, const DrawBuffer* extra) {
+  std::string out = "{\"type\":\"step\"";
+  json::key(out, "index");
+  json::integer(out, steps_);
+  json::key(out, "world_step");
+  json::integer(out, world.step_count());
+  json::key(out, "dt");
+  json::real(out, dt);
+  out += object_changes(world);
+  json::key(out, "events");
+  json::events(out, world.events());
+  json::key(out, "contacts");
+  json::manifolds(out, world.contacts());
+  out += ",\"queries\":[";
+  for (std::size_t i = 0; i < queries_.size(); ++i) out.append(i ? "," : "").append(queries_[i]);
+  out += ']';
+  queries_.clear();
+  DrawBuffer draw;
+  if (options_.draw_contacts) {
+    for (const WorldManifold& manifold : world.contacts()) draw_manifold(draw, manifold);
+  }
+  if (extra) extra->replay(draw);
+  json::key(out, "draw");
+  json::draw_stream(out, draw);
+  out += '}';
+  return out;
+}
+
+std::optional<Error> CaptureRecorder::record_step(const CollisionWorld& world, Real dt, const DrawBuffer* extra) {
+  const auto failure = [] { return Error{ErrorCode::InvalidArgument, "out", "writing the capture failed"}; };
+  if (failed_) return failure();
+  if (!started_) {
+    std::string header = "{\"format\":\"proxima-capture\",\"version\":";
+    json::integer(header, kCaptureVersion);
+    header += ",\"dimension\":3";
+    json::key(header, "units");
+    json::string(header, options_.units);
+    json::key(header, "precision");
+    json::string(header, sizeof(Real) == 4 ? "float" : "double");
+    if (options_.camera) {
+      const CaptureCamera& c = *options_.camera;
+      header += ",\"camera\":{";
+      json::key(header, "position", true);
+      json::vec3(header, c.position);
+      json::key(header, "target");
+      json::vec3(header, c.target);
+      json::key(header, "up");
+      json::vec3(header, c.up);
+      json::key(header, "fov_degrees");
+      json::real(header, c.fov_degrees);
+      json::key(header, "ortho_height");
+      json::real(header, c.ortho_height);
+      header += '}';
+    }
+    header += '}';
+    started_ = true;
+    if (!write_line(header) || !write_line(scene_line(world))) return failure();
+  }
+  if (!write_line(step_line(world, dt, extra))) return failure();
+  ++steps_;
+  return std::nullopt;
+}
+
+void CaptureRecorder::record_ray(const Ray& ray, Real max_t, std::span<const WorldHit> hits) {
+  std::string out = "{\"kind\":\"ray\"";
+  json::key(out, "origin");
+  json::vec3(out, ray.origin);
+  json::key(out, "direction");
+  json::vec3(out, ray.direction);
+  json::key(out, "max_t");
+  json::real(out, max_t);
+  out += ",\"hits\":[";
+  for (std::size_t i = 0; i < hits.size(); ++i) {
+    out += i ? ",{\"object\":" : "{\"object\":";
+    json::integer(out, hits[i].object.to_integer());
+    json::key(out, "t");
+    json::real(out, hits[i].t);
+    json::key(out, "point");
+    json::vec3(out, hits[i].point);
+    json::key(out, "normal");
+    json::vec3(out, hits[i].normal);
+    out += '}';
+  }
+  out += "]}";
+  queries_.push_back(std::move(out));
+}
+
+void CaptureRecorder::invalidate(ObjectHandle object) {
+  const auto it = written_.find(object.to_integer());
+  if (it != written_.end()) it->second.stale = true;
+}
+
+void CaptureRecorder::reset_objects() {
+  for (auto& [id, written] : written_) written.stale = true;
+}
+
+}  // namespace proxima::debug

@@ -1,0 +1,34 @@
+#pragma once
+// Progress bars of long command-line work (benchmarks, long demo runs): drawn on standard
+// error when it is a terminal, silent otherwise (a pipe or a file gets nothing).
+#include <cstddef>
+#include <ostream>
+#include <string>
+#include <string_view>
+
+namespace proxima::tool {
+
+/// One bar: "\r[#####     ] 5/10 frames" (`width` cells; a total of 0 shows a full bar).
+std::string progress_line(std::size_t done, std::size_t total, std::string_view unit, int width = 40);
+
+/// True when standard error is a terminal (isatty): where progress bars are drawn.
+bool stderr_is_terminal();
+
+/// A progress bar on `out`, redrawn when its text changes; writes nothing when disabled.
+class ProgressBar {
+ public:
+  /// A bar over `total` items named `unit`; `enabled` false: silent.
+  ProgressBar(std::ostream& out, bool enabled, std::size_t total, std::string unit)
+      : out_(out), enabled_(enabled), total_(total), unit_(std::move(unit)) {}
+  /// Shows `done` items finished (a newline once done reaches the total).
+  void update(std::size_t done);
+
+ private:
+  std::ostream& out_;
+  bool enabled_;
+  std::size_t total_;
+  std::string unit_;
+  std::string last_;
+};
+
+}  // namespace proxima::tool
