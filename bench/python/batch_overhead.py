@@ -32,7 +32,7 @@ import numpy as np
 import proxima
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "python" / "examples"))
-import workload_files  # noqa: E402
+import example_data  # noqa: E402
 
 DISTANCE, RAYCAST, CLOSEST_POINT = 1, 2, 3
 TARGET_RATIO = 1.10
@@ -56,8 +56,8 @@ def ellipsoid_points(rng, count, radii):
 
 def load_mesh(name):
     """A W4 mesh file as (vertices, triangles), or None when absent."""
-    path = workload_files.workload_file(name)
-    return None if path is None else workload_files.read_obj(path)
+    path = example_data.workload_file(name)
+    return None if path is None else example_data.read_obj(path)
 
 
 # ---- the C++ program's input file ---------------------------------------------------------
@@ -159,10 +159,10 @@ def build_cases(n, wanted):
             ("hull", ellipsoid_points(rng, 32, (0.5, 0.5, 0.35))), random_poses(rng, n, 1.0), random_poses(rng, n, 1.0)),
     }
     knot, sphere = load_mesh("mesh_torusknot.obj"), load_mesh("mesh_icosphere.obj")
-    rays_file = workload_files.workload_file("rays.txt")
+    rays_file = example_data.workload_file("rays.txt")
     if knot is not None and rays_file is not None:
         def w5_case():
-            rays, max_t, _ = workload_files.read_rays(rays_file)
+            rays, max_t, _ = example_data.read_rays(rays_file)
             rows = np.arange(n) % len(rays)  # the compact file has 100,000 rays; repeated beyond
             return raycast_case("raycast_w5_torusknot", knot, rays[rows], max_t[rows])
         builders["raycast_w5_torusknot"] = w5_case

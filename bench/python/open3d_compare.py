@@ -37,7 +37,7 @@ import open3d as o3d
 import proxima
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "python" / "examples"))
-import workload_files  # noqa: E402
+import example_data  # noqa: E402
 
 # Agreement tolerances (both libraries in float32 on coordinates of size ~1 to 5).
 T_TOLERANCE = 1e-4
@@ -176,12 +176,12 @@ def main(argv=None):
     parser.add_argument("--repeats", type=int, default=3)
     parser.add_argument("--json", type=Path)
     args = parser.parse_args(argv)
-    files = {name: workload_files.workload_file(name) for name in ("mesh_torusknot.obj", "mesh_icosphere.obj", "rays.txt")}
+    files = {name: example_data.workload_file(name) for name in ("mesh_torusknot.obj", "mesh_icosphere.obj", "rays.txt")}
     if None in files.values():
         sys.exit("the shared W4/W5 workload files are absent (set PROXIMA_WORKLOADS)")
-    knot = workload_files.read_obj(files["mesh_torusknot.obj"])
-    sphere = workload_files.read_obj(files["mesh_icosphere.obj"])
-    rays, max_t, _ = workload_files.read_rays(files["rays.txt"])
+    knot = example_data.read_obj(files["mesh_torusknot.obj"])
+    sphere = example_data.read_obj(files["mesh_icosphere.obj"])
+    rays, max_t, _ = example_data.read_rays(files["rays.txt"])
     rays, max_t = rays[: args.n], max_t[: args.n]
     rays_work = open3d_rays_work()
     rng = np.random.default_rng(7)
