@@ -21,6 +21,9 @@ packages=(
                                      # (run with /usr/bin/python3, Debian's interpreter)
   pybind11-dev python3-dev python3-numpy python3-pytest python3-setuptools
                                      # the Python package (python/), built for /usr/bin/python3
+  python3-dask python3-distributed python3-pil python3-open3d
+                                     # its examples and tests: a sweep over worker processes,
+                                     # PNG depth images, Open3D as a peer (tests and benchmarks only)
   libtbb-dev                         # the oneTBB executor example (examples/tbb_executor.cpp)
   # Peer libraries: references for the cross-validation tests and the side-by-side
   # benchmarks only; the library never links them.
