@@ -141,7 +141,9 @@ std::vector<Transform> to_poses(const std::vector<double>& rows) {
 }
 
 /// The ray of a row ox oy oz dx dy dz and its length limit, rounded to Real.
-proxima::Ray ray_of_row(const double* d) { return {{Real(d[0]), Real(d[1]), Real(d[2])}, {Real(d[3]), Real(d[4]), Real(d[5])}}; }
+proxima::Ray ray_of_row(const double* d) {
+  return {{Real(d[0]), Real(d[1]), Real(d[2])}, {Real(d[3]), Real(d[4]), Real(d[5])}};
+}
 Real limit_of(double max_t) { return max_t > double(proxima::kRealMax) ? proxima::kRealMax : Real(max_t); }
 
 /// Thread CPU time in seconds.
@@ -191,7 +193,10 @@ Timings run_distance(Input& in, std::uint32_t repeats, std::vector<double>& answ
   const std::vector<Transform> poses_a = to_poses(rows_a), poses_b = to_poses(rows_b);
   std::vector<proxima::DistanceResult> results(n);
   const Timings timings = time_both(
-      repeats, [&] { for (std::size_t i = 0; i < n; ++i) results[i] = proxima::distance(a, poses_a[i], b, poses_b[i]); },
+      repeats,
+      [&] {
+        for (std::size_t i = 0; i < n; ++i) results[i] = proxima::distance(a, poses_a[i], b, poses_b[i]);
+      },
       [&] {
         for (std::size_t i = 0; i < n; ++i)
           results[i] = proxima::distance(a, pose_of_row(&rows_a[7 * i]), b, pose_of_row(&rows_b[7 * i]));
@@ -210,7 +215,10 @@ Timings run_raycast(Input& in, std::uint32_t repeats, std::vector<double>& answe
   for (std::size_t i = 0; i < n; ++i) rays[i] = ray_of_row(&d[6 * i]), max_t[i] = limit_of(limits[i]);
   std::vector<std::optional<proxima::RayHit>> hits(n);
   const Timings timings = time_both(
-      repeats, [&] { for (std::size_t i = 0; i < n; ++i) hits[i] = proxima::raycast(shape, pose, rays[i], max_t[i]); },
+      repeats,
+      [&] {
+        for (std::size_t i = 0; i < n; ++i) hits[i] = proxima::raycast(shape, pose, rays[i], max_t[i]);
+      },
       [&] {
         for (std::size_t i = 0; i < n; ++i)
           hits[i] = proxima::raycast(shape, pose, ray_of_row(&d[6 * i]), limit_of(limits[i]));
@@ -233,7 +241,10 @@ Timings run_closest_point(Input& in, std::uint32_t repeats, std::vector<double>&
   if (mesh == nullptr) throw std::runtime_error("closest point: the shape must be a mesh");
   std::vector<proxima::SurfacePoint> results(n);
   const Timings timings = time_both(
-      repeats, [&] { for (std::size_t i = 0; i < n; ++i) results[i] = proxima::closest_point(*mesh, pose, points[i]); },
+      repeats,
+      [&] {
+        for (std::size_t i = 0; i < n; ++i) results[i] = proxima::closest_point(*mesh, pose, points[i]);
+      },
       [&] {
         for (std::size_t i = 0; i < n; ++i) results[i] = proxima::closest_point(*mesh, pose, vec3_at(d, 3 * i));
       });
@@ -267,10 +278,14 @@ int main(int argc, char** argv) {
     const auto repeats = std::max<std::uint32_t>(1, in.get<std::uint32_t>());
     std::vector<double> answers;
     Timings timings;
-    if (query == 1) timings = run_distance(in, repeats, answers);
-    else if (query == 2) timings = run_raycast(in, repeats, answers);
-    else if (query == 3) timings = run_closest_point(in, repeats, answers);
-    else throw std::runtime_error("unknown query");
+    if (query == 1)
+      timings = run_distance(in, repeats, answers);
+    else if (query == 2)
+      timings = run_raycast(in, repeats, answers);
+    else if (query == 3)
+      timings = run_closest_point(in, repeats, answers);
+    else
+      throw std::runtime_error("unknown query");
     std::ofstream out(argv[2], std::ios::binary);
     out.write(reinterpret_cast<const char*>(answers.data()), std::streamsize(answers.size() * sizeof(double)));
     if (!out) throw std::runtime_error(std::string("cannot write ") + argv[2]);
