@@ -11,4 +11,6 @@ proxima.Transform or 7 numbers (px, py, pz, qx, qy, qz, qw); errors raise proxim
 from ._proxima import *  # noqa: F401,F403
 from ._proxima import DOUBLE_PRECISION, Error, __doc__ as _native_doc  # noqa: F401
 
+from . import capture  # noqa: E402,F401  (reading capture files)
+
 __version__ = "0.1.0"

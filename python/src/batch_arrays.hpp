@@ -80,7 +80,7 @@ struct DistanceRow {
 
 /// Row of raycast_batch's answer (dtype proxima.RAY_HIT_DTYPE).
 struct RayHitRow {
-  std::uint8_t hit;   ///< 1 when the ray hit within max_t
+  bool hit;           ///< true when the ray hit within max_t
   double t;           ///< ray parameter (units of the direction's length); max_t on a miss
   double point[3];    ///< hit point, world frame
   double normal[3];   ///< unit outward normal at the hit

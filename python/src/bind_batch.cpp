@@ -74,13 +74,13 @@ std::vector<Transform> read_poses(const RowReader& rows, py::ssize_t n, const ch
     const auto r = static_cast<py::ssize_t>(i);
     const Vec3 p{Real(rows.at(r, 0)), Real(rows.at(r, 1)), Real(rows.at(r, 2))};
     const Quat q{Real(rows.at(r, 6)), Real(rows.at(r, 3)), Real(rows.at(r, 4)), Real(rows.at(r, 5))};
-    Result<Transform> t = Transform::create(p, q);
-    if (!t.ok()) {
-      Error e = t.error();
-      e.field = std::string(field) + (rows.single() ? "" : "[" + std::to_string(i) + "]") + "." + e.field;
-      raise_error(e);
+    if (validate::is_acceptable(p) && validate::is_unit(q)) {  // Transform::create's checks, without its Result
+      poses[i] = Transform{p, glm::normalize(q)};
+      continue;
     }
-    poses[i] = *t;
+    Error e = Transform::create(p, q).error();
+    e.field = std::string(field) + (rows.single() ? "" : "[" + std::to_string(i) + "]") + "." + e.field;
+    raise_error(e);
   }
   return poses;
 }
@@ -196,10 +196,10 @@ py::array raycast_batch(py::handle shape, py::handle pose, py::handle rays, py::
     Ray& ray = list[static_cast<std::size_t>(i)];
     ray.origin = {Real(r.at(i, 0)), Real(r.at(i, 1)), Real(r.at(i, 2))};
     ray.direction = {Real(r.at(i, 3)), Real(r.at(i, 4)), Real(r.at(i, 5))};
-    const std::string field = "rays[" + std::to_string(i) + "]";
     if (!validate::is_acceptable(ray.origin) || !validate::is_acceptable(ray.direction))
-      raise_error(make_error(ErrorCode::NotFinite, field, "must be finite"));
-    if (ray.direction == Vec3(Real(0))) raise_argument_error(field + ".direction", "must not be zero");
+      raise_error(make_error(ErrorCode::NotFinite, "rays[" + std::to_string(i) + "]", "must be finite"));
+    if (ray.direction == Vec3(Real(0)))
+      raise_argument_error("rays[" + std::to_string(i) + "].direction", "must not be zero");
     const double m = limits.size() == 1 ? limits[0] : limits[static_cast<std::size_t>(i)];
     if (!(m >= 0))
       raise_argument_error(limits.size() == 1 ? "max_t" : "max_t[" + std::to_string(i) + "]", "must be >= 0");

@@ -6,8 +6,10 @@
 // An exception raised by a Python callback stops further callbacks of that step and is
 // raised again from step() once the library's step has finished (never thrown through it).
 #include <proxima/core/validate.hpp>
+#include <proxima/debug/capture_recorder.hpp>
 #include <proxima/world/collision_world.hpp>
 
+#include <fstream>
 #include <limits>
 #include <pybind11/stl.h>
 #include <sstream>
@@ -39,10 +41,10 @@ struct ContactPointRow {
   double point_b[3];
   double depth;
   std::uint32_t id;
-  std::uint8_t persisted;
+  bool persisted;
 };
 struct WorldHitRow {
-  std::uint8_t hit;
+  bool hit;
   std::uint64_t object;
   std::uint64_t user_data;
   double t;
@@ -50,7 +52,7 @@ struct WorldHitRow {
   double normal[3];
 };
 struct WorldClosestRow {
-  std::uint8_t found;
+  bool found;
   std::uint64_t object;
   std::uint64_t user_data;
   double signed_distance;
@@ -85,10 +87,17 @@ class PyListener final : public WorldListener {
   }
 };
 
+/// A capture file being written (docs/capture-format.md): one line per step.
+struct Recording {
+  std::ofstream file;
+  std::unique_ptr<debug::CaptureRecorder> recorder;
+};
+
 /// The world and what the bindings keep beside it.
 struct PyWorld {
   std::unique_ptr<CollisionWorld> world;
   PyListener listener;
+  std::unique_ptr<Recording> recording;  ///< set while recording
 };
 
 ObjectHandle handle_of(std::uint64_t h) { return ObjectHandle::from_integer(h); }
@@ -334,6 +343,7 @@ void step(PyWorld& w, Real dt, long threads) {
     py::gil_scoped_release release;
     error = count <= 1 ? w.world->step(dt) : w.world->step(dt, thread_pool(count));
   }
+  if (w.recording && !error) check(w.recording->recorder->record_step(*w.world, dt));
   if (!w.listener.pending.is_none()) {
     const py::tuple e = w.listener.pending;
     w.listener.pending = py::none();
@@ -424,10 +434,13 @@ template <class C>
 C& def_queries(C& c) {
   c.def(
        "raycast",
-       [](const PyWorld& w, py::handle origin, py::handle direction, Real max_t, std::uint64_t mask, std::int32_t group,
+       [](PyWorld& w, py::handle origin, py::handle direction, Real max_t, std::uint64_t mask, std::int32_t group,
           py::handle ignore, const std::string& mode) {
          const Ray ray{to_vec3(origin, "origin"), to_vec3(direction, "direction")};
-         return take(w.world->raycast(ray, max_t, query_filter(mask, group, ignore), query_mode(mode)));
+         std::vector<WorldHit> hits =
+             take(w.world->raycast(ray, max_t, query_filter(mask, group, ignore), query_mode(mode)));
+         if (w.recording) w.recording->recorder->record_ray(ray, max_t, hits);
+         return hits;
        },
        py::arg("origin"), py::arg("direction"), py::arg("max_t") = Real(1), py::kw_only(), py::arg("mask") = ~0ull,
        py::arg("group") = 0, py::arg("ignore") = py::none(), py::arg("mode") = "closest",
@@ -644,6 +657,32 @@ void bind_world(py::module_& m) {
           py::arg("listener"),
           "An object whose methods on_contact_begin, on_contact_persist, on_contact_end, on_sensor_enter, "
           "on_sensor_exit, on_impact (those it has) are called with each event during step(); None removes it.")
+      .def(
+          "record",
+          [](PyWorld& w, const std::string& path, py::handle camera) {
+            auto r = std::make_unique<Recording>();
+            r->file.open(path, std::ios::binary | std::ios::trunc);
+            if (!r->file) raise_argument_error("path", "cannot be opened for writing: " + path);
+            debug::CaptureOptions options;
+            if (!camera.is_none()) {
+              const py::dict c = camera.cast<py::dict>();
+              debug::CaptureCamera cam;
+              if (c.contains("position")) cam.position = to_vec3(c["position"], "camera.position");
+              if (c.contains("target")) cam.target = to_vec3(c["target"], "camera.target");
+              if (c.contains("up")) cam.up = to_vec3(c["up"], "camera.up");
+              if (c.contains("fov_degrees")) cam.fov_degrees = to_real(c["fov_degrees"], "camera.fov_degrees");
+              if (c.contains("ortho_height")) cam.ortho_height = to_real(c["ortho_height"], "camera.ortho_height");
+              options.camera = cam;
+            }
+            r->recorder = std::make_unique<debug::CaptureRecorder>(r->file, options);
+            w.recording = std::move(r);
+          },
+          py::arg("path"), py::arg("camera") = py::none(),
+          "Records every following step to a capture file (docs/capture-format.md; read it with proxima.capture, "
+          "draw it with proxima.render or proxima view). camera: a dict of position, target, up, fov_degrees, "
+          "ortho_height.")
+      .def(
+          "stop_recording", [](PyWorld& w) { w.recording.reset(); }, "Closes the capture file.")
       .def(
           "state_hash", [](const PyWorld& w) { return w.world->state_hash(); },
           "A hash of the whole state: equal hashes mean equal worlds.")
