@@ -156,6 +156,7 @@ class CollisionWorld:
     def pose(self: CollisionWorld, object: int) -> Transform: ...
     def raycast(self: CollisionWorld, origin: Any, direction: Any, max_t: float = ..., *, mask: int = ..., group: int = ..., ignore: Any = ..., mode: str = ...) -> List[WorldHit]: """Objects hit by the ray within [0, max_t] (t in units of the direction's length): a list of WorldHit, sorted by t (mode 'closest': at most one; 'any': the first found; 'all': every one)."""
     def raycast_batch(self: CollisionWorld, rays: Any, max_t: Any = ..., *, mask: int = ..., group: int = ..., ignore: Any = ..., threads: int = ...) -> numpy.ndarray: """The closest hit of each ray of an (N, 6) array (origin, direction): an array of WORLD_HIT_DTYPE (hit, object, user_data, t, point, normal). The GIL is released; threads as in distance_batch."""
+    def record(self: CollisionWorld, path: str, camera: Any = ...) -> None: """Records every following step to a capture file (docs/capture-format.md; read it with proxima.capture, draw it with proxima.render or proxima view). camera: a dict of position, target, up, fov_degrees, ortho_height."""
     def remove(self: CollisionWorld, object: int) -> None: ...
     def save(self: CollisionWorld) -> bytes: """The world as a versioned binary snapshot (bytes)."""
     def set_ccd(self: CollisionWorld, object: int, mode: CcdMode) -> None: ...
@@ -169,6 +170,7 @@ class CollisionWorld:
     def step(self: CollisionWorld, dt: float, *, threads: int = ...) -> None: """Runs the broad and narrow phases and continuous detection over dt seconds, then calls the listener. threads: 0 every hardware thread; the GIL is released."""
     @property
     def step_count(self) -> int: ...
+    def stop_recording(self: CollisionWorld) -> None: """Closes the capture file."""
     def sweep(self: CollisionWorld, geometry: Any, pose: Any, translation: Any, *, mask: int = ..., group: int = ..., ignore: Any = ..., mode: str = ...) -> List[WorldHit]: """Objects hit by the convex geometry moved along translation (t: fraction of it)."""
     def teleport(self: CollisionWorld, object: int, pose: Any) -> None: """Sets the pose with no motion (continuous detection sweeps nothing)."""
 

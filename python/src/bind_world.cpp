@@ -665,13 +665,14 @@ void bind_world(py::module_& m) {
             if (!r->file) raise_argument_error("path", "cannot be opened for writing: " + path);
             debug::CaptureOptions options;
             if (!camera.is_none()) {
-              const py::dict c = camera.cast<py::dict>();
+              const py::dict spec = camera.cast<py::dict>();
               debug::CaptureCamera cam;
-              if (c.contains("position")) cam.position = to_vec3(c["position"], "camera.position");
-              if (c.contains("target")) cam.target = to_vec3(c["target"], "camera.target");
-              if (c.contains("up")) cam.up = to_vec3(c["up"], "camera.up");
-              if (c.contains("fov_degrees")) cam.fov_degrees = to_real(c["fov_degrees"], "camera.fov_degrees");
-              if (c.contains("ortho_height")) cam.ortho_height = to_real(c["ortho_height"], "camera.ortho_height");
+              if (spec.contains("position")) cam.position = to_vec3(spec["position"], "camera.position");
+              if (spec.contains("target")) cam.target = to_vec3(spec["target"], "camera.target");
+              if (spec.contains("up")) cam.up = to_vec3(spec["up"], "camera.up");
+              if (spec.contains("fov_degrees")) cam.fov_degrees = to_real(spec["fov_degrees"], "camera.fov_degrees");
+              if (spec.contains("ortho_height"))
+                cam.ortho_height = to_real(spec["ortho_height"], "camera.ortho_height");
               options.camera = cam;
             }
             r->recorder = std::make_unique<debug::CaptureRecorder>(r->file, options);
