@@ -602,6 +602,8 @@ def raycast(shape: Any, pose: Any, origin: Any, direction: Any, max_t: float = .
 
 def raycast_batch(shape: Any, pose: Any, rays: Any, max_t: Any = ..., *, out: Any = ..., threads: int = ...) -> numpy.ndarray: """Cast each ray (an (N, 6) array: origin, direction; world frame) at the placed shape; max_t is one number or one per ray (default: unbounded). Returns (or fills `out`) an array of RAY_HIT_DTYPE: hit, t, point, normal, part (-1: none). threads: 0 uses every hardware thread, 1 the calling thread; the GIL is released."""
 
+def render(capture: str, frame: int, out: Any = ..., *, width: int = ..., height: int = ..., layers: Any = ..., view: str = ..., capture_camera: bool = ...) -> Any: """Draws step `frame` of the capture file: to `out` (.png or .svg) and returns None, or returns the picture as an (height, width, 4) uint8 RGBA array. layers: names to draw (shapes, bounds, bvh, broadphase, contacts, normals, sweeps, queries, text, user; default all); view: the default camera's direction ('auto', 'iso', 'top', 'front') when the capture's own camera is not used."""
+
 def safe_step(a: Any, pose_a: Any, linear_a: Any, angular_a: Any, b: Any, pose_b: Any, linear_b: Any = ..., angular_b: Any = ..., target_distance: float = ...) -> float: """Seconds both bodies may move at their velocities (length/s, rad/s) before they can come within target_distance (conservative; infinity when never)."""
 
 def toi(a: Any, motion_a: Any, b: Any, motion_b: Any, target_distance: float = ..., tolerance: float = ..., max_iterations: int = ...) -> ToiResult: """Certified time of impact of a moving along motion_a and b along motion_b (each a Motion, a pose for a stationary shape, or a (start, end) pair of poses)."""

@@ -84,3 +84,23 @@ def test_the_tool_draws_the_python_capture(recorded, tmp_path):
                           capture_output=True, text=True, check=False)
     assert done.returncode == 0, done.stderr
     assert out.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_render_from_python_draws_the_objects_and_the_contact(recorded, tmp_path):
+    if not hasattr(proxima, "render"):
+        pytest.skip("built without the tool (PROXIMA_BUILD_TOOLS=OFF)")
+    path = recorded[0]
+    image = proxima.render(str(path), 11, width=320, height=240)
+    assert image.shape == (240, 320, 4) and image.dtype == np.uint8
+    np.testing.assert_array_equal(image[0, 0], (32, 34, 40, 255))  # the background
+    rgb = image[..., :3].astype(int)
+    ball = (rgb[..., 2] > rgb[..., 0] + 40).sum()  # the moving sphere is drawn blue
+    red = ((rgb[..., 0] > 180) & (rgb[..., 1] < 90)).sum()  # contact markers
+    assert ball > 50 and red > 0
+    shapes_only = proxima.render(str(path), 11, width=320, height=240, layers=["shapes"])[..., :3].astype(int)
+    assert ((shapes_only[..., 0] > 180) & (shapes_only[..., 1] < 90)).sum() == 0
+    proxima.render(str(path), 11, str(tmp_path / "frame.svg"))
+    assert "<svg" in (tmp_path / "frame.svg").read_text()[:400]
+    with pytest.raises(proxima.Error) as info:
+        proxima.render(str(path), 99)
+    assert info.value.field == "frame"
