@@ -12,7 +12,7 @@
 //   4. a truncated capture shows the error naming the cut line;
 //   and the browser console holds no error throughout.
 import assert from 'node:assert/strict';
-import { writeFileSync } from 'node:fs';
+import { rmSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { after, before, test } from 'node:test';
 
@@ -37,6 +37,7 @@ before(async () => {
 
 after(async () => {
   await context?.close();
+  rmSync(dir, { recursive: true, force: true });
 });
 
 /** A new page that records console errors and uncaught exceptions. */
