@@ -1,7 +1,8 @@
 // `proxima view` (view_server.hpp): the web viewer and one capture over HTTP on 127.0.0.1.
 //   1. find the viewer folder ($PROXIMA_VIEWER_DIR, the installed share/proxima/viewer, the
 //      source tree's viewer/) and check the capture can be read;
-//   2. bind 127.0.0.1 (port 0: the system picks a free one) with cpp-httplib;
+//   2. bind 127.0.0.1 (port 0: the system picks a free one; a port in use is an error) with
+//      cpp-httplib;
 //   3. answer GET requests: /capture.jsonl is the capture, read afresh at each request (a
 //      capture recorded again shows on reload); files are streamed, uncompressed; any other path goes through
 //      resolve_viewer_file, which allows only plain segments under index.html, style.css,
@@ -208,6 +209,12 @@ Result<ViewServer> ViewServer::create(const ViewOptions& options) {
   state->http.Get(
       ".*", [raw](const httplib::Request& request, httplib::Response& response) { raw->answer(request, response); });
   state->http.set_keep_alive_timeout(1);
+  // SO_REUSEADDR only: httplib's default SO_REUSEPORT would let a second server bind the same
+  // port and take half of the first one's connections.
+  state->http.set_socket_options([](socket_t socket) {
+    int yes = 1;
+    setsockopt(socket, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof yes);
+  });
   const char* host = "127.0.0.1";
   if (options.port == 0) {
     state->port = state->http.bind_to_any_port(host);
