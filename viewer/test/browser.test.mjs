@@ -8,7 +8,7 @@
 //      viewer's own camera (window.proximaViewer.project) puts the contact witness and the
 //      capsule's centre: the marker's red, the capsule's blue; at step 0 the capsule's pixel is
 //      not blue (it was elsewhere), and with the layers off both colours are gone;
-//   3. click the capsule: the inspector shows its fields;
+//   3. click the capsule: the inspector shows its fields; the slider scrubs, Play plays to the end;
 //   4. a truncated capture shows the error naming the cut line;
 //   and the browser console holds no error throughout.
 import assert from 'node:assert/strict';
@@ -116,6 +116,17 @@ test('a recorded step shows the contact marker and the object where the camera p
     assert.match(fields, /capsule/);
     assert.match(fields, /user data\s*42/);
     assert.match(fields, /moving/);
+
+    // The slider scrubs; Play runs to the last step and stops there.
+    await page.$eval('#step-slider', (slider) => {
+      slider.value = '1';
+      slider.dispatchEvent(new Event('input'));
+    });
+    assert.match(await page.textContent('#step-label'), /step 1 \/ 2/);
+    await page.click('#play');
+    await page.waitForFunction(() => window.proximaViewer.step === 2 && document.getElementById('play').textContent === 'Play', null, {
+      timeout: 5000,
+    });
 
     assert.deepEqual(consoleErrors, []);
     await page.close();
