@@ -13,6 +13,8 @@ packages=(
   libassimp-dev                      # the proxima tool: mesh files (OBJ, STL, PLY, glTF)
   libpng-dev                         # the proxima tool: sprite masks from PNG files
   libcairo2-dev                      # the proxima tool: pictures of captures (render, demos' PNG)
+  libcpp-httplib-dev                 # the proxima tool: `proxima view` serves the web viewer
+  chromium                           # the web viewer's browser test (viewer/test, playwright-core)
   libgtest-dev libgmock-dev          # tests
   libcgal-dev                        # exact reference computations in tests
   clang clang-format                 # the sanitizer build (clang), the formatting test

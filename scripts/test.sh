@@ -8,6 +8,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
+npm ci --prefix viewer --no-audit --no-fund  # three.js and playwright-core for viewer.browser
 jobs=$(nproc)
 
 launcher=()

@@ -8,6 +8,7 @@
 //   proxima bench broadphase   one broad-phase structure on a W1 workload file
 //   proxima mesh-info FILE     validation/repair report, bounds, volume, BVH of a mesh file
 //   proxima render CAPTURE     a picture (PNG or SVG) of one step of a capture
+//   proxima view CAPTURE       the web viewer and the capture, served on 127.0.0.1
 #include <proxima/core/config.hpp>
 
 #include <CLI/CLI.hpp>
@@ -29,6 +30,7 @@
 #include "progress_bar.hpp"
 #include "query.hpp"
 #include "query_operations.hpp"
+#include "view_server.hpp"
 #include "world2d_session.hpp"
 #include "world_session.hpp"
 
@@ -164,6 +166,14 @@ int run_render(RenderCommand command) {
     return 1;
   }
   return 0;
+}
+
+/// The running executable's path (/proc/self/exe), or argv[0] when that cannot be read.
+std::filesystem::path executable_path(const char* argv0) {
+  std::error_code ec;
+  std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", ec);
+  if (!ec) return self;
+  return std::filesystem::absolute(argv0 != nullptr ? argv0 : "", ec);
 }
 
 int run(int argc, char** argv) {
@@ -316,6 +326,18 @@ int run(int argc, char** argv) {
       ->check(CLI::IsMember({"auto", "iso", "top", "front"}));
   render_cmd->add_flag("--no-capture-camera", render.no_capture_camera, "Ignore the capture's camera");
 
+  proxima::tool::ViewOptions view;
+  CLI::App* view_cmd = app.add_subcommand(
+      "view",
+      "Serve the web viewer and a capture on 127.0.0.1 and print the address; open it in a browser (Ctrl-C stops)");
+  view_cmd->add_option("capture", view.capture, "Capture file (proxima world --record, the demos)")->required();
+  view_cmd->add_option("--port", view.port, "TCP port on 127.0.0.1 (0: a free one)")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 65535));
+  view_cmd->add_option("--viewer-dir", view.viewer_dir,
+                       "The viewer folder (default: $PROXIMA_VIEWER_DIR, <bin>/../share/proxima/viewer, then the "
+                       "source tree's viewer/)");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -328,6 +350,7 @@ int run(int argc, char** argv) {
     if (platformer_cmd->parsed()) return proxima::tool::run_platformer_demo(platformer, std::cout, std::cerr);
     if (query_cmd->parsed()) return run_query(query_input);
     if (render_cmd->parsed()) return run_render(render);
+    if (view_cmd->parsed()) return proxima::tool::run_view(view, executable_path(argv[0]), std::cout, std::cerr);
     if (world_cmd->parsed()) {
       world.settings.contact_distance = static_cast<proxima::Real>(world_contact_distance);
       if (world_2d && !world.record_path.empty()) {
