@@ -2,8 +2,8 @@
 # Installs the dependencies, builds Proxima (release) and runs the main job: `proxima demo`
 # (the billiard break), then `proxima demo-tunnelling` (discrete against continuous detection)
 # and `proxima demo-platformer` (the 2D world), whose pictures go next to the billiards one:
-# PATH.svg gives PATH-tunnelling.svg and PATH-platformer.svg (proxima-demo.svg,
-# proxima-demo-tunnelling.svg and proxima-demo-platformer.svg by default). The arguments go
+# PATH.svg gives PATH-tunnelling.svg (and .png) and PATH-platformer.svg (proxima-demo.svg and
+# .png, proxima-demo-tunnelling.svg and .png, proxima-demo-platformer.svg by default). The arguments go
 # to `proxima demo`; of them the other demos follow --svg ('' : no pictures) and --quiet.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -24,7 +24,7 @@ for ((i = 0; i < ${#args[@]}; i++)); do
   esac
 done
 platformer=(--svg)
-if [ -n "$svg" ]; then tunnelling+=("${svg%.svg}-tunnelling.svg"); else tunnelling+=(""); fi
+if [ -n "$svg" ]; then tunnelling+=("${svg%.svg}-tunnelling.svg" --png "${svg%.svg}-tunnelling.png"); else tunnelling+=("" --png ""); fi
 if [ -n "$svg" ]; then platformer+=("${svg%.svg}-platformer.svg"); else platformer+=(""); fi
 
 ./build/release/tools/proxima demo "$@"

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "svg_writer.hpp"
+#include "world_picture.hpp"
 
 namespace proxima::tool {
 
@@ -310,7 +311,18 @@ std::string tunnelling_report(const TunnellingScene& scene) {
 
 int run_tunnelling_demo(const TunnellingDemoOptions& options, std::ostream& out, std::ostream& err) {
   TunnellingScene scene(options.config);
-  scene.run();
+  const int png_frame = std::clamp(options.png_frame, 0, std::max(options.config.frames - 1, 0));
+  std::optional<Error> picture_error;
+  scene.run([&](CcdMode mode, int frame, const CollisionWorld& world) {
+    if (mode != CcdMode::Bullet || frame != png_frame || options.png_path.empty()) return;
+    RenderOptions picture;
+    picture.view = RenderView::Top;
+    picture_error = write_world_picture(world, options.png_path, picture);
+  });
+  if (picture_error) {
+    err << "proxima demo-tunnelling: " << picture_error->what() << "\n";
+    return 1;
+  }
   if (!options.quiet) out << tunnelling_report(scene);
   if (!options.svg_path.empty()) {
     if (!write_file(options.svg_path, render_tunnelling_svg(scene))) {
@@ -318,6 +330,9 @@ int run_tunnelling_demo(const TunnellingDemoOptions& options, std::ostream& out,
       return 1;
     }
     if (!options.quiet) out << "picture: " << options.svg_path << "\n";
+  }
+  if (!options.png_path.empty() && !options.quiet) {
+    out << "frame " << png_frame << " of the continuous run drawn by proxima render: " << options.png_path << "\n";
   }
   return 0;
 }

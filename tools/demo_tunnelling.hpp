@@ -14,7 +14,10 @@ namespace proxima::tool {
 struct TunnellingDemoOptions {
   TunnellingConfig config;                               ///< scene and simulation settings
   std::string svg_path = "proxima-demo-tunnelling.svg";  ///< where the picture goes; empty: none
-  bool quiet = false;                                    ///< print nothing on success
+  std::string png_path =
+      "proxima-demo-tunnelling.png";  ///< one frame of the continuous run drawn by proxima render; empty: none
+  int png_frame = 30;                 ///< the frame drawn in the PNG (clamped to the run)
+  bool quiet = false;                 ///< print nothing on success
 };
 
 /// Two panels side by side, the field seen from above: left the discrete run (tunnelled

@@ -221,6 +221,9 @@ int run(int argc, char** argv) {
   tunnelling_cmd->add_option("--bullets", tunnelling.config.bullets, "Bullets fired, spread over the run")
       ->capture_default_str()
       ->check(CLI::Range(0, 100000));
+  tunnelling_cmd->add_option("--png", tunnelling.png_path,
+                             "Picture of one frame of the continuous run drawn by proxima render (empty: none)");
+  tunnelling_cmd->add_option("--png-frame", tunnelling.png_frame, "The frame drawn in the PNG");
   tunnelling_cmd->add_option("--svg", tunnelling.svg_path, "Picture of both runs side by side (empty: none)")
       ->capture_default_str();
   tunnelling_cmd->add_option("--seed", tunnelling.config.seed, "Bullets' lanes, aims, speeds, sizes; plates' phases")

@@ -98,9 +98,9 @@ bool TunnellingScene::outside_field(const Vec3& centre, Real r) const {
          std::abs(centre.y) > Real(0.5) * config_.field_width + r;
 }
 
-void TunnellingScene::run() {
-  run_detector(CcdMode::Off, discrete_, discrete_stats_);
-  run_detector(CcdMode::Bullet, continuous_, continuous_stats_);
+void TunnellingScene::run(const TunnellingFrameObserver& observer) {
+  run_detector(CcdMode::Off, discrete_, discrete_stats_, observer);
+  run_detector(CcdMode::Bullet, continuous_, continuous_stats_, observer);
 }
 
 namespace {
@@ -121,7 +121,8 @@ void check(const std::optional<Error>& error) {
 // (a bullet fired this frame is added at its start first), the world steps, and its events
 // stop the bullets: an impact (continuous) at its time of impact, else a begun contact at
 // the frame's end; stopped bullets and those that left the field are removed.
-void TunnellingScene::run_detector(CcdMode mode, std::vector<BulletOutcome>& outcomes, DetectorStats& stats) const {
+void TunnellingScene::run_detector(CcdMode mode, std::vector<BulletOutcome>& outcomes, DetectorStats& stats,
+                                   const TunnellingFrameObserver& observer) const {
   const std::size_t n = bullets_.size();
   outcomes.assign(n, BulletOutcome{});
   stats = DetectorStats{};
@@ -163,6 +164,7 @@ void TunnellingScene::run_detector(CcdMode mode, std::vector<BulletOutcome>& out
     check(world.step(static_cast<Real>(dt)));
     stats.seconds += seconds_since(clock);
     ++stats.steps;
+    if (observer) observer(mode, f, world);
     const StepEvents& events = world.events();
     stats.impacts += events.impacts.size();
     stats.begin_events += events.begin.size();

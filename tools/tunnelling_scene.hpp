@@ -15,10 +15,12 @@
 #include <proxima/core/transform.hpp>
 #include <proxima/shapes/box.hpp>
 #include <proxima/shapes/sphere.hpp>
+#include <proxima/world/collision_world.hpp>
 #include <proxima/world/object_desc.hpp>
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 namespace proxima::tool {
@@ -83,14 +85,18 @@ struct DetectorStats {
   double seconds = 0.0;            ///< wall-clock time inside CollisionWorld::step
 };
 
+/// Called after each frame's step of a run: the detector's mode, the frame, its world.
+using TunnellingFrameObserver = std::function<void(CcdMode mode, int frame, const CollisionWorld& world)>;
+
 /// The scene and both runs.
 class TunnellingScene {
  public:
   /// Builds the scene (plates, bullets) from the configuration; simulates nothing yet.
   explicit TunnellingScene(const TunnellingConfig& config);
 
-  /// Runs both detectors over config.frames frames (once; again: the same answers).
-  void run();
+  /// Runs both detectors over config.frames frames (once; again: the same answers), calling
+  /// `observer` (when set) after every step of each.
+  void run(const TunnellingFrameObserver& observer = {});
 
   const TunnellingConfig& config() const { return config_; }
   const std::vector<TunnellingPlate>& plates() const { return plates_; }
@@ -116,7 +122,8 @@ class TunnellingScene {
   bool outside_field(const Vec3& centre, Real r) const;
 
  private:
-  void run_detector(CcdMode mode, std::vector<BulletOutcome>& outcomes, DetectorStats& stats) const;
+  void run_detector(CcdMode mode, std::vector<BulletOutcome>& outcomes, DetectorStats& stats,
+                    const TunnellingFrameObserver& observer) const;
 
   TunnellingConfig config_;
   std::vector<TunnellingPlate> plates_;

@@ -138,7 +138,7 @@ TEST(Capture, PythonJsonReadsEveryLine) {
   const std::string command =
       "/usr/bin/python3 -c \"import json,sys; r=[json.loads(l) for l in open(sys.argv[1])]; "
       "assert r[0]['format']=='proxima-capture' and r[1]['type']=='scene' and "
-      "len(r)==6 and r[3]['poses'][0]['position']==[0.1,0.2,0.9]\" " +
+      "len(r)==6 and max(abs(a-b) for a,b in zip(r[3]['poses'][0]['position'],[0.1,0.2,0.9]))<1e-6\" " +
       path;
   EXPECT_EQ(std::system(command.c_str()), 0);
 }

@@ -154,4 +154,24 @@ TEST(Render, BilliardsDemoWritesItsPng) {
   EXPECT_EQ(head.substr(1, 3), "PNG");
 }
 
+TEST(Render, TunnellingDemoWritesAPngOfTheContinuousRun) {
+  const std::string png = testing::TempDir() + "render_tunnelling.png";
+  std::remove(png.c_str());
+  const test::CliRun run =
+      test::run_cli("demo-tunnelling -q --frames 20 --bullets 6 --png-frame 12 --svg '' --png '" + png + "'");
+  ASSERT_EQ(run.status, 0);
+  std::ifstream in(png, std::ios::binary);
+  std::string head(24, '\0');
+  in.read(head.data(), 24);
+  ASSERT_EQ(head.substr(1, 3), "PNG");
+  const auto be32 = [&](std::size_t at) {
+    return (unsigned(static_cast<unsigned char>(head[at])) << 24) |
+           (unsigned(static_cast<unsigned char>(head[at + 1])) << 16) |
+           (unsigned(static_cast<unsigned char>(head[at + 2])) << 8) |
+           unsigned(static_cast<unsigned char>(head[at + 3]));
+  };
+  EXPECT_EQ(be32(16), 800u);  // IHDR width and height: the renderer's defaults
+  EXPECT_EQ(be32(20), 600u);
+}
+
 }  // namespace proxima::test_render
