@@ -104,6 +104,26 @@ std::string render_billiards_svg(const BilliardTable& table) {
   return svg.str();
 }
 
+namespace {
+
+/// The playing surface (a felt rectangle at z = 0) and its cushions' edges, for the PNG: the
+/// cushions are half-spaces, which a picture seen from above shows edge-on.
+DrawBuffer table_drawing(const BilliardConfig& config) {
+  const Real x = Real(0.5) * config.table_length, y = Real(0.5) * config.table_width;
+  const Vec3 c[4] = {{-x, -y, 0}, {x, -y, 0}, {x, y, 0}, {-x, y, 0}};
+  const Rgba felt{34, 110, 62, 255}, cushion{120, 72, 40, 255};
+  const DrawTag user{DrawLayer::User, 0};
+  DrawBuffer buffer;
+  const DrawTriangle surface[2] = {{c[0], c[1], c[2], felt, user}, {c[0], c[2], c[3], felt, user}};
+  buffer.draw_triangles(surface);
+  DrawLine edges[4];
+  for (int i = 0; i < 4; ++i) edges[i] = {c[i], c[(i + 1) % 4], cushion, user};
+  buffer.draw_lines(edges);
+  return buffer;
+}
+
+}  // namespace
+
 int run_billiards_demo(const DemoOptions& options, std::ostream& out, std::ostream& err) {
   std::unique_ptr<BilliardTable> owned;
   try {
@@ -127,7 +147,8 @@ int run_billiards_demo(const DemoOptions& options, std::ostream& out, std::ostre
     if (f == png_frame && !options.png_path.empty()) {
       RenderOptions picture;
       picture.view = RenderView::Top;
-      if (auto e = write_world_picture(table.world(), options.png_path, picture)) {
+      const DrawBuffer felt = table_drawing(table.config());
+      if (auto e = write_world_picture(table.world(), options.png_path, picture, std::nullopt, &felt)) {
         err << "proxima demo: " << e->what() << "\n";
         return 1;
       }
