@@ -20,13 +20,23 @@ for ((i = 0; i < ${#args[@]}; i++)); do
     --svg) svg="${args[i + 1]-}" ;;
     --svg=*) svg="${args[i]#--svg=}" ;;
     --quiet | -q) quiet=(--quiet) ;;
-    --help | -h) exec ./build/release/tools/proxima demo "$@" ;;
+    --help | -h) exec # The billiards PNG goes beside its SVG too, unless the arguments name it.
+billiards_png=()
+if [[ " ${args[*]} " != *" --png"* ]]; then
+  if [ -n "$svg" ]; then billiards_png=(--png "${svg%.svg}.png"); else billiards_png=(--png ""); fi
+fi
+./build/release/tools/proxima demo "$@" "${billiards_png[@]}" ;;
   esac
 done
 platformer=(--svg)
 if [ -n "$svg" ]; then tunnelling+=("${svg%.svg}-tunnelling.svg" --png "${svg%.svg}-tunnelling.png"); else tunnelling+=("" --png ""); fi
 if [ -n "$svg" ]; then platformer+=("${svg%.svg}-platformer.svg"); else platformer+=(""); fi
 
-./build/release/tools/proxima demo "$@"
+# The billiards PNG goes beside its SVG too, unless the arguments name it.
+billiards_png=()
+if [[ " ${args[*]} " != *" --png"* ]]; then
+  if [ -n "$svg" ]; then billiards_png=(--png "${svg%.svg}.png"); else billiards_png=(--png ""); fi
+fi
+./build/release/tools/proxima demo "$@" "${billiards_png[@]}"
 ./build/release/tools/proxima demo-tunnelling "${tunnelling[@]}" "${quiet[@]}"
 ./build/release/tools/proxima demo-platformer "${platformer[@]}" "${quiet[@]}"
