@@ -14,15 +14,6 @@
 namespace proxima::python {
 namespace {
 
-std::vector<Vec3> cloud(py::handle value) {
-  const auto a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(value);
-  if (!a || a.ndim() != 2 || a.shape(1) != 3) raise_argument_error("points", "expected an (N, 3) array of numbers");
-  std::vector<Vec3> points(static_cast<std::size_t>(a.shape(0)));
-  const double* d = a.data();
-  for (std::size_t i = 0; i < points.size(); ++i) points[i] = {Real(d[3 * i]), Real(d[3 * i + 1]), Real(d[3 * i + 2])};
-  return points;
-}
-
 SphereFit sphere_method(const std::string& name) {
   if (name == "minimal") return SphereFit::Minimal;
   if (name == "ritter") return SphereFit::Ritter;
@@ -67,25 +58,28 @@ void bind_bounds(py::module_& m) {
       .def_property_readonly("p1", [](const BoundingCapsule& c) { return to_numpy(c.p1); })
       .def_readonly("radius", &BoundingCapsule::radius);
   m.def(
-      "fit_aabb", [](py::handle points) { return take(fit_aabb(cloud(points))); }, py::arg("points"),
+      "fit_aabb", [](py::handle points) { return take(fit_aabb(to_points(points, "points"))); }, py::arg("points"),
       "The smallest axis-aligned box of an (N, 3) point array.");
   m.def(
       "fit_sphere",
       [](py::handle points, const std::string& method) {
-        return take(fit_sphere(cloud(points), sphere_method(method)));
+        return take(fit_sphere(to_points(points, "points"), sphere_method(method)));
       },
       py::arg("points"), py::arg("method") = "minimal",
       "A ball enclosing the points: 'minimal' (exact smallest), 'ritter', 'centroid' or 'aabb_center'.");
   m.def(
       "fit_obb",
-      [](py::handle points, const std::string& method) { return take(fit_obb(cloud(points), obb_method(method))); },
+      [](py::handle points, const std::string& method) {
+        return take(fit_obb(to_points(points, "points"), obb_method(method)));
+      },
       py::arg("points"), py::arg("method") = "min_volume",
       "An oriented box enclosing the points: 'min_volume', 'pca', 'dito14' or 'dito26'.");
   m.def(
-      "fit_capsule", [](py::handle points) { return take(fit_capsule(cloud(points))); }, py::arg("points"),
-      "A capsule enclosing the points.");
+      "fit_capsule", [](py::handle points) { return take(fit_capsule(to_points(points, "points"))); },
+      py::arg("points"), "A capsule enclosing the points.");
   m.def(
-      "fit_hull", [](py::handle points) { return wrap_shape(Shape(take(ConvexHull::create(cloud(points))))); },
+      "fit_hull",
+      [](py::handle points) { return wrap_shape(Shape(take(ConvexHull::create(to_points(points, "points"))))); },
       py::arg("points"), "The convex hull of the points (a proxima.ConvexHull).");
 }
 

@@ -13,13 +13,6 @@
 namespace proxima::python {
 namespace {
 
-std::string format(Real x) {
-  std::ostringstream s;
-  s.precision(9);
-  s << x;
-  return s.str();
-}
-
 /// A motion from a proxima.Motion, a pose (stationary) or a (start, end) pair of poses.
 Motion to_motion(py::handle value, const char* field) {
   if (py::isinstance<Motion>(value)) return value.cast<Motion>();
@@ -76,7 +69,7 @@ void bind_results(py::module_& m) {
           "hit",
           [](const ToiResult& r) { return r.status == CcdStatus::Hit || r.status == CcdStatus::InitiallyOverlapping; })
       .def("__repr__", [](const ToiResult& r) {
-        return std::string("ToiResult(status=") + to_string(r.status) + ", toi=" + format(r.toi) + ")";
+        return std::string("ToiResult(status=") + to_string(r.status) + ", toi=" + repr_real(r.toi) + ")";
       });
   py::class_<CastResult>(m, "CastResult", "Where a shape moved along a translation first meets another.")
       .def_readonly("status", &CastResult::status)
@@ -95,7 +88,7 @@ void bind_results(py::module_& m) {
           "hit",
           [](const CastResult& r) { return r.status == CcdStatus::Hit || r.status == CcdStatus::InitiallyOverlapping; })
       .def("__repr__", [](const CastResult& r) {
-        return std::string("CastResult(status=") + to_string(r.status) + ", t=" + format(r.t) + ")";
+        return std::string("CastResult(status=") + to_string(r.status) + ", t=" + repr_real(r.t) + ")";
       });
 }
 

@@ -120,6 +120,13 @@ void bind_enums(py::module_& m) {
 
 std::string repr_vec3(const Vec3& v) { return repr(v); }
 
+std::string repr_real(Real x) {
+  std::ostringstream s;
+  s.precision(9);
+  s << x;
+  return s.str();
+}
+
 void bind_core(py::module_& m) {
   bind_transform(m);
   bind_aabb(m);

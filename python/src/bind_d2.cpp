@@ -59,13 +59,6 @@ const D2Shape& shape_arg(py::handle v, const char* field) {
   return v.cast<const D2Shape&>();
 }
 
-std::string fmt(Real x) {
-  std::ostringstream s;
-  s.precision(9);
-  s << x;
-  return s.str();
-}
-
 void bind_d2_types(py::module_& d) {
   py::class_<D2Shape>(d, "Shape", "A 2D geometry (immutable); made by proxima.d2.Circle, Polygon, Box, ...")
       .def_property_readonly("type", [](const D2Shape& s) { return d2::to_string(s.type()); })
@@ -87,7 +80,7 @@ void bind_d2_types(py::module_& d) {
       .def_readonly("part_a", &d2::DistanceResult::part_a, "Chain segment of A (-1: convex).")
       .def_readonly("part_b", &d2::DistanceResult::part_b)
       .def("__repr__", [](const d2::DistanceResult& r) {
-        return "d2.DistanceResult(signed_distance=" + fmt(r.signed_distance) + ")";
+        return "d2.DistanceResult(signed_distance=" + repr_real(r.signed_distance) + ")";
       });
   py::class_<d2::Manifold>(d, "Manifold", "Up to 2 contact points sharing one normal (world frame).")
       .def_property_readonly("normal", [](const d2::Manifold& m) { return vec2(m.normal); })
@@ -109,7 +102,7 @@ void bind_d2_types(py::module_& d) {
       .def_property_readonly("point", [](const d2::RayHit& h) { return vec2(h.point); })
       .def_property_readonly("normal", [](const d2::RayHit& h) { return vec2(h.normal); })
       .def_readonly("part", &d2::RayHit::part)
-      .def("__repr__", [](const d2::RayHit& h) { return "d2.RayHit(t=" + fmt(h.t) + ")"; });
+      .def("__repr__", [](const d2::RayHit& h) { return "d2.RayHit(t=" + repr_real(h.t) + ")"; });
   py::class_<d2::ToiResult>(d, "ToiResult", "2D time of impact (world frame at toi).")
       .def_readonly("status", &d2::ToiResult::status)
       .def_readonly("toi", &d2::ToiResult::toi)
@@ -118,7 +111,7 @@ void bind_d2_types(py::module_& d) {
       .def_property_readonly("point", [](const d2::ToiResult& r) { return vec2(r.point); })
       .def_property_readonly("normal", [](const d2::ToiResult& r) { return vec2(r.normal); })
       .def("__repr__", [](const d2::ToiResult& r) {
-        return std::string("d2.ToiResult(status=") + to_string(r.status) + ", toi=" + fmt(r.toi) + ")";
+        return std::string("d2.ToiResult(status=") + to_string(r.status) + ", toi=" + repr_real(r.toi) + ")";
       });
 }
 

@@ -11,13 +11,6 @@
 namespace proxima::python {
 namespace {
 
-std::string format(Real x) {
-  std::ostringstream s;
-  s.precision(9);
-  s << x;
-  return s.str();
-}
-
 const char* status_name(PairStatus s) {
   switch (s) {
     case PairStatus::Separated: return "Separated";
@@ -73,7 +66,7 @@ void bind_results(py::module_& m) {
       .def_property_readonly("part_a", [](const DistanceResult& r) { return part_index(r.sub_a); })
       .def_property_readonly("part_b", [](const DistanceResult& r) { return part_index(r.sub_b); })
       .def("__repr__", [](const DistanceResult& r) {
-        return "DistanceResult(signed_distance=" + format(r.signed_distance) + ", status=" + status_name(r.status) +
+        return "DistanceResult(signed_distance=" + repr_real(r.signed_distance) + ", status=" + status_name(r.status) +
                ", normal=" + repr_vec3(r.normal) + ")";
       });
   py::class_<ContactPoint>(m, "ContactPoint", "One point of a contact manifold (world frame).")
@@ -85,7 +78,7 @@ void bind_results(py::module_& m) {
       .def_property_readonly("part_a", [](const ContactPoint& c) { return part_index(c.sub_a); })
       .def_property_readonly("part_b", [](const ContactPoint& c) { return part_index(c.sub_b); })
       .def("__repr__", [](const ContactPoint& c) {
-        return "ContactPoint(point_a=" + repr_vec3(c.point_a) + ", depth=" + format(c.depth) + ")";
+        return "ContactPoint(point_a=" + repr_vec3(c.point_a) + ", depth=" + repr_real(c.depth) + ")";
       });
   py::class_<ContactManifold>(m, "ContactManifold", "Up to 4 contact points sharing one normal (world frame).")
       .def_property_readonly("points",

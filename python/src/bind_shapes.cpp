@@ -19,13 +19,6 @@ py::object make(Result<S>&& result) {
   return wrap_shape(Shape(take(std::move(result))));
 }
 
-std::string format_real(Real x) {
-  std::ostringstream s;
-  s.precision(9);
-  s << x;
-  return s.str();
-}
-
 /// vertices as an (N, 3) float64 array.
 py::array_t<double> points_array(std::span<const Vec3> points) {
   py::array_t<double> out({static_cast<py::ssize_t>(points.size()), py::ssize_t(3)});
@@ -34,21 +27,6 @@ py::array_t<double> points_array(std::span<const Vec3> points) {
     for (int k = 0; k < 3; ++k) a(static_cast<py::ssize_t>(i), k) = double(points[i][k]);
   }
   return out;
-}
-
-/// Points from an (N, 3) array-like, else proxima.Error naming `field`.
-std::vector<Vec3> to_points(py::handle value, const char* field) {
-  py::array_t<double, py::array::c_style | py::array::forcecast> a;
-  try {
-    a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(value);
-  } catch (const py::error_already_set&) {
-  }
-  if (!a || a.ndim() != 2 || a.shape(1) != 3) raise_argument_error(field, "expected an (N, 3) array of numbers");
-  std::vector<Vec3> points(static_cast<std::size_t>(a.shape(0)));
-  const double* d = a.data();
-  for (std::size_t i = 0; i < points.size(); ++i)
-    points[i] = Vec3(Real(d[3 * i]), Real(d[3 * i + 1]), Real(d[3 * i + 2]));
-  return points;
 }
 
 std::vector<TriangleIndices> to_triangles(py::handle value, const char* field) {
@@ -90,7 +68,7 @@ void bind_base(py::module_& m) {
       .def_readonly("signed_distance", &SurfacePoint::signed_distance, "> 0 outside, < 0 inside (length units).")
       .def("__repr__", [](const SurfacePoint& p) {
         return "SurfacePoint(point=" + repr_vec3(p.point) + ", normal=" + repr_vec3(p.normal) +
-               ", signed_distance=" + format_real(p.signed_distance) + ")";
+               ", signed_distance=" + repr_real(p.signed_distance) + ")";
       });
   py::class_<MassProperties>(m, "MassProperties", "Volume, mass, centroid and inertia of a solid (local frame).")
       .def_readonly("volume", &MassProperties::volume, "Length units cubed.")
@@ -107,7 +85,7 @@ void bind_base(py::module_& m) {
           },
           "Inertia tensor about the centroid, local axes, (3, 3).")
       .def("__repr__", [](const MassProperties& p) {
-        return "MassProperties(volume=" + format_real(p.volume) + ", mass=" + format_real(p.mass) +
+        return "MassProperties(volume=" + repr_real(p.volume) + ", mass=" + repr_real(p.mass) +
                ", centroid=" + repr_vec3(p.centroid) + ")";
       });
   py::class_<RayHit>(m, "RayHit", "Where a ray meets a shape (world frame).")
@@ -118,8 +96,7 @@ void bind_base(py::module_& m) {
           "part", [](const RayHit& h) { return part_index(h.sub); },
           "Mesh triangle or compound child hit, None for a convex shape.")
       .def("__repr__", [](const RayHit& h) {
-        return "RayHit(t=" + format_real(h.t) + ", point=" + repr_vec3(h.point) + ", normal=" + repr_vec3(h.normal) +
-               ")";
+        return "RayHit(t=" + repr_real(h.t) + ", point=" + repr_vec3(h.point) + ", normal=" + repr_vec3(h.normal) + ")";
       });
 
   py::class_<PyShape>(m, "Shape", "Any geometry (immutable). Construct one of the subclasses.")

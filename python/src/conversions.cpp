@@ -36,6 +36,20 @@ std::vector<double> to_numbers(py::handle value, std::size_t size, const char* f
   return out;
 }
 
+std::vector<Vec3> to_points(py::handle value, const char* field) {
+  py::array_t<double, py::array::c_style | py::array::forcecast> a;
+  try {
+    a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(value);
+  } catch (const py::error_already_set&) {
+  }
+  if (!a || a.ndim() != 2 || a.shape(1) != 3) raise_argument_error(field, "expected an (N, 3) array of numbers");
+  std::vector<Vec3> points(static_cast<std::size_t>(a.shape(0)));
+  const double* d = a.data();
+  for (std::size_t i = 0; i < points.size(); ++i)
+    points[i] = Vec3(Real(d[3 * i]), Real(d[3 * i + 1]), Real(d[3 * i + 2]));
+  return points;
+}
+
 void set_error(const Error& error) {
   py::object instance = error_type(error.what());
   instance.attr("code") = to_string(error.code);

@@ -38,6 +38,10 @@ inline void check(const std::optional<Error>& error) {
 /// `size` finite numbers from a sequence, else proxima.Error naming `field`.
 std::vector<double> to_numbers(py::handle value, std::size_t size, const char* field);
 
+/// Points from an (N, 3) array-like (copied: the library owns its geometry), else
+/// proxima.Error naming `field`.
+std::vector<Vec3> to_points(py::handle value, const char* field);
+
 /// A vector of 3 finite numbers from any sequence (tuple, list, numpy array), else
 /// proxima.Error naming `field`.
 Vec3 to_vec3(py::handle value, const char* field);
@@ -67,4 +71,6 @@ Transform to_transform(py::handle value, const char* field);
 namespace proxima::python {
 /// "(x, y, z)" with 9 significant digits, for __repr__.
 std::string repr_vec3(const Vec3& v);
+/// A number with 9 significant digits, for __repr__.
+std::string repr_real(Real x);
 }  // namespace proxima::python

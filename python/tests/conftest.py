@@ -2,6 +2,7 @@
 `proxima query` command-line tool (PROXIMA_CLI, set by ctest) as an independent path to the
 same library for agreement checks."""
 
+import importlib
 import json
 import os
 import subprocess
@@ -63,3 +64,12 @@ def query():
         return answers
 
     return run
+
+
+def require(module):
+    """The optional module (a peer or an example's dependency), imported. Without it the test
+    is skipped, except where PROXIMA_PYTHON_PEERS_REQUIRED=1 (set by ctest: the set-up installs
+    every one of them), where its absence fails the test instead of passing it silently."""
+    if os.environ.get("PROXIMA_PYTHON_PEERS_REQUIRED") == "1":
+        return importlib.import_module(module)
+    return pytest.importorskip(module)

@@ -15,7 +15,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-pytest.importorskip("dask.distributed")
+from conftest import require
+
+require("dask.distributed")
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "examples"))
 import dask_sweep  # noqa: E402
 

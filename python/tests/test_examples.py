@@ -13,6 +13,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from conftest import require
+
 import proxima
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "examples"))
@@ -108,7 +110,7 @@ def test_arm_example_prints_the_first_collision(arm_run, capsys):
 
 
 def test_sphere_depth_matches_analytic_hits():
-    pytest.importorskip("PIL")
+    require("PIL")
     import depth_image
 
     width, height = 160, 120
@@ -127,7 +129,7 @@ def test_sphere_depth_matches_analytic_hits():
 
 
 def test_depth_example_writes_a_png_with_a_silhouette(tmp_path, capsys):
-    image_module = pytest.importorskip("PIL.Image")
+    image_module = require("PIL.Image")
     import depth_image
 
     output = tmp_path / "depth.png"

@@ -14,7 +14,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-o3d = pytest.importorskip("open3d")
+from conftest import require
+
+o3d = require("open3d")
 import proxima  # noqa: E402
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "examples"))
