@@ -23,7 +23,16 @@ class RowReader {
   RowReader(py::handle value, py::ssize_t cols, const char* field, bool allow_single);
   /// Number of rows; 0 for a broadcast single row (see single()).
   py::ssize_t rows() const { return single_ ? 0 : rows_; }
+  /// True for one row broadcast to every row.
   bool single() const { return single_; }
+  /// Calls accept(i, number) for rows i = begin, begin + 1, … end - 1, where number(j) is the
+  /// row's number j as a Real, until accept returns false; returns that row's index, or -1 when
+  /// every row was accepted. The element type is chosen once, so the loop reads by plain
+  /// pointer arithmetic.
+  template <class F>
+  py::ssize_t find_rejected(py::ssize_t begin, py::ssize_t end, F&& accept) const {
+    return f64_ ? find_rejected_as<double>(begin, end, accept) : find_rejected_as<float>(begin, end, accept);
+  }
   /// Number j of row i (row 0 when single).
   double at(py::ssize_t i, py::ssize_t j) const {
     const char* p = data_ + (single_ ? 0 : i * row_stride_) + j * col_stride_;
@@ -31,6 +40,17 @@ class RowReader {
   }
 
  private:
+  template <class T, class F>
+  py::ssize_t find_rejected_as(py::ssize_t begin, py::ssize_t end, F& accept) const {
+    const py::ssize_t row_stride = single_ ? 0 : row_stride_;
+    for (py::ssize_t i = begin; i < end; ++i) {
+      const char* row = data_ + i * row_stride;
+      const auto number = [&](int j) { return Real(*reinterpret_cast<const T*>(row + j * col_stride_)); };
+      if (!accept(i, number)) return i;
+    }
+    return -1;
+  }
+
   py::array array_;  // keeps the caller's buffer (or the converted copy) alive
   const char* data_ = nullptr;
   py::ssize_t rows_ = 0, row_stride_ = 0, col_stride_ = 0;

@@ -8,6 +8,7 @@
 #include <proxima/shapes/placed.hpp>
 #include <proxima/shapes/shape_queries.hpp>
 
+#include <algorithm>
 #include <limits>
 #include <map>
 #include <memory>
@@ -70,19 +71,19 @@ py::ssize_t common_rows(const RowReader& a, const char* field_a, const RowReader
 
 std::vector<Transform> read_poses(const RowReader& rows, py::ssize_t n, const char* field) {
   std::vector<Transform> poses(rows.single() ? 1 : static_cast<std::size_t>(n));
-  for (std::size_t i = 0; i < poses.size(); ++i) {
-    const auto r = static_cast<py::ssize_t>(i);
-    const Vec3 p{Real(rows.at(r, 0)), Real(rows.at(r, 1)), Real(rows.at(r, 2))};
-    const Quat q{Real(rows.at(r, 6)), Real(rows.at(r, 3)), Real(rows.at(r, 4)), Real(rows.at(r, 5))};
-    if (validate::is_acceptable(p) && validate::is_unit(q)) {  // Transform::create's checks, without its Result
-      poses[i] = Transform{p, glm::normalize(q)};
-      continue;
-    }
-    Error e = Transform::create(p, q).error();
-    e.field = std::string(field) + (rows.single() ? "" : "[" + std::to_string(i) + "]") + "." + e.field;
-    raise_error(e);
-  }
-  return poses;
+  const py::ssize_t bad =
+      rows.find_rejected(0, static_cast<py::ssize_t>(poses.size()), [&](py::ssize_t i, const auto& number) {
+        const std::optional<Transform> t =
+            Transform::from_values({number(0), number(1), number(2)}, Quat{number(6), number(3), number(4), number(5)});
+        if (t) poses[static_cast<std::size_t>(i)] = *t;
+        return t.has_value();
+      });
+  if (bad < 0) return poses;
+  const Vec3 p{Real(rows.at(bad, 0)), Real(rows.at(bad, 1)), Real(rows.at(bad, 2))};
+  const Quat q{Real(rows.at(bad, 6)), Real(rows.at(bad, 3)), Real(rows.at(bad, 4)), Real(rows.at(bad, 5))};
+  Error e = Transform::create(p, q).error();
+  e.field = std::string(field) + (rows.single() ? "" : "[" + std::to_string(bad) + "]") + "." + e.field;
+  raise_error(e);
 }
 
 Executor& thread_pool(std::size_t threads) {
@@ -113,14 +114,11 @@ namespace {
 
 void put(double (&out)[3], const Vec3& v) { out[0] = double(v.x), out[1] = double(v.y), out[2] = double(v.z); }
 
-const Transform& pose_at(const std::vector<Transform>& poses, std::size_t i) {
-  return poses.size() == 1 ? poses[0] : poses[i];
-}
-
+/// The shapes and validated poses of intersect_batch and distance_batch.
 struct PosePairs {
   const PyShape& a;
   const PyShape& b;
-  std::vector<Transform> poses_a, poses_b;
+  std::vector<Transform> poses_a, poses_b;  // one pose: broadcast to every row
   py::ssize_t n = 0;
 };
 
@@ -132,15 +130,22 @@ PosePairs read_pairs(py::handle a, py::handle poses_a, py::handle b, py::handle 
   return {sa, sb, read_poses(ra, n, "poses_a"), read_poses(rb, n, "poses_b"), n};
 }
 
+/// Calls query(i, pose_a, pose_b) for every row of the pairs on the thread pool.
+template <class Query>
+void for_each_pose_pair(const PosePairs& p, long threads, Query&& query) {
+  const std::size_t step_a = p.poses_a.size() == 1 ? 0 : 1, step_b = p.poses_b.size() == 1 ? 0 : 1;
+  parallel_for(static_cast<std::size_t>(p.n), threads, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i) query(i, p.poses_a[i * step_a], p.poses_b[i * step_b]);
+  });
+}
+
 py::array intersect_batch(py::handle a, py::handle poses_a, py::handle b, py::handle poses_b, py::handle out,
                           long threads) {
   const PosePairs p = read_pairs(a, poses_a, b, poses_b);
   py::array_t<bool> result = output_array<bool>(out, p.n);
   bool* rows = result.mutable_data();
-  parallel_for(static_cast<std::size_t>(p.n), threads, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t i = begin; i < end; ++i) {
-      rows[i] = intersect(p.a.ref(), pose_at(p.poses_a, i), p.b.ref(), pose_at(p.poses_b, i));
-    }
+  for_each_pose_pair(p, threads, [&](std::size_t i, const Transform& ta, const Transform& tb) {
+    rows[i] = intersect(p.a.ref(), ta, p.b.ref(), tb);
   });
   return result;
 }
@@ -150,16 +155,14 @@ py::array distance_batch(py::handle a, py::handle poses_a, py::handle b, py::han
   const PosePairs p = read_pairs(a, poses_a, b, poses_b);
   py::array_t<DistanceRow> result = output_array<DistanceRow>(out, p.n);
   DistanceRow* rows = result.mutable_data();
-  parallel_for(static_cast<std::size_t>(p.n), threads, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t i = begin; i < end; ++i) {
-      const DistanceResult r = distance(p.a.ref(), pose_at(p.poses_a, i), p.b.ref(), pose_at(p.poses_b, i));
-      DistanceRow& row = rows[i];
-      row.signed_distance = double(r.signed_distance);
-      put(row.point_a, r.point_a);
-      put(row.point_b, r.point_b);
-      put(row.normal, r.normal);
-      row.status = static_cast<std::uint8_t>(r.status);
-    }
+  for_each_pose_pair(p, threads, [&](std::size_t i, const Transform& ta, const Transform& tb) {
+    const DistanceResult r = distance(p.a.ref(), ta, p.b.ref(), tb);
+    DistanceRow& row = rows[i];
+    row.signed_distance = double(r.signed_distance);
+    put(row.point_a, r.point_a);
+    put(row.point_b, r.point_b);
+    put(row.normal, r.normal);
+    row.status = static_cast<std::uint8_t>(r.status);
   });
   return result;
 }
@@ -183,6 +186,15 @@ std::vector<double> read_limits(py::handle max_t, py::ssize_t n) {
   return {a.data(), a.data() + n};
 }
 
+/// The error of ray `i`, which raycast_batch's checks rejected.
+[[noreturn]] void raise_ray_error(const Ray& ray, py::ssize_t i, bool one_limit) {
+  const std::string row = "[" + std::to_string(i) + "]";
+  if (!validate::is_acceptable(ray.origin) || !validate::is_acceptable(ray.direction))
+    raise_error(make_error(ErrorCode::NotFinite, "rays" + row, "must be finite"));
+  if (ray.direction == Vec3(Real(0))) raise_argument_error("rays" + row + ".direction", "must not be zero");
+  raise_argument_error(one_limit ? "max_t" : "max_t" + row, "must be >= 0");
+}
+
 py::array raycast_batch(py::handle shape, py::handle pose, py::handle rays, py::handle max_t, py::handle out,
                         long threads) {
   const PyShape& s = to_shape(shape, "shape");
@@ -192,19 +204,19 @@ py::array raycast_batch(py::handle shape, py::handle pose, py::handle rays, py::
   const std::vector<double> limits = read_limits(max_t, n);
   std::vector<Ray> list(static_cast<std::size_t>(n));
   std::vector<Real> extent(static_cast<std::size_t>(n));
-  for (py::ssize_t i = 0; i < n; ++i) {
+  const auto limit = [&](py::ssize_t i) {
+    return limits.size() == 1 ? limits[0] : limits[static_cast<std::size_t>(i)];
+  };
+  const py::ssize_t bad = r.find_rejected(0, n, [&](py::ssize_t i, const auto& number) {
     Ray& ray = list[static_cast<std::size_t>(i)];
-    ray.origin = {Real(r.at(i, 0)), Real(r.at(i, 1)), Real(r.at(i, 2))};
-    ray.direction = {Real(r.at(i, 3)), Real(r.at(i, 4)), Real(r.at(i, 5))};
-    if (!validate::is_acceptable(ray.origin) || !validate::is_acceptable(ray.direction))
-      raise_error(make_error(ErrorCode::NotFinite, "rays[" + std::to_string(i) + "]", "must be finite"));
-    if (ray.direction == Vec3(Real(0)))
-      raise_argument_error("rays[" + std::to_string(i) + "].direction", "must not be zero");
-    const double m = limits.size() == 1 ? limits[0] : limits[static_cast<std::size_t>(i)];
-    if (!(m >= 0))
-      raise_argument_error(limits.size() == 1 ? "max_t" : "max_t[" + std::to_string(i) + "]", "must be >= 0");
+    ray.origin = {number(0), number(1), number(2)};
+    ray.direction = {number(3), number(4), number(5)};
+    const double m = limit(i);
     extent[static_cast<std::size_t>(i)] = m > double(kRealMax) ? kRealMax : Real(m);
-  }
+    return validate::is_acceptable(ray.origin) && validate::is_acceptable(ray.direction) &&
+           ray.direction != Vec3(Real(0)) && m >= 0;
+  });
+  if (bad >= 0) raise_ray_error(list[static_cast<std::size_t>(bad)], bad, limits.size() == 1);
   py::array_t<RayHitRow> result = output_array<RayHitRow>(out, n);
   RayHitRow* rows = result.mutable_data();
   parallel_for(static_cast<std::size_t>(n), threads, [&](std::size_t begin, std::size_t end) {
@@ -225,12 +237,12 @@ py::array raycast_batch(py::handle shape, py::handle pose, py::handle rays, py::
 std::vector<Vec3> read_points(py::handle points) {
   const RowReader r(points, 3, "points", false);
   std::vector<Vec3> list(static_cast<std::size_t>(r.rows()));
-  for (std::size_t i = 0; i < list.size(); ++i) {
-    const auto k = static_cast<py::ssize_t>(i);
-    list[i] = {Real(r.at(k, 0)), Real(r.at(k, 1)), Real(r.at(k, 2))};
-    if (!validate::is_acceptable(list[i]))
-      raise_error(make_error(ErrorCode::NotFinite, "points[" + std::to_string(i) + "]", "must be finite"));
-  }
+  const py::ssize_t bad = r.find_rejected(0, r.rows(), [&](py::ssize_t i, const auto& number) {
+    Vec3& p = list[static_cast<std::size_t>(i)];
+    p = {number(0), number(1), number(2)};
+    return validate::is_acceptable(p);
+  });
+  if (bad >= 0) raise_error(make_error(ErrorCode::NotFinite, "points[" + std::to_string(bad) + "]", "must be finite"));
   return list;
 }
 

@@ -36,8 +36,7 @@ std::optional<Error> non_negative(Real x, const std::string& field) {
 
 std::optional<Error> unit_quaternion(const Quat& q, const std::string& field) {
   if (!is_finite(q)) return make_error(ErrorCode::NotFinite, field, "must be four finite numbers");
-  const Real len = std::sqrt(q.w * q.w + q.x * q.x + q.y * q.y + q.z * q.z);
-  if (std::abs(len - Real(1)) > Real(1e-3)) {
+  if (!is_unit_length(glm::length(q))) {
     return make_error(ErrorCode::InvalidArgument, field, "must be a unit quaternion (length within 1e-3 of 1)");
   }
   return std::nullopt;

@@ -3,6 +3,11 @@
 #include <proxima/core/tolerance.hpp>
 #include <proxima/core/transform.hpp>
 
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <optional>
+
 #include "support/random.hpp"
 
 namespace proxima {
@@ -84,6 +89,48 @@ TEST(Transform, CreateValidates) {
 #if PROXIMA_EXCEPTIONS
   EXPECT_THROW((void)bad_rot.value(), BadResultAccess);
 #endif
+}
+
+// from_values against its definition: accepted exactly when every position component is finite
+// with |x| <= kMaxCoordinate and the quaternion is finite with length within 1e-3 of 1 (checked
+// here component by component, in long double), and then equal bit for bit to
+// glm::normalize's answer; over random values near and across both limits, NaNs and infinities.
+TEST(Transform, FromValuesAcceptsWhatCreateAcceptsAndNormalisesAsGlm) {
+  test::ScopedNoFpTraps no_traps;
+  test::Random rng(20261127);
+  const Real specials[] = {std::numeric_limits<Real>::quiet_NaN(), std::numeric_limits<Real>::infinity(),
+                           -std::numeric_limits<Real>::infinity(), kMaxCoordinate,
+                           std::nextafter(kMaxCoordinate, std::numeric_limits<Real>::infinity())};
+  int accepted = 0, rejected = 0;
+  for (int i = 0; i < 20000; ++i) {
+    Vec3 p = rng.vec3(-10, 10);
+    Quat q = glm::normalize(Quat(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1)));
+    q = q * (Real(1) + rng.uniform(Real(-2.5e-3), Real(2.5e-3)));  // about half of them outside the 1e-3 band
+    if (i % 10 == 0) p[i / 10 % 3] = specials[i / 30 % 5];
+    if (i % 10 == 1) q[i / 10 % 4] = specials[i / 40 % 3];
+    const long double len2 =
+        (long double)q.w * q.w + (long double)q.x * q.x + (long double)q.y * q.y + (long double)q.z * q.z;
+    bool position_ok = true;
+    for (int k = 0; k < 3; ++k) position_ok = position_ok && std::isfinite(p[k]) && std::abs(p[k]) <= kMaxCoordinate;
+    const bool quat_ok = std::isfinite(q.w) && std::isfinite(q.x) && std::isfinite(q.y) && std::isfinite(q.z) &&
+                         std::isfinite(len2) && std::abs(std::sqrt(len2) - 1.0L) <= 1e-3L;
+    const std::optional<Transform> t = Transform::from_values(p, q);
+    const bool near_band = std::isfinite(len2) && std::abs(std::abs(std::sqrt(len2) - 1.0L) - 1e-3L) < 1e-6L;
+    if (!near_band) {  // within a rounding of the band's edge either answer is right
+      EXPECT_EQ(t.has_value(), position_ok && quat_ok) << i;
+    }
+    EXPECT_EQ(t.has_value(), Transform::create(p, q).ok()) << i;
+    if (!t) {
+      ++rejected;
+      continue;
+    }
+    ++accepted;
+    const Quat n = glm::normalize(q);
+    EXPECT_EQ(std::memcmp(&t->rotation, &n, sizeof n), 0) << i;
+    EXPECT_EQ(std::memcmp(&t->position, &p, sizeof p), 0) << i;
+  }
+  EXPECT_GT(accepted, 5000);
+  EXPECT_GT(rejected, 5000);
 }
 
 TEST(Tolerance, ScalesWithPrecision) {

@@ -5,6 +5,9 @@
 
 #include <proxima/core/math.hpp>
 #include <proxima/core/result.hpp>
+#include <proxima/core/validate.hpp>
+
+#include <optional>
 
 namespace proxima {
 
@@ -19,6 +22,16 @@ struct Transform {
   /// Validated construction: finite position, finite quaternion of length ~1 (within
   /// 1e-3; it is then renormalised). Errors name "position" or "rotation".
   static Result<Transform> create(const Vec3& position, const Quat& rotation);
+
+  /// The transform create() returns for these values, or nothing where create() returns an
+  /// Error: the form for loops over many poses (no Error built, one square root).
+  static std::optional<Transform> from_values(const Vec3& position, const Quat& rotation) {
+    const Real length = glm::length(rotation);
+    if (!validate::is_acceptable(position) || !validate::is_unit_length(length)) return std::nullopt;
+    const Real inverse = Real(1) / length;  // glm::normalize's arithmetic, without its second square root
+    return Transform{position,
+                     Quat{rotation.w * inverse, rotation.x * inverse, rotation.y * inverse, rotation.z * inverse}};
+  }
 
   /// Maps a local point to the parent frame.
   Vec3 apply(const Vec3& local_point) const { return rotation * local_point + position; }
