@@ -48,7 +48,10 @@ int clip_segment(const ClipPoint in[2], ClipPoint out[2], const Vec2& normal, Re
   return n;
 }
 
-/// Closest points of segments (p1, q1) and (p2, q2) (Ericson §5.1.9): parameters s, t.
+}  // namespace
+
+namespace detail {
+
 void closest_segment_parameters(const Vec2& p1, const Vec2& q1, const Vec2& p2, const Vec2& q2, Real& s, Real& t) {
   const Vec2 d1 = q1 - p1, d2 = q2 - p2, r = p1 - p2;
   const Real a = glm::dot(d1, d1), e = glm::dot(d2, d2), f = glm::dot(d2, r);
@@ -64,10 +67,6 @@ void closest_segment_parameters(const Vec2& p1, const Vec2& q1, const Vec2& p2, 
     s = std::clamp((b - c) / a, Real(0), Real(1));
   }
 }
-
-}  // namespace
-
-namespace detail {
 
 Manifold clip_manifold(const ConvexCore& ref, int edge, const ConvexCore& inc, Real separation, Real contact_distance,
                        Real tie, bool allow_corner) {
@@ -149,7 +148,7 @@ Manifold single_point_manifold(const ConvexCore& a, const Pose& pose_a, const Co
   m.normal = d.normal;
   if (d.status == PairStatus::InvalidInput || d.signed_distance > contact_distance) return m;
   const auto feature = [](const ConvexCore& core, const Pose& pose, const Vec2& world_point) {
-    return static_cast<std::uint32_t>(core.support_index(pose.inverse_apply(world_point)));
+    return core.count == 1 ? 0u : static_cast<std::uint32_t>(core.support_index(pose.inverse_apply(world_point)));
   };
   m.count = 1;
   m.points[0] = {d.point_a, d.point_b, -d.signed_distance,
