@@ -200,8 +200,7 @@ LocalDistance local_core_distance(const ConvexCore& a, const Pose& pose_a, const
 
 DistanceResult core_distance(const ConvexCore& a, const Pose& pose_a, const ConvexCore& b, const Pose& pose_b) {
   DistanceResult r;
-  if (!is_finite(pose_a.position) || !is_finite(pose_b.position) ||
-      !std::isfinite(pose_a.rotation.c + pose_a.rotation.s) || !std::isfinite(pose_b.rotation.c + pose_b.rotation.s)) {
+  if (!detail::valid_poses(pose_a, pose_b)) {
     r.signed_distance = std::numeric_limits<Real>::infinity();
     r.status = PairStatus::InvalidInput;
     return r;

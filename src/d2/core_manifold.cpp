@@ -138,23 +138,34 @@ Manifold to_world(Manifold m, const Pose& pose_a) {
 
 namespace {
 
-/// One point from the signed distance (a 1-vertex core on either side, or a clip that
-/// found nothing).
+/// The feature of `core` (placed at `core_pose`) at `point` given in `frame`: its vertex
+/// farthest along the point's direction in its own frame (0 for a 1-vertex core).
+std::uint32_t vertex_feature(const ConvexCore& core, const Pose& core_pose, const Pose& frame, const Vec2& point,
+                             bool in_own_frame) {
+  if (core.count == 1) return 0;
+  return static_cast<std::uint32_t>(
+      core.support_index(in_own_frame ? point : core_pose.inverse_apply(frame.apply(point))));
+}
+
+/// One point from the cores' signed distance (a 1-vertex core on either side, or a clip
+/// that found nothing), in the frame local_core_distance measured in, then in the world.
 Manifold single_point_manifold(const ConvexCore& a, const Pose& pose_a, const ConvexCore& b, const Pose& pose_b,
                                Real contact_distance) {
-  const DistanceResult d = core_distance(a, pose_a, b, pose_b);
   Manifold m;
+  if (!detail::valid_poses(pose_a, pose_b)) return m;
+  const detail::LocalDistance d = detail::local_core_distance(a, pose_a, b, pose_b);
+  const Pose& frame = d.in_b_frame ? pose_b : pose_a;
+  const Real gap = d.distance - (a.radius + b.radius);
   m.method = d.method;
   m.normal = d.normal;
-  if (d.status == PairStatus::InvalidInput || d.signed_distance > contact_distance) return m;
-  const auto feature = [](const ConvexCore& core, const Pose& pose, const Vec2& world_point) {
-    return core.count == 1 ? 0u : static_cast<std::uint32_t>(core.support_index(pose.inverse_apply(world_point)));
-  };
-  m.count = 1;
-  m.points[0] = {d.point_a, d.point_b, -d.signed_distance,
-                 make_feature_id(FeatureKind::Vertex, feature(a, pose_a, d.point_a), FeatureKind::Vertex,
-                                 feature(b, pose_b, d.point_b))};
-  return m;
+  if (gap <= contact_distance) {
+    const Vec2 on_a = d.point_a + a.radius * d.normal, on_b = d.point_b - b.radius * d.normal;
+    m.count = 1;
+    m.points[0] = {on_a, on_b, -gap,
+                   make_feature_id(FeatureKind::Vertex, vertex_feature(a, pose_a, frame, on_a, !d.in_b_frame),
+                                   FeatureKind::Vertex, vertex_feature(b, pose_b, frame, on_b, d.in_b_frame))};
+  }
+  return detail::to_world(m, frame);
 }
 
 }  // namespace

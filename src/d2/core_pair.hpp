@@ -15,6 +15,12 @@
 
 namespace proxima::d2::detail {
 
+/// True when both poses are finite (the queries answer "invalid input" otherwise).
+inline bool valid_poses(const Pose& pose_a, const Pose& pose_b) {
+  return is_finite(pose_a.position) && is_finite(pose_b.position) &&
+         std::isfinite(pose_a.rotation.c + pose_a.rotation.s) && std::isfinite(pose_b.rotation.c + pose_b.rotation.s);
+}
+
 /// Core B placed in A's frame.
 struct CorePair {
   const ConvexCore* a = nullptr;
@@ -44,7 +50,7 @@ inline CorePair make_core_pair(const ConvexCore& a, const Pose& pose_a, const Co
 }
 
 /// The separating axis of largest separation among `ref`'s edge normals: separation of edge
-/// i = min over `other`'s vertices of n_i . (v - ref_i). Needs ref.count >= 2.
+/// i = min over `other`'s vertices v of n_i . v, less n_i . ref_i. Needs ref.count >= 2.
 struct AxisSeparation {
   int edge = -1;  ///< edge of `ref`
   Real separation = -std::numeric_limits<Real>::infinity();
@@ -54,9 +60,9 @@ inline AxisSeparation max_edge_separation(const ConvexCore& ref, const ConvexCor
   AxisSeparation best;
   for (int i = 0; i < ref.count; ++i) {
     const Vec2 n = ref.normals[i];
-    const Vec2 v = ref.vertices[i];
-    Real s = std::numeric_limits<Real>::infinity();
-    for (int j = 0; j < other.count; ++j) s = std::min(s, glm::dot(n, other.vertices[j] - v));
+    Real s = glm::dot(n, other.vertices[0]);
+    for (int j = 1; j < other.count; ++j) s = std::min(s, glm::dot(n, other.vertices[j]));
+    s -= glm::dot(n, ref.vertices[i]);
     if (s > best.separation) best = {i, s};
   }
   return best;
