@@ -4,9 +4,10 @@
 /// Steps (reference/incident edge clipping: Ericson, Real-Time Collision Detection §5.2.1
 /// on separating axes; Catto, "Contact Manifolds", GDC 2007, as Box2D builds polygon
 /// manifolds):
-///   1. move B into A's frame; a 1-vertex core on either side: one point from core_distance;
-///   2. the largest edge separation on A's normals and on B's; beyond the contact distance
-///      plus both radii, no contact;
+///   1. a 1-vertex core on either side: one point from the cores' distance (its closed
+///      form); otherwise move B into A's frame;
+///   2. the largest edge separation on A's normals, then on B's; as soon as an edge
+///      separates by more than the contact distance plus both radii, no contact;
 ///   3. the reference edge is A's unless B's axis separates more by a tie margin (so the
 ///      choice does not flicker between frames); the incident edge is the other core's edge
 ///      whose normal is most anti-parallel to the reference normal;
@@ -175,10 +176,11 @@ Manifold core_manifold(const ConvexCore& a, const Pose& pose_a, const ConvexCore
   if (a.count < 2 || b.count < 2) return single_point_manifold(a, pose_a, b, pose_b, contact_distance);
   const CorePair pair = detail::make_core_pair(a, pose_a, b, pose_b);
   if (!std::isfinite(pair.scale) || !is_finite(pair.b.vertices[0])) return Manifold{};
-  const detail::AxisSeparation on_a = detail::max_edge_separation(a, pair.b);
-  const detail::AxisSeparation on_b = detail::max_edge_separation(pair.b, a);
-  const Real radius = a.radius + b.radius;
-  if (std::max(on_a.separation, on_b.separation) > contact_distance + radius) return Manifold{};
+  const Real radius = a.radius + b.radius, reach = contact_distance + radius;
+  const detail::AxisSeparation on_a = detail::max_edge_separation(a, pair.b, reach);
+  if (on_a.separation > reach) return Manifold{};
+  const detail::AxisSeparation on_b = detail::max_edge_separation(pair.b, a, reach);
+  if (on_b.separation > reach) return Manifold{};
   const Real tie = Real(1e-4) * pair.scale;
   Manifold m;
   if (on_b.separation > on_a.separation + tie) {
@@ -186,7 +188,7 @@ Manifold core_manifold(const ConvexCore& a, const Pose& pose_a, const ConvexCore
   } else {
     m = detail::clip_manifold(a, on_a.edge, pair.b, on_a.separation, contact_distance, tie, true);
   }
-  if (m.count == 0 && std::max(on_a.separation, on_b.separation) <= contact_distance + radius) {
+  if (m.count == 0) {
     // The clip can miss only for rounded corners just within reach; measure them directly.
     return single_point_manifold(a, pose_a, b, pose_b, contact_distance);
   }

@@ -56,9 +56,12 @@ struct AxisSeparation {
   Real separation = -std::numeric_limits<Real>::infinity();
 };
 
-inline AxisSeparation max_edge_separation(const ConvexCore& ref, const ConvexCore& other) {
+/// The axis of largest separation (above); with `stop`, the first edge whose separation
+/// exceeds it instead (the cores are then apart by more than `stop`).
+inline AxisSeparation max_edge_separation(const ConvexCore& ref, const ConvexCore& other,
+                                          Real stop = std::numeric_limits<Real>::infinity()) {
   AxisSeparation best;
-  for (int i = 0; i < ref.count; ++i) {
+  for (int i = 0; i < ref.count && !(best.separation > stop); ++i) {
     const Vec2 n = ref.normals[i];
     Real s = glm::dot(n, other.vertices[0]);
     for (int j = 1; j < other.count; ++j) s = std::min(s, glm::dot(n, other.vertices[j]));
