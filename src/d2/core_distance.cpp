@@ -52,7 +52,8 @@ bool apart(const Vec2& on_a, const Vec2& on_b, Real tol, LocalDistance& r) {
 }
 
 /// Step 1: point `q` against `core` (2+ vertices), both in the core's frame; A is the core.
-LocalDistance core_to_point(const ConvexCore& core, const Vec2& q, Real tol) {
+/// A separation beyond `stop` is answered as it is (a lower bound of the distance).
+LocalDistance core_to_point(const ConvexCore& core, const Vec2& q, Real tol, Real stop) {
   int edge = 0;
   Real separation = glm::dot(core.normals[0], q - core.vertices[0]);
   for (int i = 1; i < core.count; ++i) {
@@ -60,7 +61,8 @@ LocalDistance core_to_point(const ConvexCore& core, const Vec2& q, Real tol) {
     if (s > separation) separation = s, edge = i;
   }
   const Vec2 n = core.normals[edge];
-  LocalDistance r;
+  LocalDistance r{separation, n, q, q, PairMethod::Gjk};
+  if (separation > stop) return r;
   if (core.count >= 3 && separation <= Real(0)) return overlap(separation, n, q);
   const Vec2 p = core.vertices[edge], e = core.vertices[(edge + 1) % core.count] - p;
   const Real t = std::clamp(glm::dot(q - p, e) / glm::dot(e, e), Real(0), Real(1));
@@ -175,19 +177,20 @@ LocalDistance segment_distance(const CorePair& pair) {
 
 namespace detail {
 
-LocalDistance local_core_distance(const ConvexCore& a, const Pose& pose_a, const ConvexCore& b, const Pose& pose_b) {
+LocalDistance local_core_distance(const ConvexCore& a, const Pose& pose_a, const ConvexCore& b, const Pose& pose_b,
+                                  Real stop) {
   const Real radii = a.radius + b.radius;
   if (b.count == 1) {  // in A's frame
     const Vec2 q = relative(pose_a, pose_b).apply(b.vertices[0]);
     const Real scale = point_pair_scale(a, q, radii), tol = pair_tolerance(scale);
-    LocalDistance r = a.count == 1 ? point_to_point(a.vertices[0], q, tol) : core_to_point(a, q, tol);
+    LocalDistance r = a.count == 1 ? point_to_point(a.vertices[0], q, tol) : core_to_point(a, q, tol, stop);
     r.scale = scale;
     return r;
   }
   if (a.count == 1) {  // in B's frame, then mirrored
     const Vec2 p = relative(pose_b, pose_a).apply(a.vertices[0]);
     const Real scale = point_pair_scale(b, p, radii);
-    const LocalDistance m = core_to_point(b, p, pair_tolerance(scale));
+    const LocalDistance m = core_to_point(b, p, pair_tolerance(scale), stop);
     return {m.distance, -m.normal, m.point_b, m.point_a, m.method, true, scale};
   }
   const CorePair pair = make_core_pair(a, pose_a, b, pose_b);

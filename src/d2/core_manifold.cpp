@@ -154,18 +154,18 @@ Manifold single_point_manifold(const ConvexCore& a, const Pose& pose_a, const Co
                                Real contact_distance) {
   Manifold m;
   if (!detail::valid_poses(pose_a, pose_b)) return m;
-  const detail::LocalDistance d = detail::local_core_distance(a, pose_a, b, pose_b);
+  const Real radii = a.radius + b.radius;
+  const detail::LocalDistance d = detail::local_core_distance(a, pose_a, b, pose_b, contact_distance + radii);
+  const Real gap = d.distance - radii;
+  if (gap > contact_distance) return m;
   const Pose& frame = d.in_b_frame ? pose_b : pose_a;
-  const Real gap = d.distance - (a.radius + b.radius);
+  const Vec2 on_a = d.point_a + a.radius * d.normal, on_b = d.point_b - b.radius * d.normal;
   m.method = d.method;
   m.normal = d.normal;
-  if (gap <= contact_distance) {
-    const Vec2 on_a = d.point_a + a.radius * d.normal, on_b = d.point_b - b.radius * d.normal;
-    m.count = 1;
-    m.points[0] = {on_a, on_b, -gap,
-                   make_feature_id(FeatureKind::Vertex, vertex_feature(a, pose_a, frame, on_a, !d.in_b_frame),
-                                   FeatureKind::Vertex, vertex_feature(b, pose_b, frame, on_b, d.in_b_frame))};
-  }
+  m.count = 1;
+  m.points[0] = {on_a, on_b, -gap,
+                 make_feature_id(FeatureKind::Vertex, vertex_feature(a, pose_a, frame, on_a, !d.in_b_frame),
+                                 FeatureKind::Vertex, vertex_feature(b, pose_b, frame, on_b, d.in_b_frame))};
   return detail::to_world(m, frame);
 }
 
@@ -174,11 +174,13 @@ Manifold single_point_manifold(const ConvexCore& a, const Pose& pose_a, const Co
 Manifold core_manifold(const ConvexCore& a, const Pose& pose_a, const ConvexCore& b, const Pose& pose_b,
                        Real contact_distance) {
   if (a.count < 2 || b.count < 2) return single_point_manifold(a, pose_a, b, pose_b, contact_distance);
-  const CorePair pair = detail::make_core_pair(a, pose_a, b, pose_b);
-  if (!std::isfinite(pair.scale) || !is_finite(pair.b.vertices[0])) return Manifold{};
+  if (!detail::valid_poses(pose_a, pose_b)) return Manifold{};
+  CorePair pair = detail::place_core_b(a, pose_a, b, pose_b);
   const Real radius = a.radius + b.radius, reach = contact_distance + radius;
   const detail::AxisSeparation on_a = detail::max_edge_separation(a, pair.b, reach);
   if (on_a.separation > reach) return Manifold{};
+  detail::complete_core_pair(pair, b);
+  if (!std::isfinite(pair.scale)) return Manifold{};
   const detail::AxisSeparation on_b = detail::max_edge_separation(pair.b, a, reach);
   if (on_b.separation > reach) return Manifold{};
   const Real tie = Real(1e-4) * pair.scale;

@@ -24,28 +24,40 @@ inline bool valid_poses(const Pose& pose_a, const Pose& pose_b) {
 /// Core B placed in A's frame.
 struct CorePair {
   const ConvexCore* a = nullptr;
-  ConvexCore b;  ///< B's vertices and normals in A's frame
+  ConvexCore b;         ///< B's vertices in A's frame, and its normals once completed
+  Rotation rotation{};  ///< B's frame to A's
   /// Largest coordinate magnitude of both cores in A's frame plus the radii: the scale of
-  /// the pair's tolerances.
+  /// the pair's tolerances (set by complete_core_pair).
   Real scale = Real(1);
 };
 
-/// Moves B's vertices and edge normals into A's frame (a 1-vertex core has no normals: they
-/// are unset and never read).
-inline CorePair make_core_pair(const ConvexCore& a, const Pose& pose_a, const ConvexCore& b, const Pose& pose_b) {
+/// Moves B's vertices into A's frame (complete_core_pair adds the normals and the scale, so
+/// that a pair found apart by A's axes alone need not pay for them).
+inline CorePair place_core_b(const ConvexCore& a, const Pose& pose_a, const ConvexCore& b, const Pose& pose_b) {
   CorePair pair;
   pair.a = &a;
   const Pose rel = relative(pose_a, pose_b);
+  pair.rotation = rel.rotation;
   pair.b.count = b.count;
   pair.b.radius = b.radius;
-  Real scale = a.radius + b.radius;
-  for (int i = 0; i < a.count; ++i) scale = std::max(scale, max_abs_component(a.vertices[i]));
-  for (int i = 0; i < b.count; ++i) {
-    pair.b.vertices[i] = rel.apply(b.vertices[i]);
-    scale = std::max(scale, max_abs_component(pair.b.vertices[i]));
-  }
-  for (int i = 0; b.count >= 2 && i < b.count; ++i) pair.b.normals[i] = rel.rotation.apply(b.normals[i]);
+  for (int i = 0; i < b.count; ++i) pair.b.vertices[i] = rel.apply(b.vertices[i]);
+  return pair;
+}
+
+/// Rotates B's edge normals into A's frame (a 1-vertex core has none: its normals are unset
+/// and never read) and measures the pair's scale.
+inline void complete_core_pair(CorePair& pair, const ConvexCore& b) {
+  for (int i = 0; b.count >= 2 && i < b.count; ++i) pair.b.normals[i] = pair.rotation.apply(b.normals[i]);
+  Real scale = pair.a->radius + b.radius;
+  for (int i = 0; i < pair.a->count; ++i) scale = std::max(scale, max_abs_component(pair.a->vertices[i]));
+  for (int i = 0; i < b.count; ++i) scale = std::max(scale, max_abs_component(pair.b.vertices[i]));
   pair.scale = std::max(scale, Real(1e-30));
+}
+
+/// Moves B's vertices and edge normals into A's frame, with the pair's scale.
+inline CorePair make_core_pair(const ConvexCore& a, const Pose& pose_a, const ConvexCore& b, const Pose& pose_b) {
+  CorePair pair = place_core_b(a, pose_a, b, pose_b);
+  complete_core_pair(pair, b);
   return pair;
 }
 
@@ -90,6 +102,9 @@ struct LocalDistance {
 };
 
 /// The signed distance of cores a and b before the radii (core_distance.cpp's steps 1-3).
-LocalDistance local_core_distance(const ConvexCore& a, const Pose& pose_a, const ConvexCore& b, const Pose& pose_b);
+/// A 1-vertex core found apart from the other by more than `stop` may get only that lower
+/// bound of the distance (witnesses unset).
+LocalDistance local_core_distance(const ConvexCore& a, const Pose& pose_a, const ConvexCore& b, const Pose& pose_b,
+                                  Real stop = std::numeric_limits<Real>::infinity());
 
 }  // namespace proxima::d2::detail
