@@ -51,35 +51,43 @@ bool apart(const Vec2& on_a, const Vec2& on_b, Real tol, LocalDistance& r) {
   return true;
 }
 
+/// The nearest point to `q` of the core's edge `edge`.
+Vec2 closest_on_edge(const ConvexCore& core, int edge, const Vec2& q) {
+  const Vec2 p = core.vertices[edge], e = core.vertices[(edge + 1) % core.count] - p;
+  return p + std::clamp(glm::dot(q - p, e) / glm::dot(e, e), Real(0), Real(1)) * e;
+}
+
 /// Step 1: point `q` against `core` (2+ vertices), both in the core's frame; A is the core.
-/// A separation beyond `stop` is answered as it is (a lower bound of the distance).
-LocalDistance core_to_point(const ConvexCore& core, const Vec2& q, Real tol, Real stop) {
+/// `scale` is the pair's scale before the core's vertices (the radii and |q|). A separation
+/// beyond `stop` is answered as it is (a lower bound of the distance).
+LocalDistance core_to_point(const ConvexCore& core, const Vec2& q, Real scale, Real stop) {
   int edge = 0;
-  Real separation = glm::dot(core.normals[0], q - core.vertices[0]);
-  for (int i = 1; i < core.count; ++i) {
+  Real separation = -std::numeric_limits<Real>::infinity();
+  for (int i = 0; i < core.count; ++i) {
     const Real s = glm::dot(core.normals[i], q - core.vertices[i]);
     if (s > separation) separation = s, edge = i;
+    scale = std::max(scale, max_abs_component(core.vertices[i]));
   }
   const Vec2 n = core.normals[edge];
   LocalDistance r{separation, n, q, q, PairMethod::Gjk};
-  if (separation > stop) return r;
-  if (core.count >= 3 && separation <= Real(0)) return overlap(separation, n, q);
-  const Vec2 p = core.vertices[edge], e = core.vertices[(edge + 1) % core.count] - p;
-  const Real t = std::clamp(glm::dot(q - p, e) / glm::dot(e, e), Real(0), Real(1));
-  return apart(p + t * e, q, tol, r) ? r : overlap(separation, n, q);
+  const bool inside = core.count >= 3 && separation <= Real(0);
+  if (separation <= stop && (inside || !apart(closest_on_edge(core, edge, q), q, detail::pair_tolerance(scale), r))) {
+    r = overlap(separation, n, q);
+  }
+  r.scale = scale;
+  return r;
 }
 
-/// Two 1-vertex cores, A's frame (coincident ones get A's x axis).
-LocalDistance point_to_point(const Vec2& p, const Vec2& q, Real tol) {
+/// Two 1-vertex cores, A's frame (centres within the tolerance get A's x axis); `scale` as
+/// above.
+LocalDistance point_to_point(const Vec2& p, const Vec2& q, Real scale) {
+  scale = std::max(scale, max_abs_component(p));
   LocalDistance r;
-  return apart(p, q, tol, r) ? r : LocalDistance{glm::length(q - p), Vec2(Real(1), Real(0)), p, q, PairMethod::Sat};
-}
-
-/// The pair's scale from the vertices of `core` and the point `q` in the core's frame.
-Real point_pair_scale(const ConvexCore& core, const Vec2& q, Real radii) {
-  Real scale = std::max(radii, max_abs_component(q));
-  for (int i = 0; i < core.count; ++i) scale = std::max(scale, max_abs_component(core.vertices[i]));
-  return std::max(scale, Real(1e-30));
+  if (!apart(p, q, detail::pair_tolerance(scale), r)) {
+    r = {glm::length(q - p), Vec2(Real(1), Real(0)), p, q, PairMethod::Sat};
+  }
+  r.scale = scale;
+  return r;
 }
 
 /// The point of `other` deepest below edge `edge` of `ref` (normal n): its vertex deepest
@@ -179,19 +187,16 @@ namespace detail {
 
 LocalDistance local_core_distance(const ConvexCore& a, const Pose& pose_a, const ConvexCore& b, const Pose& pose_b,
                                   Real stop) {
-  const Real radii = a.radius + b.radius;
+  const Real radii = std::max(a.radius + b.radius, Real(1e-30));
   if (b.count == 1) {  // in A's frame
     const Vec2 q = relative(pose_a, pose_b).apply(b.vertices[0]);
-    const Real scale = point_pair_scale(a, q, radii), tol = pair_tolerance(scale);
-    LocalDistance r = a.count == 1 ? point_to_point(a.vertices[0], q, tol) : core_to_point(a, q, tol, stop);
-    r.scale = scale;
-    return r;
+    const Real scale = std::max(radii, max_abs_component(q));
+    return a.count == 1 ? point_to_point(a.vertices[0], q, scale) : core_to_point(a, q, scale, stop);
   }
   if (a.count == 1) {  // in B's frame, then mirrored
     const Vec2 p = relative(pose_b, pose_a).apply(a.vertices[0]);
-    const Real scale = point_pair_scale(b, p, radii);
-    const LocalDistance m = core_to_point(b, p, pair_tolerance(scale), stop);
-    return {m.distance, -m.normal, m.point_b, m.point_a, m.method, true, scale};
+    const LocalDistance m = core_to_point(b, p, std::max(radii, max_abs_component(p)), stop);
+    return {m.distance, -m.normal, m.point_b, m.point_a, m.method, true, m.scale};
   }
   const CorePair pair = make_core_pair(a, pose_a, b, pose_b);
   LocalDistance r = a.count == 2 && b.count == 2 ? segment_distance(pair) : sat_distance(pair);
