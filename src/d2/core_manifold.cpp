@@ -4,9 +4,10 @@
 /// Steps (reference/incident edge clipping: Ericson, Real-Time Collision Detection §5.2.1
 /// on separating axes; Catto, "Contact Manifolds", GDC 2007, as Box2D builds polygon
 /// manifolds):
-///   1. move B into A's frame; a 1-vertex core on either side: one point from core_distance;
-///   2. the largest edge separation on A's normals and on B's; beyond the contact distance
-///      plus both radii, no contact;
+///   1. a 1-vertex core on either side: one point from the cores' distance (its closed
+///      form); otherwise move B into A's frame;
+///   2. the largest edge separation on A's normals, then on B's; as soon as an edge
+///      separates by more than the contact distance plus both radii, no contact;
 ///   3. the reference edge is A's unless B's axis separates more by a tie margin (so the
 ///      choice does not flicker between frames); the incident edge is the other core's edge
 ///      whose normal is most anti-parallel to the reference normal;
@@ -48,7 +49,10 @@ int clip_segment(const ClipPoint in[2], ClipPoint out[2], const Vec2& normal, Re
   return n;
 }
 
-/// Closest points of segments (p1, q1) and (p2, q2) (Ericson §5.1.9): parameters s, t.
+}  // namespace
+
+namespace detail {
+
 void closest_segment_parameters(const Vec2& p1, const Vec2& q1, const Vec2& p2, const Vec2& q2, Real& s, Real& t) {
   const Vec2 d1 = q1 - p1, d2 = q2 - p2, r = p1 - p2;
   const Real a = glm::dot(d1, d1), e = glm::dot(d2, d2), f = glm::dot(d2, r);
@@ -64,10 +68,6 @@ void closest_segment_parameters(const Vec2& p1, const Vec2& q1, const Vec2& p2, 
     s = std::clamp((b - c) / a, Real(0), Real(1));
   }
 }
-
-}  // namespace
-
-namespace detail {
 
 Manifold clip_manifold(const ConvexCore& ref, int edge, const ConvexCore& inc, Real separation, Real contact_distance,
                        Real tie, bool allow_corner) {
@@ -139,23 +139,34 @@ Manifold to_world(Manifold m, const Pose& pose_a) {
 
 namespace {
 
-/// One point from the signed distance (a 1-vertex core on either side, or a clip that
-/// found nothing).
+/// The feature of `core` (placed at `core_pose`) at `point` given in `frame`: its vertex
+/// farthest along the point's direction in its own frame (0 for a 1-vertex core).
+std::uint32_t vertex_feature(const ConvexCore& core, const Pose& core_pose, const Pose& frame, const Vec2& point,
+                             bool in_own_frame) {
+  if (core.count == 1) return 0;
+  return static_cast<std::uint32_t>(
+      core.support_index(in_own_frame ? point : core_pose.inverse_apply(frame.apply(point))));
+}
+
+/// One point from the cores' signed distance (a 1-vertex core on either side, or a clip
+/// that found nothing), in the frame local_core_distance measured in, then in the world.
 Manifold single_point_manifold(const ConvexCore& a, const Pose& pose_a, const ConvexCore& b, const Pose& pose_b,
                                Real contact_distance) {
-  const DistanceResult d = core_distance(a, pose_a, b, pose_b);
   Manifold m;
+  if (!detail::valid_poses(pose_a, pose_b)) return m;
+  const Real radii = a.radius + b.radius;
+  const detail::LocalDistance d = detail::local_core_distance(a, pose_a, b, pose_b, contact_distance + radii);
+  const Real gap = d.distance - radii;
+  if (gap > contact_distance) return m;
+  const Pose& frame = d.in_b_frame ? pose_b : pose_a;
+  const Vec2 on_a = d.point_a + a.radius * d.normal, on_b = d.point_b - b.radius * d.normal;
   m.method = d.method;
   m.normal = d.normal;
-  if (d.status == PairStatus::InvalidInput || d.signed_distance > contact_distance) return m;
-  const auto feature = [](const ConvexCore& core, const Pose& pose, const Vec2& world_point) {
-    return static_cast<std::uint32_t>(core.support_index(pose.inverse_apply(world_point)));
-  };
   m.count = 1;
-  m.points[0] = {d.point_a, d.point_b, -d.signed_distance,
-                 make_feature_id(FeatureKind::Vertex, feature(a, pose_a, d.point_a), FeatureKind::Vertex,
-                                 feature(b, pose_b, d.point_b))};
-  return m;
+  m.points[0] = {on_a, on_b, -gap,
+                 make_feature_id(FeatureKind::Vertex, vertex_feature(a, pose_a, frame, on_a, !d.in_b_frame),
+                                 FeatureKind::Vertex, vertex_feature(b, pose_b, frame, on_b, d.in_b_frame))};
+  return detail::to_world(m, frame);
 }
 
 }  // namespace
@@ -163,12 +174,15 @@ Manifold single_point_manifold(const ConvexCore& a, const Pose& pose_a, const Co
 Manifold core_manifold(const ConvexCore& a, const Pose& pose_a, const ConvexCore& b, const Pose& pose_b,
                        Real contact_distance) {
   if (a.count < 2 || b.count < 2) return single_point_manifold(a, pose_a, b, pose_b, contact_distance);
-  const CorePair pair = detail::make_core_pair(a, pose_a, b, pose_b);
-  if (!std::isfinite(pair.scale) || !is_finite(pair.b.vertices[0])) return Manifold{};
-  const detail::AxisSeparation on_a = detail::max_edge_separation(a, pair.b);
-  const detail::AxisSeparation on_b = detail::max_edge_separation(pair.b, a);
-  const Real radius = a.radius + b.radius;
-  if (std::max(on_a.separation, on_b.separation) > contact_distance + radius) return Manifold{};
+  if (!detail::valid_poses(pose_a, pose_b)) return Manifold{};
+  CorePair pair = detail::place_core_b(a, pose_a, b, pose_b);
+  const Real radius = a.radius + b.radius, reach = contact_distance + radius;
+  const detail::AxisSeparation on_a = detail::max_edge_separation(a, pair.b, reach);
+  if (on_a.separation > reach) return Manifold{};
+  detail::complete_core_pair(pair, b);
+  if (!std::isfinite(pair.scale)) return Manifold{};
+  const detail::AxisSeparation on_b = detail::max_edge_separation(pair.b, a, reach);
+  if (on_b.separation > reach) return Manifold{};
   const Real tie = Real(1e-4) * pair.scale;
   Manifold m;
   if (on_b.separation > on_a.separation + tie) {
@@ -176,7 +190,7 @@ Manifold core_manifold(const ConvexCore& a, const Pose& pose_a, const ConvexCore
   } else {
     m = detail::clip_manifold(a, on_a.edge, pair.b, on_a.separation, contact_distance, tie, true);
   }
-  if (m.count == 0 && std::max(on_a.separation, on_b.separation) <= contact_distance + radius) {
+  if (m.count == 0) {
     // The clip can miss only for rounded corners just within reach; measure them directly.
     return single_point_manifold(a, pose_a, b, pose_b, contact_distance);
   }

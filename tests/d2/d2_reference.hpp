@@ -100,7 +100,10 @@ inline LD point_polygon_signed_distance(const P& q, const std::vector<P>& poly) 
     inner = std::min(inner, side);
     outside = std::min(outside, point_segment_distance(q, a, b));
   }
-  return inside ? -inner : outside;
+  // Inside, the nearest boundary point is the foot on the nearest edge line, so the edge
+  // distance equals the line distance; a point beyond the end of a sliver (the difference of
+  // two collinear segments) can pass the edge-line test by rounding alone, and is outside.
+  return inside && outside - inner <= LD(1e-12) * (1 + outside) ? -inner : outside;
 }
 
 /// Signed distance of two placed rounded shapes (the Minkowski-difference hull).

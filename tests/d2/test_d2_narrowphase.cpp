@@ -9,6 +9,8 @@
 
 #include <array>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "d2/d2_reference.hpp"
 #include "sweep_size.hpp"
@@ -155,6 +157,119 @@ TEST(D2Distance, NonFinitePoseIsInvalidInput) {
   EXPECT_EQ(r.status, PairStatus::InvalidInput);
   EXPECT_FALSE(intersect(circle, Pose::from({nan, 0}, 0), circle, Pose::identity()));
   EXPECT_EQ(collide(circle, Pose::from({nan, 0}, 0), circle, Pose::identity()).count, 0);
+}
+
+/// The signed distance of `a` and `b` against the long-double Minkowski hull, with the
+/// witnesses on their surfaces.
+void expect_distance_matches_hull(const test::RandomShape& a, const RefPose& pa, const test::RandomShape& b,
+                                  const RefPose& pb, const std::string& what) {
+  const LD expected = test::signed_distance(a.ref, pa, b.ref, pb);
+  const DistanceResult r = distance(a.shape, pa.pose(), b.shape, pb.pose());
+  const Real tol = tolerance(Real(8));
+  ASSERT_NEAR(r.signed_distance, static_cast<Real>(expected), tol) << what;
+  ASSERT_LE(glm::length(r.point_b - r.point_a - r.signed_distance * r.normal), tol) << what;
+  ASSERT_NEAR(static_cast<Real>(test::point_signed_distance(a.ref, pa, {r.point_a.x, r.point_a.y})), Real(0), 4 * tol)
+      << what;
+  ASSERT_NEAR(static_cast<Real>(test::point_signed_distance(b.ref, pb, {r.point_b.x, r.point_b.y})), Real(0), 4 * tol)
+      << what;
+  const LD cores = expected + a.ref.radius + b.ref.radius;  // the cores' signed distance
+  if (std::abs(cores) > 4 * tol) {
+    ASSERT_EQ(r.method, cores > 0 ? PairMethod::Gjk : PairMethod::Sat) << what;
+  }
+}
+
+/// A shape with its defining numbers from a core's vertices (counter-clockwise) and radius.
+test::RandomShape shape_of(const std::vector<Vec2>& core, Real radius) {
+  test::RandomShape s{Shape(Point::create(core[0]).value()), {}};
+  for (const Vec2& v : core) s.ref.core.push_back({v.x, v.y});
+  s.ref.radius = radius;
+  if (core.size() == 1) {
+    s.shape = radius > Real(0) ? Shape(Circle::create(radius, core[0]).value()) : Shape(Point::create(core[0]).value());
+  } else if (core.size() == 2) {
+    s.shape = radius > Real(0) ? Shape(Capsule::create(core[0], core[1], radius).value())
+                               : Shape(Segment::create(core[0], core[1]).value());
+  } else {
+    s.shape = Shape(Polygon::create(core, radius).value());
+  }
+  return s;
+}
+
+// The closed form of a 1-vertex core against a core with edges: the point in every region
+// of a polygon (each vertex's and edge's outer region, inside, on edges and vertices) and
+// of a segment (beside it, beyond each end, on its line, on it).
+TEST(D2ClosedForm, PointAgainstPolygonAndSegmentInEveryRegion) {
+  const std::vector<Vec2> pentagon = {
+      {Real(-1), Real(-1)}, {Real(1.5), Real(-1)}, {Real(2), Real(0.5)}, {Real(0), Real(1.5)}, {Real(-1.2), Real(0.4)}};
+  const std::vector<Vec2> stick = {{Real(-1), Real(0.2)}, {Real(1.5), Real(-0.3)}};
+  proxima::test::Random rng(0xD2CF1);
+  for (const auto& core : {pentagon, stick}) {
+    for (const Real core_radius : {Real(0), Real(0.25)}) {
+      const test::RandomShape c = shape_of(core, core_radius);
+      for (int i = 0; i < proxima::test::sweep_size(2000); ++i) {
+        const Real x = rng.uniform(Real(-3), Real(3)), y = rng.uniform(Real(-3), Real(3));
+        const int k = rng.integer(0, static_cast<int>(core.size()) - 1);
+        const Vec2 on_edge = core[k] + rng.uniform(Real(0), Real(1)) * (core[(k + 1) % core.size()] - core[k]);
+        const Vec2 q = i % 4 == 0 ? on_edge : (i % 4 == 1 ? core[k] : Vec2(x, y));
+        const test::RandomShape p = shape_of({Vec2(Real(0))}, i % 2 == 0 ? Real(0) : Real(0.3));
+        const RefPose pose_c{rng.uniform(Real(-2), Real(2)), rng.uniform(Real(-2), Real(2)),
+                             rng.uniform(Real(-3), Real(3))};
+        const test::P wq = pose_c.apply({q.x, q.y});
+        const RefPose moved{wq.x, wq.y, rng.uniform(Real(-3), Real(3))};
+        expect_distance_matches_hull(c, pose_c, p, moved, "core-point case " + std::to_string(i));
+        expect_distance_matches_hull(p, moved, c, pose_c, "point-core case " + std::to_string(i));
+      }
+    }
+  }
+}
+
+// The closed form of two 2-vertex cores: crossing, touching at an end, T-junctions,
+// parallel and collinear (apart, overlapping, touching end to end) segments and capsules.
+TEST(D2ClosedForm, SegmentPairsCrossingParallelAndCollinear) {
+  const std::vector<std::pair<std::vector<Vec2>, std::vector<Vec2>>> cases = {
+      {{{-1, 0}, {1, 0}}, {{0, -1}, {0, 1}}},                                // crossing
+      {{{-1, 0}, {1, 0}}, {{Real(0.3), Real(-0.2)}, {Real(0.5), Real(2)}}},  // crossing near an end
+      {{{-1, 0}, {1, 0}}, {{0, 0}, {0, 1}}},                                 // T-junction
+      {{{-1, 0}, {1, 0}}, {{1, 0}, {2, 1}}},                                 // end to end
+      {{{-1, 0}, {1, 0}}, {{-2, 1}, {3, 1}}},                                // parallel
+      {{{-1, 0}, {1, 0}}, {{2, 0}, {3, 0}}},                                 // collinear, apart
+      {{{-1, 0}, {1, 0}}, {{Real(0.5), 0}, {3, 0}}},                         // collinear, overlapping
+      {{{-1, 0}, {1, 0}}, {{1, 0}, {3, 0}}},                                 // collinear, end to end
+      {{{-1, 0}, {1, 0}}, {{Real(1.5), Real(0.5)}, {Real(3), Real(0.501)}}}  // nearly parallel, apart
+  };
+  proxima::test::Random rng(0xD2CF2);
+  for (std::size_t c = 0; c < cases.size(); ++c) {
+    for (int i = 0; i < 50; ++i) {
+      const Real ra = i % 2 == 0 ? Real(0) : Real(0.2), rb = i % 3 == 0 ? Real(0) : Real(0.1);
+      const test::RandomShape a = shape_of(cases[c].first, ra), b = shape_of(cases[c].second, rb);
+      const RefPose pose{rng.uniform(Real(-4), Real(4)), rng.uniform(Real(-4), Real(4)),
+                         rng.uniform(Real(-3), Real(3))};
+      expect_distance_matches_hull(a, pose, b, pose, "segment case " + std::to_string(c));
+      expect_distance_matches_hull(b, pose, a, pose, "segment case " + std::to_string(c) + " swapped");
+    }
+  }
+}
+
+// The closed form of cores with area apart: corner to corner, corner to edge, and parallel
+// edges overlapping or not along their length (the reference edge's deepest vertex ties).
+TEST(D2ClosedForm, PolygonsApartByCornersEdgesAndParallelFaces) {
+  proxima::test::Random rng(0xD2CF3);
+  const std::vector<Vec2> box = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
+  const std::vector<Vec2> stick = {{-1, 0}, {1, 0}};
+  for (int i = 0; i < proxima::test::sweep_size(3000); ++i) {
+    const test::RandomShape a = shape_of(box, i % 2 == 0 ? Real(0) : Real(0.1));
+    const test::RandomShape b = shape_of(i % 3 == 0 ? stick : box, i % 5 == 0 ? Real(0.2) : Real(0));
+    // B beside A's right face, turned by a multiple of a quarter (parallel faces) or freely.
+    const Real angle = i % 4 == 0 ? rng.uniform(Real(-3), Real(3)) : Real(rng.integer(0, 3)) * kPi / 2;
+    const RefPose pa{0, 0, 0};
+    const RefPose pb{rng.uniform(Real(1.8), Real(3.5)), rng.uniform(Real(-3), Real(3)), angle};
+    const RefPose frame{rng.uniform(Real(-4), Real(4)), rng.uniform(Real(-4), Real(4)), rng.uniform(Real(-3), Real(3))};
+    const auto moved = [&](const RefPose& p) {
+      const test::P o = frame.apply({p.x, p.y});
+      return RefPose{o.x, o.y, p.angle + frame.angle};
+    };
+    expect_distance_matches_hull(a, moved(pa), b, moved(pb), "case " + std::to_string(i));
+    expect_distance_matches_hull(b, moved(pb), a, moved(pa), "swapped case " + std::to_string(i));
+  }
 }
 
 /// Checks a manifold against the reference: count iff within reach, points on or in their

@@ -32,7 +32,7 @@ struct DistanceResult {
   Vec2 normal{Real(1), Real(0)};              ///< unit, A to B, world frame
   PairStatus status = PairStatus::Separated;  ///< separated, touching, penetrating or invalid input
   PairMethod method = PairMethod::Gjk;        ///< Gjk (cores apart) or Sat (cores overlapping)
-  int iterations = 0;                         ///< GJK iterations (0 for the SAT penetration alone)
+  int iterations = 0;                         ///< 0: the 2D cores are measured in closed form
   PartIndex part_a = -1;                      ///< chain segment of A holding point_a (-1: convex A)
   PartIndex part_b = -1;                      ///< chain segment of B holding point_b (-1: convex B)
 };

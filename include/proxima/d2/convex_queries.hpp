@@ -15,10 +15,12 @@
 
 namespace proxima::d2 {
 
-/// Signed distance between two rounded cores with witness points (contact.hpp convention).
-/// Disjoint cores: GJK on the cores (method Gjk), radii subtracted. Overlapping cores: the
-/// separating-axis test over both cores' edge normals gives the exact penetration of the
-/// cores (method Sat), radii added; two coincident 1-vertex cores get A's local x axis.
+/// Signed distance between two rounded cores with witness points (contact.hpp convention),
+/// in closed form: disjoint cores get their closest points (method Gjk, the cores-apart
+/// case), radii subtracted; overlapping cores get the exact penetration of the cores from
+/// the separating-axis test over both cores' edge normals (method Sat), radii added. A
+/// 1-vertex core takes one pass over the other core's edges; two coincident 1-vertex cores
+/// get A's local x axis.
 DistanceResult core_distance(const ConvexCore& a, const Pose& pose_a, const ConvexCore& b, const Pose& pose_b);
 
 /// True when the rounded cores overlap or touch: core_distance's signed distance <= the
