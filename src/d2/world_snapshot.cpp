@@ -277,8 +277,8 @@ void read_slots(Reader& r, detail::WorldState& w) {
     detail::Slot s;
     s.generation = r.u32();
     const std::uint8_t flags = r.u8();
-    const bool sensor_of_the_dead = (flags & 1) == 0 && (flags & 4) != 0;
-    if (flags > 7 || sensor_of_the_dead) r.fail(field, "unknown slot flags");
+    const bool dead_sensor = (flags & 1) == 0 && (flags & 4) != 0;
+    if (flags > 7 || dead_sensor) r.fail(field, "unknown slot flags");
     s.alive = (flags & 1) != 0;
     s.moved = (flags & 2) != 0;
     s.sensor = (flags & 4) != 0;
