@@ -7,13 +7,14 @@
 
 #include "json_shapes_2d.hpp"
 #include "world_json.hpp"
+#include "world_snapshot_file.hpp"
 
 namespace proxima::tool {
 
 namespace {
 
-constexpr std::array<std::string_view, 7> kOperations = {"add",  "remove",  "move",   "set_filter",
-                                                         "step", "raycast", "overlap"};
+constexpr std::array<std::string_view, 11> kOperations = {"add",     "remove",  "move", "set_filter", "exclude", "step",
+                                                          "raycast", "overlap", "hash", "save",       "load"};
 
 std::string operation_names() {
   std::string names;
@@ -106,6 +107,16 @@ Json WorldSession2d::set_filter(const Json& request) {
   return ok();
 }
 
+Json WorldSession2d::exclude(const Json& request) {
+  reject_unknown_fields(request, "", {"id", "op", "a", "b", "excluded"});
+  const d2::ObjectHandle a = live_handle(request, "a");
+  const d2::ObjectHandle b = live_handle(request, "b");
+  bool excluded = true;
+  if (const Json* e = find_member(request, "excluded")) excluded = read_bool(*e, "excluded");
+  check_world(world_.set_pair_excluded(a, b, excluded));
+  return ok();
+}
+
 Json WorldSession2d::step(const Json& request) {
   reject_unknown_fields(request, "", {"id", "op", "contacts"});
   bool contacts = false;
@@ -168,12 +179,33 @@ Json WorldSession2d::overlap(const Json& request) const {
   return Json{{"objects", list}};
 }
 
+Json WorldSession2d::hash(const Json& request) const {
+  reject_unknown_fields(request, "", {"id", "op"});
+  return Json{{"hash", hash_text(world_.state_hash())}};
+}
+
+Json WorldSession2d::save(const Json& request) const {
+  reject_unknown_fields(request, "", {"id", "op", "file"});
+  save_snapshot_file(world_, request);
+  return ok();
+}
+
+Json WorldSession2d::load(const Json& request) {
+  reject_unknown_fields(request, "", {"id", "op", "file"});
+  world_ = load_snapshot_file<d2::CollisionWorld>(request);
+  return Json{{"objects", world_.size()}};
+}
+
 Json WorldSession2d::dispatch(const Json& request) {
   const std::string name = read_op(request);
   if (name == "add") return add(request);
   if (name == "remove") return remove(request);
   if (name == "move") return move(request);
   if (name == "set_filter") return set_filter(request);
+  if (name == "exclude") return exclude(request);
+  if (name == "hash") return hash(request);
+  if (name == "save") return save(request);
+  if (name == "load") return load(request);
   if (name == "step") return step(request);
   if (name == "raycast") return raycast(request);
   if (name == "overlap") return overlap(request);

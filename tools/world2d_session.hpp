@@ -1,7 +1,8 @@
 #pragma once
 // The 2D world protocol (`proxima world --2d`): a d2::CollisionWorld kept for a session and
 // driven by JSON lines like `proxima world`, with 2D shapes and poses (docs/world-protocol.md,
-// "2D worlds"): add, remove, move, set_filter, step, raycast, overlap.
+// "2D worlds"): add, remove, move, set_filter, exclude, step, raycast, overlap, hash, save,
+// load.
 #include <proxima/core/executor.hpp>
 #include <proxima/d2/collision_world.hpp>
 
@@ -34,9 +35,13 @@ class WorldSession2d {
   Json remove(const Json& request);
   Json move(const Json& request);
   Json set_filter(const Json& request);
+  Json exclude(const Json& request);
   Json step(const Json& request);
   Json raycast(const Json& request) const;
   Json overlap(const Json& request) const;
+  Json hash(const Json& request) const;
+  Json save(const Json& request) const;
+  Json load(const Json& request);
   d2::ObjectHandle live_handle(const Json& request, std::string_view key) const;
 
   d2::CollisionWorld world_;

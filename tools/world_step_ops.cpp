@@ -2,13 +2,13 @@
 // save and load (binary snapshots).
 #include <algorithm>
 #include <cstdio>
-#include <fstream>
 #include <utility>
 #include <vector>
 
 #include "world_json.hpp"
 #include "world_ops.hpp"
 #include "world_session.hpp"
+#include "world_snapshot_file.hpp"
 
 namespace proxima::tool {
 
@@ -89,15 +89,13 @@ Json manifolds(std::span<const WorldManifold> contacts) {
   return sorted_list(entries);
 }
 
+}  // namespace
+
 std::string hash_text(std::uint64_t hash) {
   char text[17];
   std::snprintf(text, sizeof(text), "%016llx", static_cast<unsigned long long>(hash));
   return text;
 }
-
-std::string member_file(const Json& request) { return read_string(require_member(request, "", "file"), "file"); }
-
-}  // namespace
 
 Json op_world_step(WorldSession& session, const Json& request) {
   reject_unknown_fields(request, "", {"id", "op", "dt", "contacts"});
@@ -129,14 +127,7 @@ Json op_world_hash(WorldSession& session, const Json& request) {
 
 Json op_world_save(WorldSession& session, const Json& request) {
   reject_unknown_fields(request, "", {"id", "op", "file"});
-  const std::string file = member_file(request);
-  std::ofstream out(file, std::ios::binary | std::ios::trunc);
-  if (!out) throw FieldError("file", "invalid_argument", "cannot open \"" + file + "\" for writing");
-  if (const auto error = session.world().save(out)) {
-    throw FieldError("file", to_string(error->code), "writing \"" + file + "\": " + error->message);
-  }
-  out.flush();
-  if (!out) throw FieldError("file", "invalid_argument", "writing \"" + file + "\" failed");
+  save_snapshot_file(session.world(), request);
   Json answer = Json::object();
   answer["ok"] = true;
   return answer;
@@ -144,15 +135,7 @@ Json op_world_save(WorldSession& session, const Json& request) {
 
 Json op_world_load(WorldSession& session, const Json& request) {
   reject_unknown_fields(request, "", {"id", "op", "file"});
-  const std::string file = member_file(request);
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw FieldError("file", "invalid_argument", "cannot open \"" + file + "\" for reading");
-  Result<CollisionWorld> loaded = CollisionWorld::load(in);
-  if (!loaded.ok()) {
-    const Error& e = loaded.error();
-    throw FieldError("file", to_string(e.code), "in \"" + file + "\": " + e.what());
-  }
-  session.replace_world(std::move(loaded).value());
+  session.replace_world(load_snapshot_file<CollisionWorld>(request));
   Json answer = Json::object();
   answer["objects"] = session.world().size();
   return answer;

@@ -9,26 +9,22 @@
 #include <pybind11/stl.h>
 #include <sstream>
 
-#include "conversions.hpp"
+#include "d2_conversions.hpp"
 #include "module_parts.hpp"
 
 namespace proxima::python {
-namespace {
-
-using D2Shape = d2::Shape;
 
 d2::Vec2 to_vec2(py::handle v, const char* field) {
   const std::vector<double> n = to_numbers(v, 2, field);
   return {Real(n[0]), Real(n[1])};
 }
 
-py::array_t<double> vec2(const d2::Vec2& v) {
+py::array_t<double> to_numpy2(const d2::Vec2& v) {
   py::array_t<double> out(2);
   out.mutable_data()[0] = double(v.x), out.mutable_data()[1] = double(v.y);
   return out;
 }
 
-/// A 2D pose from None (identity) or (x, y, angle).
 d2::Pose to_pose2(py::handle v, const char* field) {
   if (v.is_none()) return d2::Pose::identity();
   const std::vector<double> n = to_numbers(v, 3, field);
@@ -49,14 +45,18 @@ std::vector<d2::Vec2> to_points2(py::handle v, const char* field) {
   return points;
 }
 
+const d2::Shape& to_shape2(py::handle v, const char* field) {
+  if (!py::isinstance<d2::Shape>(v)) raise_argument_error(field, "expected a proxima.d2.Shape");
+  return v.cast<const d2::Shape&>();
+}
+
+namespace {
+
+using D2Shape = d2::Shape;
+
 template <class S>
 D2Shape make(Result<S>&& r) {
   return D2Shape(take(std::move(r)));
-}
-
-const D2Shape& shape_arg(py::handle v, const char* field) {
-  if (!py::isinstance<D2Shape>(v)) raise_argument_error(field, "expected a proxima.d2.Shape");
-  return v.cast<const D2Shape&>();
 }
 
 void bind_d2_types(py::module_& d) {
@@ -67,15 +67,15 @@ void bind_d2_types(py::module_& d) {
           "aabb",
           [](const D2Shape& s, py::handle pose) {
             const d2::Aabb b = s.world_aabb(to_pose2(pose, "pose"));
-            return py::make_tuple(vec2(b.min), vec2(b.max));
+            return py::make_tuple(to_numpy2(b.min), to_numpy2(b.max));
           },
           py::arg("pose") = py::none(), "(min, max) corners of the placed shape's box.")
       .def("__repr__", [](const D2Shape& s) { return std::string("d2.Shape(") + d2::to_string(s.type()) + ")"; });
   py::class_<d2::DistanceResult>(d, "DistanceResult", "2D separation or penetration (world frame).")
       .def_readonly("signed_distance", &d2::DistanceResult::signed_distance)
-      .def_property_readonly("point_a", [](const d2::DistanceResult& r) { return vec2(r.point_a); })
-      .def_property_readonly("point_b", [](const d2::DistanceResult& r) { return vec2(r.point_b); })
-      .def_property_readonly("normal", [](const d2::DistanceResult& r) { return vec2(r.normal); })
+      .def_property_readonly("point_a", [](const d2::DistanceResult& r) { return to_numpy2(r.point_a); })
+      .def_property_readonly("point_b", [](const d2::DistanceResult& r) { return to_numpy2(r.point_b); })
+      .def_property_readonly("normal", [](const d2::DistanceResult& r) { return to_numpy2(r.normal); })
       .def_readonly("status", &d2::DistanceResult::status)
       .def_readonly("part_a", &d2::DistanceResult::part_a, "Chain segment of A (-1: convex).")
       .def_readonly("part_b", &d2::DistanceResult::part_b)
@@ -83,14 +83,14 @@ void bind_d2_types(py::module_& d) {
         return "d2.DistanceResult(signed_distance=" + repr_real(r.signed_distance) + ")";
       });
   py::class_<d2::Manifold>(d, "Manifold", "Up to 2 contact points sharing one normal (world frame).")
-      .def_property_readonly("normal", [](const d2::Manifold& m) { return vec2(m.normal); })
+      .def_property_readonly("normal", [](const d2::Manifold& m) { return to_numpy2(m.normal); })
       .def_property_readonly(
           "points",
           [](const d2::Manifold& m) {
             py::list l;
             for (int i = 0; i < m.count; ++i) {
               const d2::ContactPoint& p = m.points[static_cast<std::size_t>(i)];
-              l.append(py::dict(py::arg("point_a") = vec2(p.point_a), py::arg("point_b") = vec2(p.point_b),
+              l.append(py::dict(py::arg("point_a") = to_numpy2(p.point_a), py::arg("point_b") = to_numpy2(p.point_b),
                                 py::arg("depth") = p.depth, py::arg("feature_id") = p.feature_id));
             }
             return l;
@@ -99,8 +99,8 @@ void bind_d2_types(py::module_& d) {
       .def("__repr__", [](const d2::Manifold& m) { return "d2.Manifold(points=" + std::to_string(m.count) + ")"; });
   py::class_<d2::RayHit>(d, "RayHit", "Where a 2D ray meets a shape.")
       .def_readonly("t", &d2::RayHit::t)
-      .def_property_readonly("point", [](const d2::RayHit& h) { return vec2(h.point); })
-      .def_property_readonly("normal", [](const d2::RayHit& h) { return vec2(h.normal); })
+      .def_property_readonly("point", [](const d2::RayHit& h) { return to_numpy2(h.point); })
+      .def_property_readonly("normal", [](const d2::RayHit& h) { return to_numpy2(h.normal); })
       .def_readonly("part", &d2::RayHit::part)
       .def("__repr__", [](const d2::RayHit& h) { return "d2.RayHit(t=" + repr_real(h.t) + ")"; });
   py::class_<d2::ToiResult>(d, "ToiResult", "2D time of impact (world frame at toi).")
@@ -108,8 +108,8 @@ void bind_d2_types(py::module_& d) {
       .def_readonly("toi", &d2::ToiResult::toi)
       .def_readonly("t_lower", &d2::ToiResult::t_lower)
       .def_readonly("t_upper", &d2::ToiResult::t_upper)
-      .def_property_readonly("point", [](const d2::ToiResult& r) { return vec2(r.point); })
-      .def_property_readonly("normal", [](const d2::ToiResult& r) { return vec2(r.normal); })
+      .def_property_readonly("point", [](const d2::ToiResult& r) { return to_numpy2(r.point); })
+      .def_property_readonly("normal", [](const d2::ToiResult& r) { return to_numpy2(r.normal); })
       .def("__repr__", [](const d2::ToiResult& r) {
         return std::string("d2.ToiResult(status=") + to_string(r.status) + ", toi=" + repr_real(r.toi) + ")";
       });
@@ -153,14 +153,14 @@ void bind_d2_queries(py::module_& d) {
   d.def(
       "distance",
       [](py::handle a, py::handle pa, py::handle b, py::handle pb) {
-        return d2::distance(shape_arg(a, "a"), to_pose2(pa, "pose_a"), shape_arg(b, "b"), to_pose2(pb, "pose_b"));
+        return d2::distance(to_shape2(a, "a"), to_pose2(pa, "pose_a"), to_shape2(b, "b"), to_pose2(pb, "pose_b"));
       },
       py::arg("a"), py::arg("pose_a"), py::arg("b"), py::arg("pose_b"),
       "Signed distance with witness points and the unit normal from A to B (world frame).");
   d.def(
       "intersect",
       [](py::handle a, py::handle pa, py::handle b, py::handle pb) {
-        return d2::intersect(shape_arg(a, "a"), to_pose2(pa, "pose_a"), shape_arg(b, "b"), to_pose2(pb, "pose_b"));
+        return d2::intersect(to_shape2(a, "a"), to_pose2(pa, "pose_a"), to_shape2(b, "b"), to_pose2(pb, "pose_b"));
       },
       py::arg("a"), py::arg("pose_a"), py::arg("b"), py::arg("pose_b"),
       "True when the placed shapes touch or overlap.");
@@ -168,7 +168,7 @@ void bind_d2_queries(py::module_& d) {
       "collide",
       [](py::handle a, py::handle pa, py::handle b, py::handle pb, Real contact_distance) {
         if (!(contact_distance >= Real(0))) raise_argument_error("contact_distance", "must be >= 0");
-        return d2::collide(shape_arg(a, "a"), to_pose2(pa, "pose_a"), shape_arg(b, "b"), to_pose2(pb, "pose_b"),
+        return d2::collide(to_shape2(a, "a"), to_pose2(pa, "pose_a"), to_shape2(b, "b"), to_pose2(pb, "pose_b"),
                            contact_distance);
       },
       py::arg("a"), py::arg("pose_a"), py::arg("b"), py::arg("pose_b"), py::arg("contact_distance") = Real(0),
@@ -178,14 +178,14 @@ void bind_d2_queries(py::module_& d) {
       [](py::handle s, py::handle pose, py::handle origin, py::handle direction, Real max_t) {
         const d2::Ray ray{to_vec2(origin, "origin"), to_vec2(direction, "direction")};
         if (ray.direction == d2::Vec2(Real(0))) raise_argument_error("direction", "must not be zero");
-        return d2::raycast(shape_arg(s, "shape"), to_pose2(pose, "pose"), ray, max_t);
+        return d2::raycast(to_shape2(s, "shape"), to_pose2(pose, "pose"), ray, max_t);
       },
       py::arg("shape"), py::arg("pose"), py::arg("origin"), py::arg("direction"),
       py::arg("max_t") = std::numeric_limits<Real>::max(), "The first hit with t in [0, max_t], or None.");
   d.def(
       "contains",
       [](py::handle s, py::handle pose, py::handle p) {
-        return d2::contains(shape_arg(s, "shape"), to_pose2(pose, "pose"), to_vec2(p, "point"));
+        return d2::contains(to_shape2(s, "shape"), to_pose2(pose, "pose"), to_vec2(p, "point"));
       },
       py::arg("shape"), py::arg("pose"), py::arg("point"), "True when the placed shape contains the point.");
   d.def(
@@ -197,7 +197,7 @@ void bind_d2_queries(py::module_& d) {
         d2::ToiOptions o;
         o.target_distance = target_distance;
         o.tolerance = tolerance;
-        return take(d2::time_of_impact(shape_arg(a, "a"), ma, shape_arg(b, "b"), mb, o));
+        return take(d2::time_of_impact(to_shape2(a, "a"), ma, to_shape2(b, "b"), mb, o));
       },
       py::arg("a"), py::arg("start_a"), py::arg("translation_a"), py::arg("rotation_a"), py::arg("b"),
       py::arg("start_b"), py::arg("translation_b") = py::make_tuple(0.0, 0.0), py::arg("rotation_b") = Real(0),
@@ -207,8 +207,8 @@ void bind_d2_queries(py::module_& d) {
   d.def(
       "cast",
       [](py::handle a, py::handle pa, py::handle translation, py::handle b, py::handle pb) {
-        return take(d2::shape_cast(shape_arg(a, "a"), to_pose2(pa, "pose_a"), to_vec2(translation, "translation"),
-                                   shape_arg(b, "b"), to_pose2(pb, "pose_b")));
+        return take(d2::shape_cast(to_shape2(a, "a"), to_pose2(pa, "pose_a"), to_vec2(translation, "translation"),
+                                   to_shape2(b, "b"), to_pose2(pb, "pose_b")));
       },
       py::arg("a"), py::arg("pose_a"), py::arg("translation"), py::arg("b"), py::arg("pose_b"),
       "Where a, moved from pose_a along translation (t in [0, 1]), first meets b at rest.");

@@ -4,7 +4,8 @@
 //
 // Callbacks: the step runs with the GIL released; the listener re-takes it for each call.
 // An exception raised by a Python callback stops further callbacks of that step and is
-// raised again from step() once the library's step has finished (never thrown through it).
+// raised again from step() once the library's step has finished (never thrown through it):
+// world_rows.hpp's ListenerForwarder, shared with the 2D world (bind_world_d2.cpp).
 #include <proxima/core/validate.hpp>
 #include <proxima/debug/capture_recorder.hpp>
 #include <proxima/world/collision_world.hpp>
@@ -12,21 +13,15 @@
 #include <fstream>
 #include <limits>
 #include <pybind11/stl.h>
-#include <sstream>
 
 #include "batch_arrays.hpp"
 #include "module_parts.hpp"
 #include "shape_object.hpp"
+#include "world_rows.hpp"
 
 namespace proxima::python {
 namespace {
 
-struct ContactEventRow {
-  std::uint64_t a, b, user_data_a, user_data_b;
-};
-struct SensorEventRow {
-  std::uint64_t sensor, other, user_data_sensor, user_data_other;
-};
 struct ImpactEventRow {
   std::uint64_t a, b;
   double toi;
@@ -63,28 +58,14 @@ struct WorldClosestRow {
 void put(double (&out)[3], const Vec3& v) { out[0] = double(v.x), out[1] = double(v.y), out[2] = double(v.z); }
 
 /// Forwards the world's callbacks to a Python object's on_* methods (those it has).
-class PyListener final : public WorldListener {
+class PyListener final : public WorldListener, public ListenerForwarder {
  public:
-  py::object target;   ///< the Python listener, or None
-  py::object pending;  ///< the first exception a callback raised during this step
   void on_contact_begin(CollisionWorld&, const ContactEvent& e) override { call("on_contact_begin", e); }
   void on_contact_persist(CollisionWorld&, const ContactEvent& e) override { call("on_contact_persist", e); }
   void on_contact_end(CollisionWorld&, const ContactEvent& e) override { call("on_contact_end", e); }
   void on_sensor_enter(CollisionWorld&, const SensorEvent& e) override { call("on_sensor_enter", e); }
   void on_sensor_exit(CollisionWorld&, const SensorEvent& e) override { call("on_sensor_exit", e); }
   void on_impact(CollisionWorld&, const ImpactEvent& e) override { call("on_impact", e); }
-
- private:
-  template <class E>
-  void call(const char* name, const E& event) {
-    py::gil_scoped_acquire gil;
-    if (target.is_none() || !pending.is_none() || !py::hasattr(target, name)) return;
-    try {
-      target.attr(name)(event);
-    } catch (py::error_already_set& e) {
-      pending = py::make_tuple(e.type(), e.value(), e.trace());
-    }
-  }
 };
 
 /// A capture file being written (docs/capture-format.md): one line per step.
@@ -100,44 +81,11 @@ struct PyWorld {
   std::unique_ptr<Recording> recording;  ///< set while recording
 };
 
-ObjectHandle handle_of(std::uint64_t h) { return ObjectHandle::from_integer(h); }
-
-QueryFilter query_filter(std::uint64_t mask, std::int32_t group, py::handle ignore) {
-  QueryFilter f;
-  f.mask = mask;
-  f.group = group;
-  if (!ignore.is_none()) f.ignore = handle_of(ignore.cast<std::uint64_t>());
-  return f;
-}
-
 QueryMode query_mode(const std::string& mode) {
   if (mode == "closest") return QueryMode::Closest;
   if (mode == "any") return QueryMode::Any;
   if (mode == "all") return QueryMode::All;
   raise_argument_error("mode", "expected 'closest', 'any' or 'all'");
-}
-
-template <class T>
-py::array_t<T> rows_of(std::size_t n) {
-  return py::array_t<T>(static_cast<py::ssize_t>(n));
-}
-
-py::array contact_events(const std::vector<ContactEvent>& events) {
-  auto out = rows_of<ContactEventRow>(events.size());
-  ContactEventRow* r = out.mutable_data();
-  for (const ContactEvent& e : events) {
-    *r++ = {e.pair.a.to_integer(), e.pair.b.to_integer(), e.user_data_a, e.user_data_b};
-  }
-  return out;
-}
-
-py::array sensor_events(const std::vector<SensorEvent>& events) {
-  auto out = rows_of<SensorEventRow>(events.size());
-  SensorEventRow* r = out.mutable_data();
-  for (const SensorEvent& e : events) {
-    *r++ = {e.sensor.to_integer(), e.other.to_integer(), e.user_data_sensor, e.user_data_other};
-  }
-  return out;
 }
 
 py::array impact_events(const std::vector<ImpactEvent>& events) {
@@ -172,47 +120,16 @@ py::array contact_points(std::span<const WorldManifold> manifolds) {
   return out;
 }
 
-py::dict events_dict(const StepEvents& e) {
-  py::dict d;
-  d["begin"] = contact_events(e.begin);
-  d["persist"] = contact_events(e.persist);
-  d["end"] = contact_events(e.end);
-  d["sensor_enter"] = sensor_events(e.sensor_enter);
-  d["sensor_exit"] = sensor_events(e.sensor_exit);
-  d["impacts"] = impact_events(e.impacts);
-  return d;
-}
-
-WorldSettings settings_of(const std::string& broadphase, Real contact_distance, int max_contacts,
-                          bool sensors_sense_sensors, bool continuous, Real ccd_safety_factor, Real ccd_tolerance) {
-  WorldSettings s;
-  s.broadphase = broadphase;
-  s.contact_distance = contact_distance;
-  s.max_contacts = max_contacts;
-  s.sensors_sense_sensors = sensors_sense_sensors;
-  s.continuous = continuous;
-  s.ccd_safety_factor = ccd_safety_factor;
-  s.ccd_tolerance = ccd_tolerance;
-  return s;
-}
-
 std::unique_ptr<PyWorld> wrap_world(CollisionWorld&& world) {
   auto w = std::make_unique<PyWorld>();
   w->world = std::make_unique<CollisionWorld>(std::move(world));
-  w->listener.target = py::none();
-  w->listener.pending = py::none();
   return w;
 }
 
-py::bytes save_world(const PyWorld& w) {
-  std::ostringstream out(std::ios::binary);
-  check(w.world->save(out));
-  return py::bytes(out.str());
-}
+py::bytes save_world(const PyWorld& w) { return snapshot_bytes(*w.world); }
 
 std::unique_ptr<PyWorld> load_world(const py::bytes& data) {
-  std::istringstream in(std::string(data), std::ios::binary);
-  return wrap_world(take(CollisionWorld::load(in)));
+  return wrap_world(world_from_bytes<CollisionWorld>(data));
 }
 
 }  // namespace
@@ -344,12 +261,7 @@ void step(PyWorld& w, Real dt, long threads) {
     error = count <= 1 ? w.world->step(dt) : w.world->step(dt, thread_pool(count));
   }
   if (w.recording && !error) check(w.recording->recorder->record_step(*w.world, dt));
-  if (!w.listener.pending.is_none()) {
-    const py::tuple e = w.listener.pending;
-    w.listener.pending = py::none();
-    PyErr_Restore(py::object(e[0]).release().ptr(), py::object(e[1]).release().ptr(), py::object(e[2]).release().ptr());
-    throw py::error_already_set();
-  }
+  w.listener.raise_pending();
   check(error);
 }
 
@@ -554,33 +466,14 @@ void bind_world(py::module_& m) {
            py::arg("ccd") = CcdMode::Auto, py::arg("user_data") = 0, py::arg("parent") = py::none(),
            py::arg("local_pose") = py::none(),
            "Adds an object; returns its handle (an int). A half-space or a mesh only as kind=ObjectKind.Static.")
-      .def(
-          "remove", [](PyWorld& w, std::uint64_t h) { check(w.world->remove(handle_of(h))); }, py::arg("object"))
-      .def(
-          "move",
-          [](PyWorld& w, std::uint64_t h, py::handle pose) {
-            check(w.world->move(handle_of(h), to_transform(pose, "pose")));
-          },
-          py::arg("object"), py::arg("pose"),
-          "Sets the object's pose for the next step (its motion for CCD starts at the old one).")
       .def("move_batch", &move_batch, py::arg("objects"), py::arg("poses"),
            "Moves objects[i] to poses[i] ((N, 7) array); all validated first, nothing moved on an error.")
-      .def(
-          "teleport",
-          [](PyWorld& w, std::uint64_t h, py::handle pose) {
-            check(w.world->teleport(handle_of(h), to_transform(pose, "pose")));
-          },
-          py::arg("object"), py::arg("pose"), "Sets the pose with no motion (continuous detection sweeps nothing).")
       .def(
           "set_geometry",
           [](PyWorld& w, std::uint64_t h, py::handle g) {
             check(w.world->set_geometry(handle_of(h), *to_shape(g, "geometry").shape));
           },
           py::arg("object"), py::arg("geometry"))
-      .def(
-          "set_filter",
-          [](PyWorld& w, std::uint64_t h, const CollisionFilter& f) { check(w.world->set_filter(handle_of(h), f)); },
-          py::arg("object"), py::arg("filter"))
       .def(
           "set_kind", [](PyWorld& w, std::uint64_t h, ObjectKind k) { check(w.world->set_kind(handle_of(h), k)); },
           py::arg("object"), py::arg("kind"))
@@ -598,14 +491,6 @@ void bind_world(py::module_& m) {
           },
           py::arg("object"), py::arg("parent"), py::arg("local_pose") = py::none(),
           "Attaches the object to parent at local_pose (parent frame); it then moves with it.")
-      .def(
-          "set_pair_excluded",
-          [](PyWorld& w, std::uint64_t a, std::uint64_t b, bool excluded) {
-            check(w.world->set_pair_excluded(handle_of(a), handle_of(b), excluded));
-          },
-          py::arg("a"), py::arg("b"), py::arg("excluded") = true, "Never pair these two objects (or again allow it).")
-      .def("__len__", [](const PyWorld& w) { return w.world->size(); })
-      .def("__contains__", [](const PyWorld& w, std::uint64_t h) { return w.world->contains(handle_of(h)); })
       .def(
           "objects",
           [](const PyWorld& w) {
@@ -641,22 +526,14 @@ void bind_world(py::module_& m) {
            "Runs the broad and narrow phases and continuous detection over dt seconds, then calls the listener. "
            "threads: 0 every hardware thread; the GIL is released.")
       .def_property_readonly(
-          "events", [](const PyWorld& w) { return events_dict(w.world->events()); },
+          "events",
+          [](const PyWorld& w) { return events_dict(w.world->events(), impact_events(w.world->events().impacts)); },
           "The last step's events: a dict of structured arrays (begin, persist, end: CONTACT_EVENT_DTYPE; "
           "sensor_enter, sensor_exit: SENSOR_EVENT_DTYPE; impacts: IMPACT_EVENT_DTYPE).")
       .def(
           "contacts", [](const PyWorld& w) { return contact_points(w.world->contacts()); },
           "Every contact point of the touching pairs: an array of CONTACT_POINT_DTYPE.")
       .def_property_readonly("step_count", [](const PyWorld& w) { return w.world->step_count(); })
-      .def(
-          "set_listener",
-          [](PyWorld& w, py::object listener) {
-            w.listener.target = listener;
-            w.world->set_listener(listener.is_none() ? nullptr : &w.listener);
-          },
-          py::arg("listener"),
-          "An object whose methods on_contact_begin, on_contact_persist, on_contact_end, on_sensor_enter, "
-          "on_sensor_exit, on_impact (those it has) are called with each event during step(); None removes it.")
       .def(
           "record",
           [](PyWorld& w, const std::string& path, py::handle camera) {
@@ -684,13 +561,11 @@ void bind_world(py::module_& m) {
           "ortho_height.")
       .def(
           "stop_recording", [](PyWorld& w) { w.recording.reset(); }, "Closes the capture file.")
-      .def(
-          "state_hash", [](const PyWorld& w) { return w.world->state_hash(); },
-          "A hash of the whole state: equal hashes mean equal worlds.")
       .def("save", &save_world, "The world as a versioned binary snapshot (bytes).")
       .def_static("load", &load_world, py::arg("snapshot"), "A world from save()'s bytes.")
       .def(py::pickle([](const PyWorld& w) { return save_world(w); },
                       [](const py::bytes& data) { return load_world(data); }));
+  def_shared_world_calls(c, &to_transform);
   def_queries(c);
 }
 

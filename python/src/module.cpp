@@ -17,5 +17,6 @@ PYBIND11_MODULE(_proxima, m) {
   bind_broadphase(m);
   bind_world(m);
   bind_d2(m);
+  bind_world_d2(m);
   bind_render(m);
 }

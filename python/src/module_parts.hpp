@@ -20,6 +20,7 @@ void bind_batch(py::module_& m);       ///< batched queries on numpy arrays (bin
 void bind_broadphase(py::module_& m);  ///< the broad phases (bind_broadphase.cpp)
 void bind_world(py::module_& m);       ///< the collision world (bind_world.cpp)
 void bind_d2(py::module_& m);          ///< the 2D module, as proxima.d2 (bind_d2.cpp)
+void bind_world_d2(py::module_& m);    ///< the 2D collision world, proxima.d2.CollisionWorld (bind_world_d2.cpp)
 void bind_render(py::module_& m);      ///< proxima.render, when the tool is built (bind_render.cpp)
 
 /// Sets the Python error indicator to proxima.Error for `error` (no throw).

@@ -5,6 +5,8 @@ configuration against one proxima.intersect call per configuration, link and obs
 against the analytic capsule-sphere distance for the lamp (the obstacle hit first), and the
 printed index. depth_image: a built-in UV sphere's depth image against analytic ray-sphere
 hits, and the PNG the example writes (size, a silhouette: some pixels hit, not all).
+world_events: the 2D and the 3D world's events along the scripted path against the frames
+where the ball's analytic height makes it touch, and the impact against the analytic time.
 """
 
 import sys
@@ -139,3 +141,25 @@ def test_depth_example_writes_a_png_with_a_silhouette(tmp_path, capsys):
         pixels = np.asarray(image)
     assert 0 < (pixels > 0).sum() < pixels.size
     assert "pixels hit the mesh" in capsys.readouterr().out
+
+
+# ---- world events ---------------------------------------------------------------------------
+
+
+def test_world_events_match_the_script_in_2d_and_3d(capsys):
+    import world_events
+
+    # The ball's bottom is 0.4, 0.18, then -0.04 (touching) above the floor, slides, lifts off
+    # at frame 5 (0.16 above); the shot from x = 0.4 meets the wall's face (x = 6.95) when its
+    # centre reaches x = 6.45.
+    start, end = world_events.SCRIPT[-2][0], world_events.SCRIPT[-1][0]
+    face = world_events.WALL_X - world_events.WALL_HALF - world_events.RADIUS
+    expected_toi = (face - start) / (end - start)
+    for make_world in (world_events.world_2d, world_events.world_3d):
+        log = world_events.run(make_world)
+        assert [e[:4] for e in log] == [(2, "begin", 0, 2), (3, "persist", 0, 2), (4, "persist", 0, 2),
+                                        (5, "end", 0, 2), (6, "impact", 2, 1)]
+        assert log[-1][4] == pytest.approx(expected_toi, abs=2e-3)
+    assert world_events.main([]) == 0
+    printed = capsys.readouterr().out
+    assert "2D world:" in printed and "3D world:" in printed and printed.count("impact") == 2

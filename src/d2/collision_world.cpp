@@ -1,6 +1,6 @@
 /// @file collision_world.cpp
-/// The 2D collision world's objects: creation, add / remove / move / teleport / filters,
-/// accessors. The step is in world_step.cpp, the queries in world_queries.cpp.
+/// The 2D collision world's objects: creation, add / remove / move / teleport / filters /
+/// exclusions, accessors. The step is in world_step.cpp, the queries in world_queries.cpp.
 
 #include <proxima/core/tolerance.hpp>
 #include <proxima/d2/collision_world.hpp>
@@ -12,7 +12,7 @@
 
 namespace proxima::d2 {
 
-namespace {
+namespace detail {
 
 bool pose_ok(const Pose& pose) {
   return is_finite(pose.position) && max_abs_component(pose.position) <= kMaxCoordinate &&
@@ -20,7 +20,13 @@ bool pose_ok(const Pose& pose) {
          std::abs(pose.rotation.c * pose.rotation.c + pose.rotation.s * pose.rotation.s - Real(1)) <= Real(1e-3);
 }
 
-}  // namespace
+void measure(Slot& s) {
+  const Aabb local = s.shape.world_aabb(Pose::identity());
+  s.min_extent = std::min(local.max.x - local.min.x, local.max.y - local.min.y);
+  s.reach = glm::length(glm::max(glm::abs(local.min), glm::abs(local.max)));
+}
+
+}  // namespace detail
 
 CollisionWorld::CollisionWorld(std::unique_ptr<detail::WorldState> state) : state_(std::move(state)) {}
 CollisionWorld::CollisionWorld(CollisionWorld&&) noexcept = default;
@@ -40,7 +46,8 @@ Result<CollisionWorld> CollisionWorld::create(const WorldSettings& settings) {
 
 Result<ObjectHandle> CollisionWorld::add(const ObjectDesc& desc) {
   if (auto e = state_->busy()) return *e;
-  if (!pose_ok(desc.pose)) return Error{ErrorCode::NotFinite, "desc.pose", "must be finite with a unit rotation"};
+  if (!detail::pose_ok(desc.pose))
+    return Error{ErrorCode::NotFinite, "desc.pose", "must be finite with a unit rotation"};
   if (!desc.shape.is_convex() && desc.kind != ObjectKind::Static) {
     return Error{ErrorCode::InvalidArgument, "desc.kind", "a chain can only be a static object"};
   }
@@ -57,11 +64,8 @@ Result<ObjectHandle> CollisionWorld::add(const ObjectDesc& desc) {
   const std::uint32_t generation = s.generation;
   s = detail::Slot{desc.shape, desc.pose,      desc.pose,  desc.kind, desc.filter, desc.sensor,
                    desc.ccd,   desc.user_data, generation, true,      false};
-  const Aabb local = desc.shape.world_aabb(Pose::identity());
-  s.min_extent = std::min(local.max.x - local.min.x, local.max.y - local.min.y);
-  s.reach = glm::length(glm::max(glm::abs(local.min), glm::abs(local.max)));
-  const ProxyKind kind = desc.kind == ObjectKind::Static ? ProxyKind::Static : ProxyKind::Moving;
-  w.broadphase->insert(index, w.proxy_box(desc.shape, desc.pose), kind);
+  detail::measure(s);
+  w.broadphase->insert(index, w.proxy_box(desc.shape, desc.pose), detail::proxy_kind(desc.kind));
   ++w.live;
   return ObjectHandle{index, generation};
 }
@@ -73,6 +77,9 @@ std::optional<Error> CollisionWorld::remove(ObjectHandle handle) {
     return Error{ErrorCode::InvalidArgument, "handle", "names no live object of this world"};
   detail::Slot& s = w.slots[handle.index];
   w.broadphase->remove(handle.index);
+  std::erase_if(w.excluded, [&](std::uint64_t key) {
+    return std::uint32_t(key >> 32) == handle.index || std::uint32_t(key) == handle.index;
+  });
   s.alive = false;
   ++s.generation;
   w.free_slots.push_back(handle.index);
@@ -84,7 +91,7 @@ std::optional<Error> CollisionWorld::move(ObjectHandle handle, const Pose& pose)
   if (auto e = state_->busy()) return e;
   if (state_->live_slot(handle) == nullptr)
     return Error{ErrorCode::InvalidArgument, "handle", "names no live object of this world"};
-  if (!pose_ok(pose)) return Error{ErrorCode::NotFinite, "pose", "must be finite with a unit rotation"};
+  if (!detail::pose_ok(pose)) return Error{ErrorCode::NotFinite, "pose", "must be finite with a unit rotation"};
   detail::Slot& s = state_->slots[handle.index];
   s.pose = pose;
   s.moved = true;
@@ -102,6 +109,22 @@ std::optional<Error> CollisionWorld::set_filter(ObjectHandle handle, const Colli
   if (state_->live_slot(handle) == nullptr)
     return Error{ErrorCode::InvalidArgument, "handle", "names no live object of this world"};
   state_->slots[handle.index].filter = filter;
+  return std::nullopt;
+}
+
+std::optional<Error> CollisionWorld::set_pair_excluded(ObjectHandle a, ObjectHandle b, bool excluded) {
+  if (auto e = state_->busy()) return e;
+  if (state_->live_slot(a) == nullptr)
+    return Error{ErrorCode::InvalidArgument, "a", "names no live object of this world"};
+  if (state_->live_slot(b) == nullptr)
+    return Error{ErrorCode::InvalidArgument, "b", "names no live object of this world"};
+  if (a == b) return Error{ErrorCode::InvalidArgument, "b", "is the same object as a"};
+  const std::uint64_t key = detail::pair_key(a.index, b.index);
+  if (excluded) {
+    state_->excluded.insert(key);
+  } else {
+    state_->excluded.erase(key);
+  }
   return std::nullopt;
 }
 

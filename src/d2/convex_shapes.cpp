@@ -7,6 +7,8 @@
 ///      strictly counter-clockwise beyond a weld tolerance (so collinear and near-duplicate
 ///      points are dropped);
 ///   3. check that 3..16 vertices enclose an area, then fill the normals and the centroid.
+/// Polygon::restore keeps given vertices in their order after checking that each lies
+/// strictly left of every edge it is not on (O(n^2), n <= 16).
 
 #include <proxima/core/tolerance.hpp>
 #include <proxima/core/validate.hpp>
@@ -61,6 +63,17 @@ std::vector<Vec2> monotone_chain_hull(std::span<const Vec2> points) {
   }
   hull.resize(k > 1 ? k - 1 : k);  // the last point repeats the first
   return hull;
+}
+
+/// True when every vertex not on an edge lies strictly left of it (turn > 0).
+bool strictly_convex(std::span<const Vec2> v) {
+  const std::size_t n = v.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t k = 0; k < n; ++k) {
+      if (k != i && k != (i + 1) % n && !(turn(v[i], v[(i + 1) % n], v[k]) > Real(0))) return false;
+    }
+  }
+  return true;
 }
 
 /// Area centroid of a counter-clockwise polygon (triangle fan about vertex 0).
@@ -136,6 +149,27 @@ Result<Polygon> Polygon::create(std::span<const Vec2> points, Real radius) {
   Polygon polygon;
   polygon.core_.count = static_cast<int>(hull.size());
   std::copy(hull.begin(), hull.end(), polygon.core_.vertices.begin());
+  polygon.core_.radius = radius;
+  compute_core_normals(polygon.core_);
+  polygon.centroid_ = polygon_centroid(polygon.core_);
+  return polygon;
+}
+
+Result<Polygon> Polygon::restore(std::span<const Vec2> vertices, Real radius) {
+  for (std::size_t i = 0; i < vertices.size(); ++i) {
+    if (auto e = check_point(vertices[i], "points[" + std::to_string(i) + "]")) return *e;
+  }
+  if (auto e = validate::non_negative(radius, "radius")) return *e;
+  if (vertices.size() < 3) return Error{ErrorCode::TooFew, "points", "a polygon needs at least 3 points"};
+  if (vertices.size() > static_cast<std::size_t>(kMaxPolygonVertices)) {
+    return Error{ErrorCode::OutOfRange, "points", "a polygon has at most 16 vertices"};
+  }
+  if (!strictly_convex(vertices)) {
+    return Error{ErrorCode::Degenerate, "points", "not a strictly convex counter-clockwise polygon"};
+  }
+  Polygon polygon;
+  polygon.core_.count = static_cast<int>(vertices.size());
+  std::copy(vertices.begin(), vertices.end(), polygon.core_.vertices.begin());
   polygon.core_.radius = radius;
   compute_core_normals(polygon.core_);
   polygon.centroid_ = polygon_centroid(polygon.core_);

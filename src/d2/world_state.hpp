@@ -1,13 +1,14 @@
 #pragma once
 /// @file world_state.hpp
-/// Internal: the 2D collision world's state (object slots, broad phase, the last step's
-/// touching pairs and events), shared by collision_world.cpp, world_step.cpp and
-/// world_queries.cpp.
+/// Internal: the 2D collision world's state (object slots, broad phase, exclusions, the last
+/// step's touching pairs and events), shared by collision_world.cpp, world_step.cpp,
+/// world_queries.cpp and world_snapshot.cpp.
 
 #include <proxima/broadphase/any_broadphase.hpp>
 #include <proxima/d2/collision_world.hpp>
 
 #include <memory>
+#include <set>
 #include <vector>
 
 namespace proxima::d2 {
@@ -30,6 +31,19 @@ struct Slot {
   Real reach = Real(0);       ///< largest distance of a point of the shape from its origin
 };
 
+/// True for a pose with a finite position within kMaxCoordinate and a unit rotation (1e-3).
+bool pose_ok(const Pose& pose);
+/// Sets s.min_extent and s.reach from s.shape.
+void measure(Slot& s);
+/// The broad-phase kind of an object kind.
+inline ProxyKind proxy_kind(ObjectKind kind) {
+  return kind == ObjectKind::Static ? ProxyKind::Static : ProxyKind::Moving;
+}
+/// The key of the pair of slots i and j (either order): the smaller index in the high half.
+inline std::uint64_t pair_key(std::uint32_t i, std::uint32_t j) {
+  return i < j ? (std::uint64_t(i) << 32) | j : (std::uint64_t(j) << 32) | i;
+}
+
 /// A rectangle as the broad phase's flat box (z = 0).
 inline proxima::Aabb flat_box(const Aabb& box) {
   return {Vec3(box.min.x, box.min.y, Real(0)), Vec3(box.max.x, box.max.y, Real(0))};
@@ -46,6 +60,7 @@ struct WorldState {
   std::vector<WorldManifold> manifolds;
   std::vector<ContactEvent> touching;  ///< touching non-sensor pairs after the last step, sorted
   std::vector<SensorEvent> sensing;    ///< (sensor, other) pairs after the last step, sorted
+  std::set<std::uint64_t> excluded;    ///< pair_key of each excluded pair (sorted: deterministic)
   WorldListener* listener = nullptr;
   bool in_callback = false;
 
@@ -59,6 +74,10 @@ struct WorldState {
   /// distance, so that two objects within the contact distance are candidates.
   proxima::Aabb proxy_box(const Shape& shape, const Pose& pose) const {
     return flat_box(shape.world_aabb(pose).inflated(Real(0.5) * settings.contact_distance));
+  }
+  /// True unless the pair of slots i and j is excluded.
+  bool allowed(std::uint32_t i, std::uint32_t j) const {
+    return excluded.empty() || excluded.count(pair_key(i, j)) == 0;
   }
   /// The handle of a live slot.
   ObjectHandle handle(std::uint32_t index) const { return {index, slots[index].generation}; }

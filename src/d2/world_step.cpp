@@ -4,7 +4,7 @@
 /// Steps (collision_world.hpp has the contract):
 ///   1. moved objects' rectangles go to the broad phase as flat boxes; find_pairs gives the
 ///      candidates sorted by slot;
-///   2. candidates are filtered (filters, sensors), then measured on the executor, each
+///   2. candidates are filtered (filters, exclusions, sensors), then measured on the executor, each
 ///      writing only its own outcome: manifolds (collide_all) or a sensor's overlap;
 ///   3. the touching pairs (sorted) are merged with the last step's into begin / persist /
 ///      end; sensor pairs likewise;
@@ -60,7 +60,7 @@ std::vector<PairOutcome> filtered_candidates(const detail::WorldState& w, Execut
   for (const ProxyPair& p : candidates) {
     const Slot& a = w.slots[p.lo];
     const Slot& b = w.slots[p.hi];
-    if (!can_collide(a.filter, b.filter)) continue;
+    if (!can_collide(a.filter, b.filter) || !w.allowed(p.lo, p.hi)) continue;
     if (a.sensor && b.sensor && !w.settings.sensors_sense_sensors) continue;
     out.push_back({{w.handle(p.lo), w.handle(p.hi)}, a.sensor || b.sensor, false, {}});
   }
@@ -127,17 +127,30 @@ bool is_fast(const WorldSettings& settings, const Slot& s) {
   return travel > settings.ccd_safety_factor * s.min_extent;
 }
 
-/// The first impact of fast slot `i` against what its swept rectangle meets, if any.
-std::optional<ImpactEvent> first_impact(const detail::WorldState& w, std::uint32_t i) {
-  const Slot& a = w.slots[i];
+/// The slots whose rectangles meet what slot `a` sweeps over this step, sorted. Only those
+/// rectangles: a structure may report more, depending on its history (a grid's bounds), and
+/// the answer must not (a loaded world rebuilds the structure).
+std::vector<std::uint32_t> sweep_candidates(const detail::WorldState& w, const Slot& a) {
   Aabb swept = a.shape.world_aabb(a.previous);
   swept.grow(a.shape.world_aabb(a.pose));
+  const Aabb reach = swept.inflated(w.settings.contact_distance);
   std::vector<std::uint32_t> others;
-  w.broadphase->query_aabb(detail::flat_box(swept.inflated(w.settings.contact_distance)), [&](ProxyId id) {
+  w.broadphase->query_aabb(detail::flat_box(reach), [&](ProxyId id) {
     others.push_back(id);
     return true;
   });
+  std::erase_if(others, [&](std::uint32_t j) {
+    return !overlap(w.slots[j].shape.world_aabb(w.slots[j].pose).inflated(Real(0.5) * w.settings.contact_distance),
+                    reach);
+  });
   std::sort(others.begin(), others.end());
+  return others;
+}
+
+/// The first impact of fast slot `i` against what its swept rectangle meets, if any.
+std::optional<ImpactEvent> first_impact(const detail::WorldState& w, std::uint32_t i) {
+  const Slot& a = w.slots[i];
+  const std::vector<std::uint32_t> others = sweep_candidates(w, a);
   ToiOptions options;
   options.target_distance = w.settings.contact_distance;
   options.tolerance = w.settings.ccd_tolerance > Real(0) ? w.settings.ccd_tolerance : options.tolerance;
@@ -145,7 +158,7 @@ std::optional<ImpactEvent> first_impact(const detail::WorldState& w, std::uint32
   std::optional<ImpactEvent> best;
   for (std::uint32_t j : others) {
     const Slot& b = w.slots[j];
-    if (j == i || b.sensor || !can_collide(a.filter, b.filter)) continue;
+    if (j == i || b.sensor || !can_collide(a.filter, b.filter) || !w.allowed(i, j)) continue;
     if (a.ccd == CcdMode::Auto && b.kind != ObjectKind::Static) continue;
     const Motion motion_b = Motion::between(b.previous, b.pose);
     const auto r = time_of_impact(a.shape, motion_a, b.shape, motion_b, options);

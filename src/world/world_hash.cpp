@@ -6,41 +6,21 @@
 // local pose, pose, step pose and the geometry (its type, local box and vertex count);
 // the free list; the exclusions in sorted order; then every pair of the pair table with its
 // touching flag and cache (a hull's cached support vertex by its position), and every contact manifold point by point.
-// Each value is folded in by splitmix64 (the W1 checksum's mixer) over its bytes, 8 at a time.
+// Each value is folded in by StateDigest (world/snapshot_stream.hpp): splitmix64 over its
+// bytes, 8 at a time.
 #include <proxima/shapes/shape_queries.hpp>
 
 #include <algorithm>
-#include <cstring>
-#include <type_traits>
 
+#include "world/snapshot_stream.hpp"
 #include "world/world_state.hpp"
 
 namespace proxima {
 
 namespace {
 
-std::uint64_t mix64(std::uint64_t z) {
-  z += 0x9E3779B97F4A7C15ull;
-  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-  return z ^ (z >> 31);
-}
-
-/// Running digest.
-struct Digest : RealSequence<Digest> {
-  std::uint64_t h = 0x243F6A8885A308D3ull;
-
-  void word(std::uint64_t v) { h = mix64(h ^ v); }
-  void bytes(const void* p, std::size_t n) {
-    const auto* c = static_cast<const unsigned char*>(p);
-    for (std::size_t k = 0; k < n; k += 8) {
-      std::uint64_t v = 0;
-      std::memcpy(&v, c + k, std::min<std::size_t>(8, n - k));
-      word(v);
-    }
-  }
-  void real(Real x) { bytes(&x, sizeof x); }
-};
+/// Running digest with the world's vectors and poses.
+struct Digest : StateDigest, RealSequence<Digest> {};
 
 std::uint64_t vertex_count(const Shape& g) {
   if (const auto* h = std::get_if<ConvexHull>(&g)) return h->vertices().size();

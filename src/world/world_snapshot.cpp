@@ -1,6 +1,7 @@
 // CollisionWorld::save / load: the versioned binary snapshot of a whole world.
 //
-// Layout (little-endian integers; every real written as an IEEE double, exact for float):
+// Layout (world/snapshot_stream.hpp's encoding, shared with the 2D world's snapshot:
+// little-endian integers; every real written as an IEEE double, exact for float):
 //   "PROXWRLD", version (u32 = 1), sizeof(Real) of the writer (u8);
 //   settings; step count; slots (generation, liveness, and for a live object its geometry,
 //   poses, filter, user data, kind, modes, attachment links and flags); free list; moved
@@ -21,13 +22,13 @@
 #include <proxima/shapes/shape_queries.hpp>
 
 #include <cmath>
-#include <cstring>
 #include <istream>
 #include <limits>
 #include <map>
 #include <ostream>
 #include <unordered_map>
 
+#include "world/snapshot_stream.hpp"
 #include "world/world_state.hpp"
 
 namespace proxima {
@@ -35,32 +36,15 @@ namespace proxima {
 namespace {
 
 using Impl = CollisionWorld::Impl;
-constexpr char kMagic[8] = {'P', 'R', 'O', 'X', 'W', 'R', 'L', 'D'};
+constexpr char kMagic[] = "PROXWRLD";
 constexpr std::uint32_t kVersion = 1;
 constexpr std::uint32_t kNone = ObjectHandle::kNoObject;
 
 // ---- writing -----------------------------------------------------------------------------
 
-class Writer : public RealSequence<Writer> {
+class Writer : public SnapshotWriter, public RealSequence<Writer> {
  public:
-  explicit Writer(std::ostream& out) : out_(out) {}
-  void u8(std::uint8_t v) { out_.put(static_cast<char>(v)); }
-  void u32(std::uint32_t v) {
-    for (int k = 0; k < 4; ++k) u8(static_cast<std::uint8_t>(v >> (8 * k)));
-  }
-  void u64(std::uint64_t v) {
-    for (int k = 0; k < 8; ++k) u8(static_cast<std::uint8_t>(v >> (8 * k)));
-  }
-  void real(Real x) {
-    const double d = static_cast<double>(x);
-    std::uint64_t bits;
-    std::memcpy(&bits, &d, sizeof bits);
-    u64(bits);
-  }
-  void text(const std::string& s) {
-    u32(static_cast<std::uint32_t>(s.size()));
-    out_.write(s.data(), static_cast<std::streamsize>(s.size()));
-  }
+  explicit Writer(std::ostream& out) : SnapshotWriter(out) {}
 
   /// A geometry; hulls and meshes already written are referred to by number.
   void geometry(const Shape& g) {
@@ -123,7 +107,6 @@ class Writer : public RealSequence<Writer> {
     return !fresh;
   }
 
-  std::ostream& out_;
   std::unordered_map<const void*, std::uint32_t> written_;
 };
 
@@ -149,27 +132,9 @@ void write_contact_point(Writer& w, const ContactPoint& c) {
   w.u32(c.sub_b.triangle);
 }
 
-void write_handle(Writer& w, ObjectHandle h) { w.u64(h.to_integer()); }
-
 void write_events(Writer& w, const StepEvents& ev) {
-  for (const auto* list : {&ev.begin, &ev.persist, &ev.end}) {
-    w.u32(static_cast<std::uint32_t>(list->size()));
-    for (const ContactEvent& e : *list) {
-      write_handle(w, e.pair.a);
-      write_handle(w, e.pair.b);
-      w.u64(e.user_data_a);
-      w.u64(e.user_data_b);
-    }
-  }
-  for (const auto* list : {&ev.sensor_enter, &ev.sensor_exit}) {
-    w.u32(static_cast<std::uint32_t>(list->size()));
-    for (const SensorEvent& e : *list) {
-      write_handle(w, e.sensor);
-      write_handle(w, e.other);
-      w.u64(e.user_data_sensor);
-      w.u64(e.user_data_other);
-    }
-  }
+  for (const auto* list : {&ev.begin, &ev.persist, &ev.end}) write_contact_events(w, *list);
+  for (const auto* list : {&ev.sensor_enter, &ev.sensor_exit}) write_sensor_events(w, *list);
   w.u32(static_cast<std::uint32_t>(ev.impacts.size()));
   for (const ImpactEvent& e : ev.impacts) {
     write_handle(w, e.a);
@@ -191,16 +156,8 @@ void write_events(Writer& w, const StepEvents& ev) {
 std::optional<Error> CollisionWorld::save(std::ostream& out) const {
   const Impl& m = *impl_;
   Writer w(out);
-  out.write(kMagic, sizeof kMagic);
-  w.u32(kVersion);
-  w.u8(sizeof(Real));
-  const WorldSettings& s = m.settings;
-  w.text(s.broadphase);
-  w.real(s.contact_distance);
-  w.u32(static_cast<std::uint32_t>(s.max_contacts));
-  w.u8(static_cast<std::uint8_t>((s.sensors_sense_sensors ? 1 : 0) | (s.continuous ? 2 : 0)));
-  w.real(s.ccd_safety_factor);
-  w.real(s.ccd_tolerance);
+  write_snapshot_header(w, kMagic, kVersion);
+  write_settings(w, m.settings);
   w.u64(m.steps);
   w.u32(static_cast<std::uint32_t>(m.slots.size()));
   for (std::uint32_t i = 0; i < m.slots.size(); ++i) {
@@ -267,42 +224,11 @@ std::optional<Error> CollisionWorld::save(std::ostream& out) const {
 
 namespace {
 
-/// Reads the snapshot's values; the first failure is kept and every later read returns 0.
-class Reader {
+/// The snapshot reader with 3D vectors, poses and geometry.
+class Reader : public SnapshotReader {
  public:
-  explicit Reader(std::istream& in) : in_(in) {}
+  using SnapshotReader::SnapshotReader;
 
-  bool ok() const { return !error_; }
-  const std::optional<Error>& error() const { return error_; }
-  void fail(const std::string& field, const std::string& message) {
-    if (!error_) error_ = make_error(ErrorCode::InvalidArgument, field, message);
-  }
-
-  std::uint8_t u8() {
-    if (error_) return 0;
-    const int c = in_.get();
-    if (c == std::char_traits<char>::eof()) {
-      fail("snapshot", "truncated: the stream ended early");
-      return 0;
-    }
-    return static_cast<std::uint8_t>(c);
-  }
-  std::uint32_t u32() {
-    std::uint32_t v = 0;
-    for (int k = 0; k < 4; ++k) v |= std::uint32_t(u8()) << (8 * k);
-    return v;
-  }
-  std::uint64_t u64() {
-    std::uint64_t v = 0;
-    for (int k = 0; k < 8; ++k) v |= std::uint64_t(u8()) << (8 * k);
-    return v;
-  }
-  Real real() {
-    const std::uint64_t bits = u64();
-    double d;
-    std::memcpy(&d, &bits, sizeof d);
-    return static_cast<Real>(d);
-  }
   Vec3 vec() {
     const Real x = real(), y = real(), z = real();
     return {x, y, z};
@@ -314,16 +240,6 @@ class Reader {
     t.rotation = Quat(w, x, y, z);
     return t;
   }
-  std::string text() {
-    const std::uint32_t n = u32();
-    std::string s;
-    for (std::uint32_t k = 0; k < n && ok(); ++k) s.push_back(static_cast<char>(u8()));
-    return s;
-  }
-  /// A count that the rest of the data must still hold (each element at least one byte):
-  /// the loops read element by element, so a forged count fails at the end of the stream.
-  std::uint32_t count() { return u32(); }
-
   /// A geometry (field names the object for errors); `hull_ref` gets the shared-hull number
   /// of a top-level hull (kNone otherwise).
   Shape geometry(const std::string& field, std::uint32_t& hull_ref, int depth = 0) {
@@ -474,8 +390,6 @@ class Reader {
     return saved;
   }
 
-  std::istream& in_;
-  std::optional<Error> error_;
   std::vector<Shape> shared_;
   std::map<std::uint32_t, std::vector<std::uint32_t>> hull_order_;
 };
@@ -506,29 +420,9 @@ ContactPoint read_contact_point(Reader& r) {
   return c;
 }
 
-ObjectHandle read_handle(Reader& r) { return ObjectHandle::from_integer(r.u64()); }
-
 void read_events(Reader& r, StepEvents& ev) {
-  for (auto* list : {&ev.begin, &ev.persist, &ev.end}) {
-    for (std::uint32_t n = r.count(), k = 0; k < n && r.ok(); ++k) {
-      ContactEvent e;
-      e.pair.a = read_handle(r);
-      e.pair.b = read_handle(r);
-      e.user_data_a = r.u64();
-      e.user_data_b = r.u64();
-      list->push_back(e);
-    }
-  }
-  for (auto* list : {&ev.sensor_enter, &ev.sensor_exit}) {
-    for (std::uint32_t n = r.count(), k = 0; k < n && r.ok(); ++k) {
-      SensorEvent e;
-      e.sensor = read_handle(r);
-      e.other = read_handle(r);
-      e.user_data_sensor = r.u64();
-      e.user_data_other = r.u64();
-      list->push_back(e);
-    }
-  }
+  for (auto* list : {&ev.begin, &ev.persist, &ev.end}) read_contact_events(r, *list);
+  for (auto* list : {&ev.sensor_enter, &ev.sensor_exit}) read_sensor_events(r, *list);
   for (std::uint32_t n = r.count(), k = 0; k < n && r.ok(); ++k) {
     ImpactEvent e;
     e.a = read_handle(r);
@@ -577,31 +471,8 @@ bool links_consistent(const Impl& m) {
 
 Result<CollisionWorld> CollisionWorld::load(std::istream& in) {
   Reader r(in);
-  char magic[sizeof kMagic] = {};
-  in.read(magic, sizeof magic);
-  if (!in || std::memcmp(magic, kMagic, sizeof kMagic) != 0)
-    return make_error(ErrorCode::InvalidArgument, "snapshot", "not a Proxima world snapshot");
-  const std::uint32_t version = r.u32();
-  if (r.ok() && version != kVersion)
-    return make_error(ErrorCode::InvalidArgument, "snapshot",
-                      "unsupported version " + std::to_string(version) + " (this library reads version 1)");
-  r.u8();  // the writer's sizeof(Real): reals are doubles either way
-  WorldSettings settings;
-  settings.broadphase = r.text();
-  settings.contact_distance = r.real();
-  settings.max_contacts = static_cast<int>(r.u32());
-  const std::uint8_t flags = r.u8();
-  settings.sensors_sense_sensors = (flags & 1) != 0;
-  settings.continuous = (flags & 2) != 0;
-  settings.ccd_safety_factor = r.real();
-  settings.ccd_tolerance = r.real();
-  if (!r.ok()) return *r.error();
-  auto created = create(settings);
-  if (!created.ok()) {
-    Error e = created.error();
-    e.field = "snapshot." + e.field;
-    return e;
-  }
+  Result<CollisionWorld> created = create_from_snapshot<CollisionWorld>(r, kMagic, kVersion);
+  if (!created.ok()) return created.error();
   CollisionWorld world = std::move(created).value();
   Impl& m = *world.impl_;
   m.steps = r.u64();

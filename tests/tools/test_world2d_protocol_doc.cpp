@@ -1,10 +1,12 @@
 // The 2D examples of docs/world-protocol.md (its ```world2d blocks) are real: each block is
 // one `proxima world --2d` session, replayed here line by line and compared with the answers
-// printed under the requests.
+// printed under the requests; the state operations (hash, save, load) round-trip a world.
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <optional>
 #include <string>
+#include <unistd.h>
 
 #include "doc_examples.hpp"
 #include "json_expect.hpp"
@@ -48,8 +50,37 @@ TEST(World2dProtocol, ABadRequestChangesNothing) {
   EXPECT_EQ(bad_pose["field"], "pose.position");
   const Json found = session.answer_line(R"({"op":"overlap","geometry":{"type":"circle","radius":0.5}})", rejected);
   EXPECT_EQ(found["objects"], Json::array({0}));
-  const Json unknown = session.answer_line(R"({"op":"hash"})", rejected);
+  const Json unknown = session.answer_line(R"({"op":"attach"})", rejected);
   EXPECT_EQ(unknown["code"], "unknown_op");
+}
+
+/// Answers a line that must be accepted.
+Json answer(tool::WorldSession2d& session, const std::string& line) {
+  bool rejected = false;
+  Json a = session.answer_line(line, rejected);
+  EXPECT_FALSE(rejected) << line << " -> " << a.dump();
+  return a;
+}
+
+TEST(World2dProtocol, ASavedWorldLoadsWithItsHashAndStepsOnAlike) {
+  const std::string file =
+      (std::filesystem::temp_directory_path() / ("proxima_world2d_" + std::to_string(getpid()) + ".pxw")).string();
+  tool::WorldSession2d session = tool::WorldSession2d::create().value();
+  answer(session, R"({"op":"add","geometry":{"type":"circle","radius":1}})");
+  answer(session, R"({"op":"add","geometry":{"type":"box2d","half_extents":[1,1]},"pose":{"position":[1.5,0.2]}})");
+  answer(session, R"({"op":"step"})");
+  const Json hash = answer(session, R"({"op":"hash"})")["hash"];
+  answer(session, R"({"op":"save","file":")" + file + R"("})");
+  answer(session, R"({"op":"move","object":1,"pose":{"position":[5,0]}})");
+  EXPECT_NE(answer(session, R"({"op":"hash"})")["hash"], hash);
+  EXPECT_EQ(answer(session, R"({"op":"load","file":")" + file + R"("})")["objects"], 2);
+  EXPECT_EQ(answer(session, R"({"op":"hash"})")["hash"], hash);
+  EXPECT_EQ(answer(session, R"({"op":"step"})")["persist"], Json::array({Json::array({0, 1})}));
+  bool rejected = false;
+  const Json missing = session.answer_line(R"({"op":"load","file":"no/such/file.pxw"})", rejected);
+  EXPECT_TRUE(rejected);
+  EXPECT_EQ(missing["field"], "file");
+  std::filesystem::remove(file);
 }
 
 }  // namespace test_world2d_protocol_doc

@@ -14,7 +14,8 @@
 /// Step (step()):
 ///   1. the broad phase gets the rectangles of the objects moved since the last step and
 ///      reports candidate pairs, sorted;
-///   2. on the executor, each candidate pair that passes the filters gets its manifolds
+///   2. on the executor, each candidate pair that passes the filters and is not excluded
+///      (set_pair_excluded) gets its manifolds
 ///      (collide_all: one per touching chain segment) or, with a sensor, an overlap test;
 ///   3. events from the touching pairs of this step and the last (sorted by handles);
 ///   4. continuous detection: an object moved farther than ccd_safety_factor times its
@@ -23,6 +24,11 @@
 ///      along its own motion); its first impact is reported;
 ///   5. listener callbacks, in the arrays' order.
 /// Every array is sorted by handles, whatever the broad phase or the executor.
+///
+/// Snapshots (save / load): the whole world as versioned binary data (magic "PROXWR2D"), so
+/// that a loaded world, given the same calls, steps with bit-identical events and manifolds;
+/// state_hash() is a digest of the same data. The 3D world's snapshots (world/) use the same
+/// encoding with their own magic.
 
 #include <proxima/core/executor.hpp>
 #include <proxima/d2/contact.hpp>
@@ -32,6 +38,7 @@
 #include <proxima/world/world_events.hpp>
 #include <proxima/world/world_settings.hpp>
 
+#include <iosfwd>
 #include <memory>
 #include <optional>
 #include <span>
@@ -145,6 +152,10 @@ class CollisionWorld {
   std::optional<Error> teleport(ObjectHandle handle, const Pose& pose);
   /// Changes an object's filter (pairs it no longer allows end at the next step).
   std::optional<Error> set_filter(ObjectHandle handle, const CollisionFilter& filter);
+  /// Excludes the pair (a, b) from pairing (contacts, sensing and continuous detection), or
+  /// allows it again; an excluded pair that touched ends at the next step. Removing either
+  /// object forgets the exclusion. Errors: "a", "b" (stale handles, or a == b).
+  std::optional<Error> set_pair_excluded(ObjectHandle a, ObjectHandle b, bool excluded);
   /// True when the handle names a live object of this world.
   bool contains(ObjectHandle handle) const;
   /// The pose of a live object (nothing for a stale handle).
@@ -166,6 +177,22 @@ class CollisionWorld {
   /// Appends to `out` the objects `filter` accepts that overlap `shape` at `pose` (sorted by
   /// handle); returns how many.
   int overlap(const Shape& shape, const Pose& pose, const QueryFilter& filter, std::vector<ObjectHandle>& out) const;
+
+  /// Writes the whole world to `out` as a versioned binary snapshot: the settings, every
+  /// slot (generation; for a live object its shape of any kind, pose and pose at the last
+  /// step (world frame), filter, kind, sensor flag, continuous mode, user data, whether it
+  /// moved since), the free list, the exclusions, the pairs touching and sensing after the
+  /// last step, its manifolds and its events. The listener is the caller's and is not
+  /// written. Error: "out" when the stream fails.
+  std::optional<Error> save(std::ostream& out) const;
+  /// A world read from a snapshot written by save(): the same state_hash(), and the same
+  /// calls then give bit-identical events and manifolds. Everything is checked; an Error
+  /// names what is wrong ("snapshot": not a 2D world snapshot, another version, truncated or
+  /// inconsistent data; "snapshot.objects[3].shape": a shape that does not validate;
+  /// "snapshot.settings.<field>"), never a crash.
+  static Result<CollisionWorld> load(std::istream& in);
+  /// A 64-bit digest of everything save() writes: equal hashes mean equal worlds.
+  std::uint64_t state_hash() const;
 
  private:
   explicit CollisionWorld(std::unique_ptr<detail::WorldState> state);

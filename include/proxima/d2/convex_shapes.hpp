@@ -146,6 +146,12 @@ class Polygon {
   /// The rectangle of half extents (hx, hy) centred at `center` and turned by `angle`
   /// radians in the local frame.
   static Result<Polygon> box(Real hx, Real hy, const Vec2& center, Real angle, Real radius = Real(0));
+  /// A polygon rebuilt from its vertices as vertex(i) lists them (a saved polygon): kept in
+  /// this order, so vertex and edge numbers (and the feature ids of contacts) stay. Fields as
+  /// in create; "points": Degenerate unless every vertex lies strictly left of every edge it
+  /// is not on (a strictly convex, counter-clockwise polygon). The centroid is computed from
+  /// the vertices (a box's may differ from its centre in the last bits).
+  static Result<Polygon> restore(std::span<const Vec2> vertices, Real radius = Real(0));
 
   /// Number of vertices (3..16).
   int count() const { return core_.count; }
