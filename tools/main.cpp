@@ -2,7 +2,7 @@
 //   proxima --version          version and scalar precision
 //   proxima demo [options]     the billiard-break demo (statistics + SVG picture)
 //   proxima demo-tunnelling    discrete against continuous detection of fast bullets (+ SVG)
-//   proxima demo-platformer    a 2D platformer on the 2D collision world (+ SVG)
+//   proxima demo-platformer    a 2D platformer on the 2D collision world (+ SVG, PNG)
 //   proxima query [FILE|-]     the JSON query protocol, one request per line
 //   proxima world [FILE|-]     a collision world driven by JSON requests, one per line
 //   proxima bench broadphase   one broad-phase structure on a W1 workload file
@@ -235,7 +235,7 @@ int run(int argc, char** argv) {
       app.add_subcommand("demo-platformer",
                          "A 2D platformer on the 2D collision world: a player walking over a tiled chain ground, "
                          "fast projectiles at a thin wall with and without continuous detection; prints statistics, "
-                         "draws both runs as an SVG");
+                         "draws both runs as an SVG and one frame as a PNG");
   platformer_cmd->add_option("--frames", platformer.config.frames, "Frames to simulate at 60 Hz")
       ->capture_default_str()
       ->check(CLI::Range(1, 100000));
@@ -243,7 +243,12 @@ int run(int argc, char** argv) {
       ->capture_default_str()
       ->check(CLI::Range(0, 1000));
   platformer_cmd->add_option("--svg", platformer.svg_path, "Picture of both runs (empty: none)")->capture_default_str();
-  platformer_cmd->add_flag("--quiet,-q", platformer.quiet, "Print nothing (still writes the SVG)");
+  platformer_cmd
+      ->add_option("--png", platformer.png_path,
+                   "Picture of one frame of the continuous run drawn by proxima render (empty: none)")
+      ->capture_default_str();
+  platformer_cmd->add_option("--png-frame", platformer.png_frame, "The frame drawn in the PNG")->capture_default_str();
+  platformer_cmd->add_flag("--quiet,-q", platformer.quiet, "Print nothing (still writes the pictures)");
 
   std::string query_input;
   CLI::App* query_cmd = app.add_subcommand(
