@@ -126,7 +126,13 @@ int run_world(const proxima::tool::WorldOptions& options, const std::string& inp
     std::cerr << "proxima world: cannot open " << input << " (not a readable file)\n";
     return 1;
   }
-  const int status = proxima::tool::exit_status(session.value().run(file, std::cout));
+  // A bar over the request file's bytes, when it would not interleave with the answers.
+  std::error_code size_error;
+  const std::uintmax_t size = std::filesystem::file_size(input, size_error);
+  proxima::tool::ProgressBar progress(
+      std::cerr, !size_error && proxima::tool::stderr_is_terminal() && !proxima::tool::stdout_is_terminal(),
+      size_error ? 0 : static_cast<std::size_t>(size), "bytes of requests");
+  const int status = proxima::tool::exit_status(session.value().run(file, std::cout, &progress));
   if (file.bad()) {
     std::cerr << "proxima world: reading " << input << " failed\n";
     return 1;
@@ -370,6 +376,7 @@ int run(int argc, char** argv) {
     }
     if (mesh_info_cmd->parsed()) {
       mesh_info.repair = !mesh_info_no_repair;
+      mesh_info.progress = proxima::tool::stderr_is_terminal();
       return proxima::tool::run_mesh_info(mesh_info, std::cout, std::cerr);
     }
     if (bench_broadphase_cmd->parsed()) {
