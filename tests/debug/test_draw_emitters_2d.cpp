@@ -299,8 +299,8 @@ TEST(DrawEmitters2D, WorldObjectsAtTheirPosesWithContactsAndImpacts) {
   EXPECT_EQ(buffer.triangles[4].color, object_color(objects[1].desc));
   EXPECT_EQ(buffer.triangles[8].color.a, 96);  // the sensor
   EXPECT_NE(object_color(objects[0].desc), object_color(objects[1].desc));
-  EXPECT_EQ(flat(buffer.triangles[4].a), Vec2(0.25f, 0.9f));  // the crate where the world has it
-  EXPECT_EQ(buffer.boxes.size(), 5u);                         // the removed object is skipped
+  EXPECT_EQ(flat(buffer.triangles[4].a), Vec2(Real(0.25), Real(0.9)));  // the crate where the world has it
+  EXPECT_EQ(buffer.boxes.size(), 5u);                                   // the removed object is skipped
   const d2::Manifold& m = world.manifolds()[0].manifold;
   const d2::ImpactEvent& impact = world.events().impacts[0];
   ASSERT_EQ(buffer.points.size(), 2 * std::size_t(m.count) + 1);
