@@ -1,9 +1,14 @@
 #include "demo_platformer.hpp"
 
+#include <proxima/debug/draw_shapes_2d.hpp>
+
+#include <algorithm>
 #include <cstdio>
+#include <optional>
 #include <ostream>
 
 #include "svg_writer.hpp"
+#include "world_picture.hpp"
 
 namespace proxima::tool {
 
@@ -105,6 +110,41 @@ std::string render_platformer_svg(const PlatformerRun& continuous, const Platfor
   return svg.str();
 }
 
+DrawBuffer platformer_overlay(const PlatformerRun& run) {
+  DrawBuffer draw;
+  debug::Shape2DDrawOptions outline;
+  outline.fill = false;
+  outline.layer = DrawLayer::User;
+  const d2::Shape player = d2::Polygon::box(run.player_half_extents.x, run.player_half_extents.y).value();
+  for (std::size_t f = 0; f < run.player_trail.size(); f += 10) {
+    debug::draw_shape_2d(draw, player, run.player_trail[f], Rgba{255, 190, 110, 200}, outline);
+  }
+  std::vector<DrawLine> tracks;
+  for (const ProjectileTrack& t : run.projectiles) {
+    const bool through = !t.stopped && t.end.x > run.wall_bottom.x;
+    const Rgba color = t.stopped ? Rgba{60, 200, 90, 255} : through ? Rgba{230, 60, 50, 255} : Rgba{240, 210, 60, 255};
+    tracks.push_back({debug::plane_point(t.start), debug::plane_point(t.end), color, DrawTag{DrawLayer::Sweeps, 0}});
+  }
+  draw.draw_lines(tracks);
+  char title[160];
+  std::snprintf(
+      title, sizeof(title), "frame %d: the 2D world drawn by proxima render - %d of %d projectiles stopped at the wall",
+      static_cast<int>(run.player_trail.size()) - 1, count_stopped(run), static_cast<int>(run.projectiles.size()));
+  const DrawText label{Vec3(Real(-0.5), Real(8.8), Real(0)), title, Rgba{230, 230, 230, 255},
+                       DrawTag{DrawLayer::Text, 0}};
+  draw.draw_texts({&label, 1});
+  return draw;
+}
+
+debug::CaptureOptions platformer_capture() {
+  debug::CaptureOptions capture;
+  capture.camera = debug::CaptureCamera{Vec3(Real(30), Real(4), Real(20)), Vec3(Real(30), Real(4), Real(0)),
+                                        Vec3(Real(0), Real(1), Real(0)), Real(0), Real(11)};
+  capture.contact.labels = false;
+  capture.contact.normal_length = Real(0.5);
+  return capture;
+}
+
 std::string platformer_report(const PlatformerRun& continuous, const PlatformerRun& discrete) {
   char text[512];
   std::snprintf(
@@ -124,7 +164,22 @@ std::string platformer_report(const PlatformerRun& continuous, const PlatformerR
 int run_platformer_demo(const PlatformerDemoOptions& options, std::ostream& out, std::ostream& err) {
   PlatformerConfig config = options.config;
   config.projectile_ccd = d2::CcdMode::Bullet;
-  const PlatformerRun continuous = run_platformer(config);
+  const int png_frame = std::clamp(options.png_frame, 0, std::max(config.frames - 1, 0));
+  std::optional<Error> picture_error;
+  const PlatformerRun continuous = run_platformer(config, [&](int frame, const d2::CollisionWorld& world,
+                                                              std::span<const debug::WorldObject2D> objects,
+                                                              const PlatformerRun& run) {
+    if (frame != png_frame || options.png_path.empty()) return;
+    RenderOptions picture;
+    picture.width = 1240;
+    picture.height = 220;
+    const DrawBuffer overlay = platformer_overlay(run);
+    picture_error = write_world_picture_2d(world, objects, options.png_path, picture, platformer_capture(), &overlay);
+  });
+  if (picture_error) {
+    err << "proxima demo-platformer: " << picture_error->what() << "\n";
+    return 1;
+  }
   config.projectile_ccd = d2::CcdMode::Off;
   const PlatformerRun discrete = run_platformer(config);
   if (!options.quiet) out << platformer_report(continuous, discrete);
@@ -134,6 +189,9 @@ int run_platformer_demo(const PlatformerDemoOptions& options, std::ostream& out,
       return 1;
     }
     if (!options.quiet) out << "wrote " << options.svg_path << "\n";
+  }
+  if (!options.png_path.empty() && !options.quiet) {
+    out << "frame " << png_frame << " of the continuous run drawn by proxima render: " << options.png_path << "\n";
   }
   return 0;
 }

@@ -4,6 +4,8 @@
 #include <istream>
 #include <ostream>
 
+#include "progress_bar.hpp"
+
 namespace proxima::tool {
 
 namespace {
@@ -70,10 +72,13 @@ Json answer_line_with(std::string_view line, bool& rejected, RequestHandler hand
   return answer_request_with(request, rejected, handler);
 }
 
-QuerySummary run_lines(std::istream& in, std::ostream& out, RequestHandler handler) {
+QuerySummary run_lines(std::istream& in, std::ostream& out, RequestHandler handler, ProgressBar* progress) {
   QuerySummary summary;
   std::string line;
+  std::size_t bytes = 0;
   while (std::getline(in, line)) {
+    bytes += line.size() + 1;
+    if (progress) progress->update(bytes);
     if (line.find_first_not_of(" \t\r\n") == std::string::npos) continue;
     bool rejected = false;
     const Json answer = answer_line_with(line, rejected, handler);

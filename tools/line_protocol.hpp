@@ -13,6 +13,8 @@
 
 namespace proxima::tool {
 
+class ProgressBar;
+
 /// What a run of a line protocol did.
 struct QuerySummary {
   std::size_t answered = 0;  ///< requests answered without error
@@ -40,8 +42,9 @@ Json answer_line_with(std::string_view line, bool& rejected, RequestHandler hand
 
 /// Reads requests from `in` line by line (blank lines are skipped) and writes one compact
 /// JSON answer per line to `out`, flushed after each so that the protocol can be driven
-/// interactively through a pipe.
-QuerySummary run_lines(std::istream& in, std::ostream& out, RequestHandler handler);
+/// interactively through a pipe. `progress` (may be null) is told the bytes read so far
+/// (each line and its newline) after each line.
+QuerySummary run_lines(std::istream& in, std::ostream& out, RequestHandler handler, ProgressBar* progress = nullptr);
 
 /// The names of a protocol's operation table (elements with a `name`), comma-separated, in
 /// table order (for error messages and --help).

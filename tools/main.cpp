@@ -2,7 +2,7 @@
 //   proxima --version          version and scalar precision
 //   proxima demo [options]     the billiard-break demo (statistics + SVG picture)
 //   proxima demo-tunnelling    discrete against continuous detection of fast bullets (+ SVG)
-//   proxima demo-platformer    a 2D platformer on the 2D collision world (+ SVG)
+//   proxima demo-platformer    a 2D platformer on the 2D collision world (+ SVG, PNG)
 //   proxima query [FILE|-]     the JSON query protocol, one request per line
 //   proxima world [FILE|-]     a collision world driven by JSON requests, one per line
 //   proxima bench broadphase   one broad-phase structure on a W1 workload file
@@ -126,7 +126,13 @@ int run_world(const proxima::tool::WorldOptions& options, const std::string& inp
     std::cerr << "proxima world: cannot open " << input << " (not a readable file)\n";
     return 1;
   }
-  const int status = proxima::tool::exit_status(session.value().run(file, std::cout));
+  // A bar over the request file's bytes, when it would not interleave with the answers.
+  std::error_code size_error;
+  const std::uintmax_t size = std::filesystem::file_size(input, size_error);
+  proxima::tool::ProgressBar progress(
+      std::cerr, !size_error && proxima::tool::stderr_is_terminal() && !proxima::tool::stdout_is_terminal(),
+      size_error ? 0 : static_cast<std::size_t>(size), "bytes of requests");
+  const int status = proxima::tool::exit_status(session.value().run(file, std::cout, &progress));
   if (file.bad()) {
     std::cerr << "proxima world: reading " << input << " failed\n";
     return 1;
@@ -235,7 +241,7 @@ int run(int argc, char** argv) {
       app.add_subcommand("demo-platformer",
                          "A 2D platformer on the 2D collision world: a player walking over a tiled chain ground, "
                          "fast projectiles at a thin wall with and without continuous detection; prints statistics, "
-                         "draws both runs as an SVG");
+                         "draws both runs as an SVG and one frame as a PNG");
   platformer_cmd->add_option("--frames", platformer.config.frames, "Frames to simulate at 60 Hz")
       ->capture_default_str()
       ->check(CLI::Range(1, 100000));
@@ -243,7 +249,12 @@ int run(int argc, char** argv) {
       ->capture_default_str()
       ->check(CLI::Range(0, 1000));
   platformer_cmd->add_option("--svg", platformer.svg_path, "Picture of both runs (empty: none)")->capture_default_str();
-  platformer_cmd->add_flag("--quiet,-q", platformer.quiet, "Print nothing (still writes the SVG)");
+  platformer_cmd
+      ->add_option("--png", platformer.png_path,
+                   "Picture of one frame of the continuous run drawn by proxima render (empty: none)")
+      ->capture_default_str();
+  platformer_cmd->add_option("--png-frame", platformer.png_frame, "The frame drawn in the PNG")->capture_default_str();
+  platformer_cmd->add_flag("--quiet,-q", platformer.quiet, "Print nothing (still writes the pictures)");
 
   std::string query_input;
   CLI::App* query_cmd = app.add_subcommand(
@@ -365,6 +376,7 @@ int run(int argc, char** argv) {
     }
     if (mesh_info_cmd->parsed()) {
       mesh_info.repair = !mesh_info_no_repair;
+      mesh_info.progress = proxima::tool::stderr_is_terminal();
       return proxima::tool::run_mesh_info(mesh_info, std::cout, std::cerr);
     }
     if (bench_broadphase_cmd->parsed()) {

@@ -92,7 +92,7 @@ d2::TurnedPlacement SpriteEncounter::placement_b(int frame) const {
   return d2::TurnedPlacement::create({start_b - frame, row}, spin_degrees * frame, 1.0).value();
 }
 
-PlatformerRun run_platformer(const PlatformerConfig& config) {
+PlatformerRun run_platformer(const PlatformerConfig& config, const PlatformerFrameObserver& observer) {
   PlatformerRun run;
   run.config = config;
   run.ground = ground_points();
@@ -100,17 +100,22 @@ PlatformerRun run_platformer(const PlatformerConfig& config) {
   run.wall_top = {Real(50), Real(8)};
   run.player_half_extents = {Real(0.4), Real(0.5)};
   d2::CollisionWorld world = d2::CollisionWorld::create().value();
-  world.add({d2::Chain::create(run.ground, false).value(), d2::Pose::identity(), d2::ObjectKind::Static}).value();
+  std::vector<debug::WorldObject2D> objects;
+  const auto add = [&](const d2::ObjectDesc& desc) {
+    objects.push_back({world.add(desc).value(), desc});
+    return objects.back().handle;
+  };
+  add({d2::Chain::create(run.ground, false).value(), d2::Pose::identity(), d2::ObjectKind::Static});
   // Layers: 1 ground, 2 player, 4 projectiles, 8 wall. The player walks on the ground and
   // through the wall (a doorway); projectiles meet the ground and the wall, not the player.
   d2::ObjectDesc wall{d2::Segment::create(run.wall_bottom, run.wall_top).value(), d2::Pose::identity(),
                       d2::ObjectKind::Static};
   wall.filter = {8, ~0ull, 0};
-  world.add(wall).value();
+  add(wall);
   d2::ObjectDesc player_desc{d2::Polygon::box(run.player_half_extents.x, run.player_half_extents.y).value(),
                              d2::Pose::from({Real(2), Real(0.5)}, 0)};
   player_desc.filter = {2, 1, 0};
-  const d2::ObjectHandle player = world.add(player_desc).value();
+  const d2::ObjectHandle player = add(player_desc);
   Vec2 position = player_desc.pose.position, velocity(static_cast<Real>(config.walk_speed), 0);
   std::vector<d2::ObjectHandle> shots;
   std::vector<Vec2> shot_velocity;
@@ -121,7 +126,7 @@ PlatformerRun run_platformer(const PlatformerConfig& config) {
       d2::ObjectDesc shot{d2::Circle::create(Real(0.05)).value(), d2::Pose::from(muzzle, 0)};
       shot.ccd = config.projectile_ccd;
       shot.filter = {4, 1 | 8, 0};
-      shots.push_back(world.add(shot).value());
+      shots.push_back(add(shot));
       shot_velocity.push_back({static_cast<Real>(config.projectile_speed), Real(-2)});
       run.projectiles.push_back({muzzle, muzzle, false, false});
     }
@@ -148,6 +153,7 @@ PlatformerRun run_platformer(const PlatformerConfig& config) {
     resolve_player(world, player, position, velocity, run);
     world.teleport(player, d2::Pose::from(position, 0));
     run.player_trail.push_back(d2::Pose::from(position, 0));
+    if (observer) observer(frame, world, objects, run);
   }
   for (ProjectileTrack& track : run.projectiles) track.tunnelled = !track.stopped && track.end.x > run.wall_bottom.x;
   run.sprites = run_sprites(config.frames);

@@ -7,7 +7,10 @@
 #include <proxima/d2/collision_world.hpp>
 #include <proxima/d2/sprite_mask.hpp>
 #include <proxima/d2/sprite_overlap.hpp>
+#include <proxima/debug/draw_world_2d.hpp>
 
+#include <functional>
+#include <span>
 #include <vector>
 
 namespace proxima::tool {
@@ -62,7 +65,14 @@ struct PlatformerRun {
   SpriteEncounter sprites;  ///< the pixel-perfect sprite pair
 };
 
-/// Runs the scene.
-PlatformerRun run_platformer(const PlatformerConfig& config);
+/// Called after each frame's step and collision response: the frame (0, 1, ...), the world,
+/// the objects added to it so far (the ground, the wall, the player, the projectiles) and
+/// the run so far (the player's trail and the projectiles' tracks up to this frame).
+using PlatformerFrameObserver =
+    std::function<void(int frame, const d2::CollisionWorld& world, std::span<const debug::WorldObject2D> objects,
+                       const PlatformerRun& run)>;
+
+/// Runs the scene, calling `observer` (when set) after every frame.
+PlatformerRun run_platformer(const PlatformerConfig& config, const PlatformerFrameObserver& observer = {});
 
 }  // namespace proxima::tool

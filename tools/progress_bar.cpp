@@ -17,13 +17,20 @@ std::string progress_line(std::size_t done, std::size_t total, std::string_view 
 
 bool stderr_is_terminal() { return isatty(STDERR_FILENO) != 0; }
 
+bool stdout_is_terminal() { return isatty(STDOUT_FILENO) != 0; }
+
 void ProgressBar::update(std::size_t done) {
-  if (!enabled_) return;
-  std::string line = progress_line(done, total_, unit_);
-  if (line == last_) return;
-  out_ << line << std::flush;
-  if (done >= total_) out_ << "\n";
-  last_ = std::move(line);
+  if (!enabled_ || finished_) return;
+  constexpr std::size_t kSteps = 1000;
+  const std::size_t step = total_ == 0 ? kSteps : std::min(done, total_) * kSteps / total_;
+  if (drawn_ && step == step_ && done < total_) return;
+  out_ << progress_line(done, total_, unit_) << std::flush;
+  drawn_ = true;
+  step_ = step;
+  if (done >= total_) {
+    out_ << "\n";
+    finished_ = true;
+  }
 }
 
 }  // namespace proxima::tool

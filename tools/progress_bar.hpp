@@ -1,6 +1,7 @@
 #pragma once
-// Progress bars of long command-line work (benchmarks, long demo runs): drawn on standard
-// error when it is a terminal, silent otherwise (a pipe or a file gets nothing).
+// Progress bars of long command-line work (benchmarks, mesh hierarchies, long world runs):
+// drawn on standard error when it is a terminal, silent otherwise (a pipe or a file gets
+// nothing).
 #include <cstddef>
 #include <ostream>
 #include <string>
@@ -14,13 +15,18 @@ std::string progress_line(std::size_t done, std::size_t total, std::string_view 
 /// True when standard error is a terminal (isatty): where progress bars are drawn.
 bool stderr_is_terminal();
 
-/// A progress bar on `out`, redrawn when its text changes; writes nothing when disabled.
+/// True when standard output is a terminal (a bar would interleave with what is printed).
+bool stdout_is_terminal();
+
+/// A progress bar on `out`, redrawn each time another thousandth of the total is done (so
+/// at most about 1000 times, however many updates), and once at the end; writes nothing when
+/// disabled.
 class ProgressBar {
  public:
   /// A bar over `total` items named `unit`; `enabled` false: silent.
   ProgressBar(std::ostream& out, bool enabled, std::size_t total, std::string unit)
       : out_(out), enabled_(enabled), total_(total), unit_(std::move(unit)) {}
-  /// Shows `done` items finished (a newline once done reaches the total).
+  /// Shows `done` items finished (a newline once done reaches the total; nothing after).
   void update(std::size_t done);
 
  private:
@@ -28,7 +34,9 @@ class ProgressBar {
   bool enabled_;
   std::size_t total_;
   std::string unit_;
-  std::string last_;
+  bool drawn_ = false;     ///< a line has been drawn
+  bool finished_ = false;  ///< the last line (done >= total) has been drawn
+  std::size_t step_ = 0;   ///< thousandths done at the last line drawn
 };
 
 }  // namespace proxima::tool

@@ -24,8 +24,8 @@ class WorldSession2d {
   Json answer_request(const Json& request, bool& rejected);
   /// Parses and answers one input line.
   Json answer_line(std::string_view line, bool& rejected);
-  /// Answers every line of `in` on `out`.
-  QuerySummary run(std::istream& in, std::ostream& out);
+  /// Answers every line of `in` on `out` (see run_lines; `progress` may be null).
+  QuerySummary run(std::istream& in, std::ostream& out, ProgressBar* progress = nullptr);
 
  private:
   WorldSession2d(d2::CollisionWorld world, std::unique_ptr<ThreadPool> pool)

@@ -84,8 +84,9 @@ Json WorldSession::answer_line(std::string_view line, bool& rejected) {
   return answer_line_with(line, rejected, [this](const Json& r) { return dispatch(r); });
 }
 
-QuerySummary WorldSession::run(std::istream& in, std::ostream& out) {
-  return run_lines(in, out, [this](const Json& r) { return dispatch(r); });
+QuerySummary WorldSession::run(std::istream& in, std::ostream& out, ProgressBar* progress) {
+  return run_lines(
+      in, out, [this](const Json& r) { return dispatch(r); }, progress);
 }
 
 }  // namespace proxima::tool

@@ -38,8 +38,8 @@ class WorldSession {
   Json answer_request(const Json& request, bool& rejected);
   /// Parses and answers one input line.
   Json answer_line(std::string_view line, bool& rejected);
-  /// Answers every line of `in` on `out` (see run_lines).
-  QuerySummary run(std::istream& in, std::ostream& out);
+  /// Answers every line of `in` on `out` (see run_lines; `progress` may be null).
+  QuerySummary run(std::istream& in, std::ostream& out, ProgressBar* progress = nullptr);
 
   /// The session's world.
   CollisionWorld& world() { return world_; }

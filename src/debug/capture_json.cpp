@@ -4,6 +4,7 @@
 #include <proxima/shapes/shape.hpp>
 
 #include <algorithm>
+#include <ostream>
 
 #include "debug/json_text.hpp"
 
@@ -69,6 +70,30 @@ void sensor_pairs(std::string& out, std::string_view name, std::span<const Senso
     out += ']';
   }
   out += ']';
+}
+
+Vec3 lifted(const Vec3& p) { return p; }
+Vec3 lifted(const Vec2& p) { return Vec3(p.x, p.y, Real(0)); }
+
+/// The events of a 3D or 2D step (the same members; 2D points at z = 0).
+template <class Impact, class Events>
+void any_events(std::string& out, const Events& e) {
+  out += '{';
+  pairs(out, "begin", e.begin);
+  pairs(out, "persist", e.persist);
+  pairs(out, "end", e.end);
+  sensor_pairs(out, "sensor_enter", e.sensor_enter);
+  sensor_pairs(out, "sensor_exit", e.sensor_exit);
+  array<Impact>(out, "impacts", e.impacts, [&](const Impact& i) {
+    key(out, "a", true);
+    handle(out, i.a);
+    key(out, "b");
+    handle(out, i.b);
+    real_member(out, "toi", i.toi);
+    vec3_member(out, "point", lifted(i.point));
+    vec3_member(out, "normal", lifted(i.normal));
+  });
+  out += '}';
 }
 
 void compound_children(std::string& out, const Compound& compound) {
@@ -205,24 +230,39 @@ void draw_stream(std::string& out, const DrawBuffer& draw) {
   out += '}';
 }
 
-void events(std::string& out, const StepEvents& e) {
-  out += '{';
-  pairs(out, "begin", e.begin);
-  pairs(out, "persist", e.persist);
-  pairs(out, "end", e.end);
-  sensor_pairs(out, "sensor_enter", e.sensor_enter);
-  sensor_pairs(out, "sensor_exit", e.sensor_exit);
-  array<ImpactEvent>(out, "impacts", e.impacts, [&](const ImpactEvent& i) {
-    key(out, "a", true);
-    handle(out, i.a);
-    key(out, "b");
-    handle(out, i.b);
-    real_member(out, "toi", i.toi);
-    vec3_member(out, "point", i.point);
-    vec3_member(out, "normal", i.normal);
-  });
+bool write_line(std::ostream& out, const std::string& line, bool& failed) {
+  if (failed) return false;
+  out << line << '\n';
+  out.flush();
+  failed = !out;
+  return !failed;
+}
+
+void header(std::string& out, const CaptureOptions& options, int dimension) {
+  out += "{\"format\":\"proxima-capture\",\"version\":";
+  integer(out, kCaptureVersion);
+  key(out, "dimension");
+  integer(out, static_cast<std::uint64_t>(dimension));
+  key(out, "units");
+  string(out, options.units);
+  key(out, "precision");
+  string(out, sizeof(Real) == 4 ? "float" : "double");
+  if (options.camera) {
+    const CaptureCamera& c = *options.camera;
+    key(out, "camera");
+    out += '{';
+    key(out, "position", true);
+    vec3(out, c.position);
+    vec3_member(out, "target", c.target);
+    vec3_member(out, "up", c.up);
+    real_member(out, "fov_degrees", c.fov_degrees);
+    real_member(out, "ortho_height", c.ortho_height);
+    out += '}';
+  }
   out += '}';
 }
+
+void events(std::string& out, const StepEvents& e) { any_events<ImpactEvent>(out, e); }
 
 void manifolds(std::string& out, std::span<const WorldManifold> list) {
   out += '[';
@@ -242,6 +282,32 @@ void manifolds(std::string& out, std::span<const WorldManifold> list) {
       real_member(out, "depth", p.contact.depth);
       key(out, "id");
       integer(out, p.id);
+    });
+    out += '}';
+  }
+  out += ']';
+}
+
+void events(std::string& out, const d2::StepEvents& e) { any_events<d2::ImpactEvent>(out, e); }
+
+void manifolds(std::string& out, std::span<const d2::WorldManifold> list) {
+  out += '[';
+  for (std::size_t m = 0; m < list.size(); ++m) {
+    const d2::Manifold& manifold = list[m].manifold;
+    out += m ? ",{" : "{";
+    key(out, "a", true);
+    handle(out, list[m].pair.a);
+    key(out, "b");
+    handle(out, list[m].pair.b);
+    vec3_member(out, "normal", lifted(manifold.normal));
+    const auto count = static_cast<std::size_t>(std::clamp(manifold.count, 0, d2::kMaxManifoldPoints));
+    array<d2::ContactPoint>(out, "points", std::span(manifold.points).first(count), [&](const d2::ContactPoint& p) {
+      key(out, "a", true);
+      vec3(out, lifted(p.point_a));
+      vec3_member(out, "b", lifted(p.point_b));
+      real_member(out, "depth", p.depth);
+      key(out, "id");
+      integer(out, p.feature_id);
     });
     out += '}';
   }

@@ -46,14 +46,6 @@ bool same_pose(const Transform& a, const Transform& b) { return a.position == b.
 CaptureRecorder::CaptureRecorder(std::ostream& out, CaptureOptions options)
     : out_(&out), options_(std::move(options)) {}
 
-bool CaptureRecorder::write_line(const std::string& line) {
-  if (failed_) return false;
-  *out_ << line << '\n';
-  out_->flush();
-  failed_ = !*out_;
-  return !failed_;
-}
-
 std::string CaptureRecorder::object_record(ObjectHandle handle, const ObjectDesc& desc) const {
   std::string out = "{\"id\":";
   json::integer(out, handle.to_integer());
@@ -155,7 +147,7 @@ std::string CaptureRecorder::step_line(const CollisionWorld& world, Real dt, con
   queries_.clear();
   DrawBuffer draw;
   if (options_.draw_contacts) {
-    for (const WorldManifold& manifold : world.contacts()) draw_manifold(draw, manifold);
+    for (const WorldManifold& manifold : world.contacts()) draw_manifold(draw, manifold, options_.contact);
   }
   if (extra) extra->replay(draw);
   json::key(out, "draw");
@@ -168,33 +160,14 @@ std::optional<Error> CaptureRecorder::record_step(const CollisionWorld& world, R
   const auto failure = [] { return Error{ErrorCode::InvalidArgument, "out", "writing the capture failed"}; };
   if (failed_) return failure();
   if (!started_) {
-    std::string header = "{\"format\":\"proxima-capture\",\"version\":";
-    json::integer(header, kCaptureVersion);
-    header += ",\"dimension\":3";
-    json::key(header, "units");
-    json::string(header, options_.units);
-    json::key(header, "precision");
-    json::string(header, sizeof(Real) == 4 ? "float" : "double");
-    if (options_.camera) {
-      const CaptureCamera& c = *options_.camera;
-      header += ",\"camera\":{";
-      json::key(header, "position", true);
-      json::vec3(header, c.position);
-      json::key(header, "target");
-      json::vec3(header, c.target);
-      json::key(header, "up");
-      json::vec3(header, c.up);
-      json::key(header, "fov_degrees");
-      json::real(header, c.fov_degrees);
-      json::key(header, "ortho_height");
-      json::real(header, c.ortho_height);
-      header += '}';
-    }
-    header += '}';
+    std::string header;
+    json::header(header, options_, 3);
     started_ = true;
-    if (!write_line(header) || !write_line(scene_line(world))) return failure();
+    if (!json::write_line(*out_, header, failed_) || !json::write_line(*out_, scene_line(world), failed_)) {
+      return failure();
+    }
   }
-  if (!write_line(step_line(world, dt, extra))) return failure();
+  if (!json::write_line(*out_, step_line(world, dt, extra), failed_)) return failure();
   ++steps_;
   return std::nullopt;
 }

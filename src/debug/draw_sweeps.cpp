@@ -7,19 +7,22 @@
 
 namespace proxima::debug {
 
-namespace {
+Rgba sweep_end_color(Rgba color) { return Rgba{color.r, color.g, color.b, static_cast<std::uint8_t>(color.a / 3)}; }
 
-Rgba faded(Rgba color) { return Rgba{color.r, color.g, color.b, static_cast<std::uint8_t>(color.a / 3)}; }
-
-}  // namespace
+void draw_impact_point(DebugDraw& sink, const Vec3& point, const Vec3& normal, Real normal_length) {
+  const DrawPoint marker{point, Real(6), Rgba{255, 40, 40, 255}, DrawTag{DrawLayer::Contacts, 0}};
+  const DrawLine line{point, point + normal * normal_length, Rgba{255, 220, 0, 255}, DrawTag{DrawLayer::Normals, 0}};
+  sink.draw_points({&marker, 1});
+  sink.draw_lines({&line, 1});
+}
 
 void draw_sweep(DebugDraw& sink, ShapeRef shape, const Motion& motion, std::optional<Real> toi,
                 const SweepDrawOptions& options) {
   const DrawTag tag{DrawLayer::Sweeps, 0};
   const DrawMesh mesh = tessellate(shape, options.tessellation);
-  draw_mesh(sink, mesh, motion.at(Real(0)), faded(options.color), tag);
+  draw_mesh(sink, mesh, motion.at(Real(0)), sweep_end_color(options.color), tag);
   if (toi) draw_mesh(sink, mesh, motion.at(std::clamp(*toi, Real(0), Real(1))), options.color, tag);
-  draw_mesh(sink, mesh, motion.at(Real(1)), faded(options.color), tag);
+  draw_mesh(sink, mesh, motion.at(Real(1)), sweep_end_color(options.color), tag);
   const int samples = std::clamp(options.path_samples, 1, 1024);
   std::vector<DrawLine> path;
   for (int i = 0; i < samples; ++i) {
@@ -38,12 +41,7 @@ void draw_time_of_impact(DebugDraw& sink, ShapeRef shape_a, const Motion& motion
   SweepDrawOptions other = options;
   other.color = Rgba{160, 160, 160, options.color.a};
   draw_sweep(sink, shape_b, motion_b, toi, other);
-  if (!hit) return;
-  const DrawPoint marker{result.point, Real(6), Rgba{255, 40, 40, 255}, DrawTag{DrawLayer::Contacts, 0}};
-  const DrawLine normal{result.point, result.point + result.normal * normal_length, Rgba{255, 220, 0, 255},
-                        DrawTag{DrawLayer::Normals, 0}};
-  sink.draw_points({&marker, 1});
-  sink.draw_lines({&normal, 1});
+  if (hit) draw_impact_point(sink, result.point, result.normal, normal_length);
 }
 
 }  // namespace proxima::debug

@@ -8,13 +8,15 @@
 
 namespace proxima::debug {
 
-Rgba object_color(const ObjectDesc& object) {
+Rgba object_color(const ObjectDesc& object) { return object_color(object.kind, object.sensor, object.filter); }
+
+Rgba object_color(ObjectKind kind, bool sensor, const CollisionFilter& filter) {
   static constexpr std::array<Rgba, 8> kLayerHues = {
       Rgba{70, 130, 230, 255}, Rgba{230, 150, 50, 255}, Rgba{170, 90, 220, 255}, Rgba{60, 190, 190, 255},
       Rgba{220, 90, 140, 255}, Rgba{150, 200, 70, 255}, Rgba{200, 180, 60, 255}, Rgba{120, 120, 230, 255}};
-  if (object.sensor) return Rgba{60, 220, 90, 96};
-  if (object.kind == ObjectKind::Static) return Rgba{150, 150, 150, 255};
-  const int bit = object.filter.layer == 0 ? 0 : std::countr_zero(object.filter.layer);
+  if (sensor) return Rgba{60, 220, 90, 96};
+  if (kind == ObjectKind::Static) return Rgba{150, 150, 150, 255};
+  const int bit = filter.layer == 0 ? 0 : std::countr_zero(filter.layer);
   return kLayerHues[static_cast<std::size_t>(bit) % kLayerHues.size()];
 }
 

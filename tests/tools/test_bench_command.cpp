@@ -154,6 +154,7 @@ TEST(BenchCommand, EndToEnd) {
   EXPECT_NE(text.find("per frame:"), std::string::npos) << text;
   EXPECT_NE(text.find("(300 boxes, 3 frames)"), std::string::npos) << text;
   EXPECT_NE(text.find("check:       agrees"), std::string::npos) << text;
+  EXPECT_EQ(text.find('\r'), std::string::npos) << "a progress bar on a pipe";
 }
 
 }  // namespace test_bench_command

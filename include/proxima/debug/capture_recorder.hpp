@@ -14,6 +14,7 @@
 ///   for (...) { world.move(...); world.step(dt); recorder.record_step(world, dt); }
 #include <proxima/core/debug_draw.hpp>
 #include <proxima/core/result.hpp>
+#include <proxima/debug/draw_contacts.hpp>
 #include <proxima/debug/tessellate.hpp>
 #include <proxima/geometry/ray.hpp>
 #include <proxima/world/collision_world.hpp>
@@ -47,6 +48,7 @@ struct CaptureOptions {
   TessellationOptions tessellation;     ///< how objects' meshes are tessellated
   bool snapshot = true;                 ///< the scene line carries the world's snapshot (base64)
   bool draw_contacts = true;            ///< each step's draw stream includes its manifolds
+  ContactDrawOptions contact;           ///< how they are drawn (draw_manifold)
 };
 
 /// Writes a capture of one world to a stream (see the file comment). The stream must
@@ -87,7 +89,6 @@ class CaptureRecorder {
     CcdMode ccd = CcdMode::Auto;
     bool stale = false;
   };
-  bool write_line(const std::string& line);
   std::string object_record(ObjectHandle handle, const ObjectDesc& desc) const;
   std::string scene_line(const CollisionWorld& world);
   std::string step_line(const CollisionWorld& world, Real dt, const DrawBuffer* extra);

@@ -20,6 +20,13 @@ struct SweepDrawOptions {
   TessellationOptions tessellation;  ///< how the shape is tessellated
 };
 
+/// `color` at a third of its opacity: how a sweep draws its shape at t = 0 and t = 1.
+Rgba sweep_end_color(Rgba color);
+
+/// The contact of a time of impact: a red marker at `point` ({Contacts, 0}) and the yellow
+/// normal from it, `normal_length` long ({Normals, 0}); world frame.
+void draw_impact_point(DebugDraw& sink, const Vec3& point, const Vec3& normal, Real normal_length);
+
 /// Draws `shape` moving by `motion` (t in [0, 1]): its surface at t = 0 and t = 1 (faded),
 /// at `toi` when given (clamped to [0, 1]; full colour), all tagged {Sweeps, 0}, and the
 /// path of its origin (motion.at(t).position) as `path_samples` lines tagged {Sweeps, 0}.

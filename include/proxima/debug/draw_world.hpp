@@ -15,6 +15,10 @@ namespace proxima::debug {
 /// bit of its filter's layer (layer 1: blue), so objects of different layers differ.
 Rgba object_color(const ObjectDesc& object);
 
+/// The colour of an object of this kind, sensor flag and filter (the rule of object_color;
+/// the 2D world's objects use it too).
+Rgba object_color(ObjectKind kind, bool sensor, const CollisionFilter& filter);
+
 /// What draw_world draws.
 struct WorldDrawOptions {
   bool shapes = true;                ///< every object's surface ({Shapes, 0}, object_color)
