@@ -26,8 +26,9 @@ struct Transform {
   /// The transform create() returns for these values, or nothing where create() returns an
   /// Error: the form for loops over many poses (no Error built, one square root).
   static std::optional<Transform> from_values(const Vec3& position, const Quat& rotation) {
+    if (!validate::is_acceptable(position) || !is_finite(rotation)) return std::nullopt;
     const Real length = glm::length(rotation);
-    if (!validate::is_acceptable(position) || !validate::is_unit_length(length)) return std::nullopt;
+    if (!validate::is_unit_length(length)) return std::nullopt;
     const Real inverse = Real(1) / length;  // glm::normalize's arithmetic, without its second square root
     return Transform{position,
                      Quat{rotation.w * inverse, rotation.x * inverse, rotation.y * inverse, rotation.z * inverse}};

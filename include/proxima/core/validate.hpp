@@ -15,15 +15,13 @@ namespace proxima::validate {
 
 /// True when `v` passes finite(v, ...): the allocation-free test for hot paths, which build
 /// the Error (and its field name) only when this fails.
-/// (Written so that a NaN or an infinity fails each comparison: no separate finiteness test.)
-inline bool is_acceptable(const Vec3& v) {
-  return std::abs(v.x) <= kMaxCoordinate && std::abs(v.y) <= kMaxCoordinate && std::abs(v.z) <= kMaxCoordinate;
-}
-/// True when a quaternion of length `length` (glm::length) passes unit_quaternion: within
-/// 1e-3 of 1, which a NaN or an infinite length never is.
+inline bool is_acceptable(const Vec3& v) { return is_finite(v) && max_abs_component(v) <= kMaxCoordinate; }
+/// True when a finite quaternion of length `length` (glm::length) passes unit_quaternion:
+/// within 1e-3 of 1. (Test finiteness first: comparing a NaN raises the invalid-operation flag,
+/// which the tests trap.)
 inline bool is_unit_length(Real length) { return std::abs(length - Real(1)) <= Real(1e-3); }
 /// True when `q` passes unit_quaternion(q, ...).
-inline bool is_unit(const Quat& q) { return is_unit_length(glm::length(q)); }
+inline bool is_unit(const Quat& q) { return is_finite(q) && is_unit_length(glm::length(q)); }
 
 /// A finite number with |x| <= kMaxCoordinate.
 std::optional<Error> finite(Real x, const std::string& field);
