@@ -70,7 +70,8 @@ bool bad_index(const aiScene& scene) {
   return false;
 }
 
-// Identical positions (-0 and +0 alike) become one vertex, numbered in order of first use.
+// Identical positions (-0 and +0 alike) become one vertex, numbered in order of first use by
+// the triangles; vertices no triangle uses are dropped (as assimp's import does).
 IndexedMesh join_identical_vertices(IndexedMesh in) {
   struct Key {
     Real x, y, z;
@@ -90,16 +91,18 @@ IndexedMesh join_identical_vertices(IndexedMesh in) {
   };
   std::unordered_map<Key, std::uint32_t, Hash> index;
   index.reserve(in.vertices.size());
-  std::vector<std::uint32_t> remap(in.vertices.size());
   IndexedMesh out;
-  for (std::size_t i = 0; i < in.vertices.size(); ++i) {
-    const Vec3& v = in.vertices[i];
-    const auto [it, added] = index.emplace(Key{v.x, v.y, v.z}, static_cast<std::uint32_t>(out.vertices.size()));
-    if (added) out.vertices.push_back(v);
-    remap[i] = it->second;
-  }
   out.triangles.reserve(in.triangles.size());
-  for (const TriangleIndices& t : in.triangles) out.triangles.push_back({remap[t[0]], remap[t[1]], remap[t[2]]});
+  for (const TriangleIndices& t : in.triangles) {
+    TriangleIndices joined{};
+    for (std::size_t k = 0; k < 3; ++k) {
+      const Vec3& v = in.vertices[t[k]];
+      const auto [it, added] = index.emplace(Key{v.x, v.y, v.z}, static_cast<std::uint32_t>(out.vertices.size()));
+      if (added) out.vertices.push_back(v);
+      joined[k] = it->second;
+    }
+    out.triangles.push_back(joined);
+  }
   return out;
 }
 

@@ -30,9 +30,8 @@ std::optional<Error> read_vertex(mesh_read::Tokens& tokens, IndexedMesh& mesh) {
     const std::string_view token = tokens.next_on_line();
     const auto parsed = mesh_read::parse_double(token);
     if (!parsed) {
-      return file_error(
-          ErrorCode::InvalidArgument,
-          at_line(tokens.line()) + ": a vertex needs three numbers, found \"" + std::string(token) + "\"");
+      return file_error(ErrorCode::InvalidArgument,
+                        at_line(tokens.line()) + ": a vertex needs three numbers, found " + mesh_read::quoted(token));
     }
     value = *parsed;
   }
@@ -49,8 +48,7 @@ std::optional<Error> read_corner(std::string_view token, std::size_t line, std::
   const std::string_view index = token.substr(0, token.find('/'));
   const auto value = mesh_read::parse_integer(index);
   if (!value) {
-    return file_error(ErrorCode::InvalidArgument,
-                      at_line(line) + ": malformed face index \"" + std::string(token) + "\"");
+    return file_error(ErrorCode::InvalidArgument, at_line(line) + ": malformed face index " + mesh_read::quoted(token));
   }
   if (*value == 0) return file_error(ErrorCode::OutOfRange, at_line(line) + ": face index 0 (indices start at 1)");
   std::int64_t zero_based = *value > 0 ? *value - 1 : std::int64_t(vertex_count) + *value;

@@ -139,8 +139,7 @@ std::optional<Error> read_header_line(const std::vector<std::string_view>& w, st
     } else if (w[1] == "binary_big_endian") {
       header.format = Format::Big;
     } else {
-      return file_error(ErrorCode::InvalidArgument,
-                        header_line(line) + ": unknown format \"" + std::string(w[1]) + "\"");
+      return file_error(ErrorCode::InvalidArgument, header_line(line) + ": unknown format " + mesh_read::quoted(w[1]));
     }
     have_format = true;
     return std::nullopt;
@@ -155,8 +154,7 @@ std::optional<Error> read_header_line(const std::vector<std::string_view>& w, st
     return std::nullopt;
   }
   if (w[0] == "property") return read_property(w, line, header);
-  return file_error(ErrorCode::InvalidArgument,
-                    header_line(line) + ": unknown keyword \"" + std::string(w[0].substr(0, 40)) + "\"");
+  return file_error(ErrorCode::InvalidArgument, header_line(line) + ": unknown keyword " + mesh_read::quoted(w[0]));
 }
 
 Result<Header> read_header(std::string_view bytes) {
@@ -201,7 +199,7 @@ class Values {
       return pos_ == data_.size() ? "" : std::to_string(data_.size() - pos_) + " bytes";
     }
     const std::string_view t = tokens_.next();
-    return t.empty() ? "" : "\"" + std::string(t.substr(0, 40)) + "\" on data line " + std::to_string(tokens_.line());
+    return t.empty() ? "" : mesh_read::quoted(t) + " on data line " + std::to_string(tokens_.line());
   }
 
  private:
@@ -213,7 +211,7 @@ class Values {
     }
     if (!is_integer(type)) {
       const auto v = mesh_read::parse_double(token);
-      if (!v) problem = "malformed number \"" + std::string(token.substr(0, 40)) + "\"";
+      if (!v) problem = "malformed number " + mesh_read::quoted(token);
       out = v.value_or(0.0);
       return v.has_value();
     }
@@ -223,7 +221,7 @@ class Values {
     const std::int64_t lo = is_signed ? -(std::int64_t(1) << (bits - 1)) : 0;
     const std::int64_t hi = is_signed ? (std::int64_t(1) << (bits - 1)) - 1 : (std::int64_t(1) << bits) - 1;
     if (!v || *v < lo || *v > hi) {
-      problem = "\"" + std::string(token.substr(0, 40)) + "\" is not an integer of the declared type";
+      problem = mesh_read::quoted(token) + " is not an integer of the declared type";
       return false;
     }
     out = double(*v);

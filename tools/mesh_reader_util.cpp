@@ -50,6 +50,15 @@ std::optional<std::int64_t> parse_integer(std::string_view token) {
   return value;
 }
 
+std::string quoted(std::string_view token) {
+  std::string out;
+  out.reserve(42);
+  out += '"';
+  out.append(token.substr(0, 40));
+  out += '"';
+  return out;
+}
+
 Error file_error(ErrorCode code, std::string message) { return make_error(code, "file", std::move(message)); }
 
 std::optional<Error> push_vertex(IndexedMesh& mesh, double x, double y, double z, const std::string& where) {

@@ -40,6 +40,9 @@ std::optional<double> parse_double(std::string_view token);
 /// The whole token as a signed 64-bit integer (an optional leading '+' or '-'), or nothing.
 std::optional<std::int64_t> parse_integer(std::string_view token);
 
+/// The token in double quotes, cut to its first 40 characters (for error messages).
+std::string quoted(std::string_view token);
+
 /// An error of a mesh file (field "file").
 Error file_error(ErrorCode code, std::string message);
 

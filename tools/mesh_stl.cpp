@@ -56,9 +56,9 @@ std::string at_line(std::size_t line) { return "STL line " + std::to_string(line
 std::optional<Error> expect(mesh_read::Tokens& tokens, std::string_view keyword) {
   const std::string_view token = tokens.next();
   if (token == keyword) return std::nullopt;
-  const std::string found = token.empty() ? "the end of the file" : "\"" + std::string(token.substr(0, 40)) + "\"";
+  const std::string found = token.empty() ? "the end of the file" : mesh_read::quoted(token);
   return file_error(ErrorCode::InvalidArgument,
-                    at_line(tokens.line()) + ": expected \"" + std::string(keyword) + "\", found " + found);
+                    at_line(tokens.line()) + ": expected " + mesh_read::quoted(keyword) + ", found " + found);
 }
 
 std::optional<Error> read_numbers(mesh_read::Tokens& tokens, double (&out)[3]) {
@@ -66,8 +66,8 @@ std::optional<Error> read_numbers(mesh_read::Tokens& tokens, double (&out)[3]) {
     const std::string_view token = tokens.next();
     const auto parsed = mesh_read::parse_double(token);
     if (!parsed) {
-      return file_error(ErrorCode::InvalidArgument, at_line(tokens.line()) + ": expected a number, found \"" +
-                                                        std::string(token.substr(0, 40)) + "\"");
+      return file_error(ErrorCode::InvalidArgument,
+                        at_line(tokens.line()) + ": expected a number, found " + mesh_read::quoted(token));
     }
     value = *parsed;
   }
@@ -99,14 +99,13 @@ Result<IndexedMesh> read_ascii(std::string_view text) {
   mesh_read::Tokens tokens(text);
   for (std::string_view token = tokens.next(); !token.empty(); token = tokens.next()) {
     if (token != "solid") {
-      return file_error(ErrorCode::InvalidArgument, at_line(tokens.line()) + ": expected \"solid\", found \"" +
-                                                        std::string(token.substr(0, 40)) + "\"");
+      return file_error(ErrorCode::InvalidArgument,
+                        at_line(tokens.line()) + ": expected \"solid\", found " + mesh_read::quoted(token));
     }
     tokens.skip_line();  // the solid's name
     for (token = tokens.next(); token != "endsolid"; token = tokens.next()) {
       if (token != "facet") {
-        const std::string found =
-            token.empty() ? "the end of the file" : "\"" + std::string(token.substr(0, 40)) + "\"";
+        const std::string found = token.empty() ? "the end of the file" : mesh_read::quoted(token);
         return file_error(ErrorCode::InvalidArgument,
                           at_line(tokens.line()) + ": expected \"facet\" or \"endsolid\", found " + found);
       }
