@@ -157,8 +157,10 @@ Result<IndexedMesh> read_with_assimp(const std::string& path) {
 Result<IndexedMesh> load_mesh(const std::string& path) {
   std::error_code ec;
   const auto size = std::filesystem::file_size(path, ec);
-  if (ec)
-    return make_error(ErrorCode::InvalidArgument, "file", "cannot read mesh file \"" + path + "\": " + ec.message());
+  if (ec) {
+    return make_error(ErrorCode::InvalidArgument, "file",
+                      "cannot read mesh file \"" + path + "\": Unable to open file \"" + path + "\".");
+  }
   if (size > kMaxMeshFileBytes) {
     return make_error(ErrorCode::OutOfRange, "file",
                       "mesh file \"" + path + "\" has " + std::to_string(size) + " bytes, more than the limit of " +
