@@ -19,8 +19,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "fuzz_support.hpp"
@@ -106,9 +108,16 @@ void check_queries(const AnyBroadPhase& s, const Model& model, pf::ByteReader& i
   }
 }
 
+// The operations run so far (operation code, id), printed when a check fails.
+std::vector<std::pair<int, ProxyId>>& history() {
+  static std::vector<std::pair<int, ProxyId>> h;
+  return h;
+}
+
 void run_operation(AnyBroadPhase& s, Model& model, pf::ByteReader& in, std::vector<ProxyPair>& pairs) {
   const std::uint8_t op = in.byte() % 9;
   const ProxyId id = in.index(48);
+  history().emplace_back(op, id);
   switch (op) {
     case 0:
     case 1: {
@@ -169,7 +178,19 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   AnyBroadPhase& s = *made.value();
   Model model;
   std::vector<ProxyPair> pairs;
-  for (int step = 0; step < 256 && !in.empty(); ++step) run_operation(s, model, in, pairs);
+  int step = 0;
+  history().clear();
+  pf::failure_context() = [&] {
+    std::fprintf(stderr, "  structure %s, operation %d, %zu proxies\n", std::string(s.name()).c_str(), step,
+                 model.size());
+    for (const auto& [op, id] : history()) std::fprintf(stderr, "  op %d id %u\n", op, id);
+    for (const auto& [id, p] : model) {
+      std::fprintf(stderr, "  proxy %u kind %d\n", id, static_cast<int>(p.kind));
+      pf::print_vec("min", p.box.min);
+      pf::print_vec("max", p.box.max);
+    }
+  };
+  for (; step < 256 && !in.empty(); ++step) run_operation(s, model, in, pairs);
   s.find_pairs(pairs);
   pf::check(pairs == model_pairs(model), "find_pairs differs from brute force");
   return 0;
