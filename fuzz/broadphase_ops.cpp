@@ -98,7 +98,8 @@ void check_queries(const AnyBroadPhase& s, const Model& model, pf::ByteReader& i
     const Real max_t = Real(in.byte() % 9) * Real(0.5);
     got.clear();
     want.clear();
-    s.query_ray(ray, max_t, [&](ProxyId id, Real) { return got.push_back(id), max_t; });
+    // The callback returns more than max_t: never a clip (0 would stop the query).
+    s.query_ray(ray, max_t, [&](ProxyId id, Real) { return got.push_back(id), max_t + Real(1); });
     for (const auto& [id, p] : model) {
       const auto hit = geometry::ray_aabb(ray, max_t, p.box);
       if (hit && hit->t <= max_t) want.push_back(id);

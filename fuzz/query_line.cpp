@@ -22,6 +22,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const proxima::tool::Json answer = proxima::tool::answer_line(line, rejected);
   pf::check_answer_shape(answer, rejected);
   pf::check_json_finite(answer);
-  (void)answer.dump();
+  // Written as the tool writes it (invalid UTF-8 of the request, quoted in an error, replaced).
+  (void)answer.dump(-1, ' ', false, proxima::tool::Json::error_handler_t::replace);
   return 0;
 }
