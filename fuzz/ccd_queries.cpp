@@ -3,11 +3,12 @@
 // and:
 //   1. every number is finite; toi, t_lower, t_upper and a cast's t lie in [0, 1], with
 //      t_lower <= t_upper; the normal is unit;
-//   2. the certificate: at t_lower (toi) the shapes are apart by more than the target
-//      distance at sampled times of [0, t_lower] (less the tolerance), and at a Hit they are
+//   2. the certificate: for pairs apart by more than target + tolerance at t = 0, the shapes
+//      are apart by more than the target (less the tolerance) at sampled times of
+//      [0, t_lower) (closer at t = 0, the t = 0 contract answers), and at a Hit they are
 //      within the target distance plus the tolerance, measured by the narrow phase;
 //   3. a cast's Hit at t leaves A (moved by t * translation) within target + tolerance of B,
-//      and A is not closer than the target at sampled times before t.
+//      and A is not closer than the target at sampled times before t (pairs apart at t = 0).
 // Tolerance: the query's own (1e-4, raised to 64 epsilon of the pair's scale) plus 1e-3
 // (float) or 1e-6 (double) of the scale.
 // Input: shape A, shape B, start and end poses of A and B, the options, a translation.
@@ -18,6 +19,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "fuzz_shapes.hpp"
 
@@ -39,6 +41,17 @@ void check_toi(const pf::FuzzShape& a, const Motion& ma, const pf::FuzzShape& b,
   const Result<ToiResult> r = time_of_impact(a.shape, ma, b.shape, mb, options);
   pf::check(r.ok(), "time_of_impact refused valid input");
   const ToiResult& t = r.value();
+  pf::failure_context() = [&] {
+    std::fprintf(stderr, "  shape types %d, %d; status %d, toi %.9g, t_lower %.9g, t_upper %.9g, iterations %d\n",
+                 static_cast<int>(a.shape.index()), static_cast<int>(b.shape.index()), static_cast<int>(t.status),
+                 double(t.toi), double(t.t_lower), double(t.t_upper), t.iterations);
+    for (int i = 0; i <= 4; ++i) {
+      const Real s = t.t_lower * static_cast<Real>(i) / Real(4) * Real(0.999);
+      std::fprintf(stderr, "  t %.9g: distance %.9g (target %.9g, tolerance %.9g)\n", double(s),
+                   double(distance(a.shape, ma.at(s), b.shape, mb.at(s)).signed_distance),
+                   double(options.target_distance), double(tol));
+    }
+  };
   pf::check(t.status != CcdStatus::Failed, "time_of_impact: status Failed");
   for (Real x : {t.toi, t.t_lower, t.t_upper, t.distance, t.depth}) pf::check_finite(x, "toi: value not finite");
   for (const Vec3& v : {t.point, t.point_a, t.point_b, t.normal}) pf::check_finite(v, "toi: point not finite");
@@ -48,7 +61,10 @@ void check_toi(const pf::FuzzShape& a, const Motion& ma, const pf::FuzzShape& b,
   if (t.status == CcdStatus::Hit) {
     pf::check(gap(a, ma.at(t.toi), b, mb.at(t.toi)) <= options.target_distance + tol, "toi: Hit but apart at toi");
   }
-  if (t.status != CcdStatus::InitiallyOverlapping) {
+  // The certificate holds on [0, t_lower) for pairs apart by more than target + tolerance at
+  // t = 0; closer at t = 0 the t = 0 contract answers (Hit when approaching, else Separated).
+  const bool apart_at_start = gap(a, ma.start, b, mb.start) > options.target_distance + tol;
+  if (t.status != CcdStatus::InitiallyOverlapping && apart_at_start) {
     for (int i = 0; i <= 4; ++i) {
       const Real s = t.t_lower * static_cast<Real>(i) / Real(4) * Real(0.999);
       pf::check(gap(a, ma.at(s), b, mb.at(s)) >= options.target_distance - tol,
@@ -71,7 +87,8 @@ void check_cast(const pf::FuzzShape& a, const Transform& pa, const Vec3& transla
   if (c.status == CcdStatus::Hit) {
     pf::check(gap(a, at(c.t), b, pb) <= options.target_distance + tol, "cast: Hit but apart at t");
   }
-  if (c.status == CcdStatus::Hit || c.status == CcdStatus::Separated) {
+  if ((c.status == CcdStatus::Hit || c.status == CcdStatus::Separated) &&
+      gap(a, pa, b, pb) > options.target_distance + tol) {
     for (int i = 0; i <= 4; ++i) {
       const Real s = c.t * static_cast<Real>(i) / Real(4) * Real(0.999);
       pf::check(gap(a, at(s), b, pb) >= options.target_distance - tol, "cast: closer than target before t");
