@@ -4,7 +4,8 @@ file(GLOB_RECURSE files
   "${SOURCE}/include/*.hpp" "${SOURCE}/src/*.cpp" "${SOURCE}/src/*.hpp"
   "${SOURCE}/tests/*.cpp" "${SOURCE}/tests/*.hpp" "${SOURCE}/tools/*.cpp" "${SOURCE}/tools/*.hpp"
   "${SOURCE}/bench/*.cpp" "${SOURCE}/bench/*.hpp" "${SOURCE}/support/*.cpp" "${SOURCE}/support/*.hpp"
-  "${SOURCE}/examples/*.cpp" "${SOURCE}/python/src/*.cpp" "${SOURCE}/python/src/*.hpp")
+  "${SOURCE}/examples/*.cpp" "${SOURCE}/python/src/*.cpp" "${SOURCE}/python/src/*.hpp"
+  "${SOURCE}/fuzz/*.cpp" "${SOURCE}/fuzz/*.hpp")
 set(bad)
 foreach(f IN LISTS files)
   execute_process(COMMAND "${CLANG_FORMAT}" --dry-run --Werror "${f}" RESULT_VARIABLE rc OUTPUT_QUIET ERROR_QUIET)
