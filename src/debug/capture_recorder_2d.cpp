@@ -14,7 +14,6 @@
 #include <proxima/debug/draw_shapes_2d.hpp>
 
 #include <ostream>
-#include <sstream>
 
 #include "debug/capture_json.hpp"
 #include "debug/capture_objects.hpp"
@@ -46,40 +45,17 @@ std::string CaptureRecorder2D::object_record(d2::ObjectHandle handle, const d2::
 }
 
 std::string CaptureRecorder2D::scene_line(const d2::CollisionWorld& world) {
-  std::string out = "{\"type\":\"scene\",\"objects\":[";
-  bool first = true;
-  for (const d2::ObjectHandle handle : world.objects()) {
-    const std::optional<d2::ObjectDesc> desc = world.object(handle);
-    if (!desc) continue;
-    if (!first) out += ',';
-    first = false;
-    out += object_record(handle, *desc);
-    written_[handle.to_integer()] = state_of(*desc);
-  }
-  out += ']';
-  if (options_.snapshot) {
-    std::ostringstream snapshot;
-    if (!world.save(snapshot)) {
-      json::key(out, "snapshot");
-      json::string(out, json::base64(snapshot.str()));
-    }
-  }
-  out += '}';
-  return out;
+  const auto record = [this](d2::ObjectHandle handle, const d2::ObjectDesc& desc) {
+    return object_record(handle, desc);
+  };
+  return detail::scene_line(world, options_.snapshot, written_, record, state_of);
 }
 
 std::string CaptureRecorder2D::object_changes(const d2::CollisionWorld& world) {
-  std::vector<detail::LiveObject> live;
-  std::vector<d2::ObjectDesc> descs;
-  for (const d2::ObjectHandle handle : world.objects()) {
-    std::optional<d2::ObjectDesc> desc = world.object(handle);
-    if (!desc) continue;
-    live.push_back({handle.to_integer(), state_of(*desc)});
-    descs.push_back(std::move(*desc));
-  }
-  return detail::object_changes(written_, live, [&](std::size_t i) {
-    return object_record(d2::ObjectHandle::from_integer(live[i].id), descs[i]);
-  });
+  const auto record = [this](d2::ObjectHandle handle, const d2::ObjectDesc& desc) {
+    return object_record(handle, desc);
+  };
+  return detail::object_changes(world, written_, record, state_of);
 }
 
 std::string CaptureRecorder2D::step_line(const d2::CollisionWorld& world, Real dt, const DrawBuffer* extra) {
