@@ -75,8 +75,7 @@ Kdop<K> fit_shape_kdop(const S& shape, const Transform& pose) {
     const Vec3 p_lo = support(shape, pose, -d);
     const Real hi = Kdop<K>::project(i, p_hi);
     const Real lo = Kdop<K>::project(i, p_lo);
-    const Real scale =
-        std::max({position_scale, detail::projection_terms(d, p_hi), detail::projection_terms(d, p_lo)});
+    const Real scale = std::max({position_scale, detail::projection_terms(d, p_hi), detail::projection_terms(d, p_lo)});
     k.min[i] = detail::pad_down(std::min(lo, hi), scale);
     k.max[i] = detail::pad_up(std::max(lo, hi), scale);
   }
