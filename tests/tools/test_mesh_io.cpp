@@ -60,7 +60,7 @@ IndexedMesh parse_simple_obj(const std::string& path) {
     if (tag == "v") {
       double x = 0, y = 0, z = 0;
       s >> x >> y >> z;
-      m.vertices.emplace_back(static_cast<float>(x), static_cast<float>(y), static_cast<float>(z));
+      m.vertices.emplace_back(Real(x), Real(y), Real(z));  // the readers round to Real once
     } else if (tag == "f") {
       TriangleIndices t{};
       for (auto& k : t) {
