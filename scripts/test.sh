@@ -26,7 +26,10 @@ known_failures() {
   [ -n "${names}" ] || return 0
   echo "== known failures excluded (${precision}; see docs/validation.md):" >&2
   echo "${names}" | sed 's/^/     /' >&2
-  echo "${names}" | sed 's/[.]/[.]/g; s/^/^/; s/$/( |$)/' | paste -sd'|'
+  # Each name as "^name$|^name " (a parameterised test's name goes on after a space), with no
+  # groups: CMake's regular expressions allow nine groups, and with ten or more names ctest
+  # ran some of the excluded tests (seen with fourteen).
+  echo "${names}" | sed 's/[.]/[.]/g; s/.*/^&$|^& /' | paste -sd'|'
 }
 
 build_and_test() {
