@@ -444,6 +444,7 @@ GenericStage distance_into(const A& a, const Transform& pose_a, const B& b, cons
   r.status = ans.status;
   r.method = ans.method;
   r.iterations = ans.iterations;
+  r.tolerance = setup.tolerance;
   return ans.stage;
 }
 
@@ -475,8 +476,11 @@ StagedDistance generic_distance_staged(const A& a, const Transform& pose_a, cons
   return staged;
 }
 
-/// True when A and B are within request.contact_distance (plus tolerance) of each other: GJK
-/// in boolean mode, stopping at the first separating axis or the first proof of contact.
+/// True when A and B are in contact under the touching rule (contact.hpp: within
+/// max(request.contact_distance, tolerance)): GJK in boolean mode against the reach widened
+/// by a rounding band, stopping at the first separating axis or the first proof of contact;
+/// a core distance that lands in the band is decided by the distance query itself, so that
+/// intersect and distance never disagree.
 template <class A, class B>
 bool generic_intersect(const A& a, const Transform& pose_a, const B& b, const Transform& pose_b,
                        const PairRequest& request, PairCache* cache) {
@@ -485,8 +489,9 @@ bool generic_intersect(const A& a, const Transform& pose_a, const B& b, const Tr
   if (!finite_poses(pose_a, pose_b)) return false;
   generic_detail::PairSetup<A, B> setup(a, pose_a, b, pose_b, request, cache);
   gjk::Settings s = setup.gjk_settings(request);
-  const Real margin = setup.radius_a + setup.radius_b + std::max(request.contact_distance, Real(0)) + setup.tolerance;
-  s.margin = margin;
+  const Real reach = setup.radius_a + setup.radius_b + contact_reach(request.contact_distance, setup.tolerance);
+  const Real band = setup.tolerance;
+  s.margin = reach + band;
   const gjk::Outcome g = gjk::distance(setup.support_a, setup.support_b, setup.axis, s);
   if (cache) {
     // A proven separating axis is the best start for the next, coherent query.
@@ -496,7 +501,8 @@ bool generic_intersect(const A& a, const Transform& pose_a, const B& b, const Tr
   }
   if (g.status == gjk::Status::EarlyExit) return false;
   if (g.status == gjk::Status::Overlapping) return true;
-  return g.distance <= margin;
+  if (g.status != gjk::Status::MaxIterations && g.distance < reach - band) return true;
+  return in_contact(generic_distance(a, pose_a, b, pose_b, request, nullptr), request);
 }
 
 /// The generic distance as the pair routine of every pair without a closed-form one (the

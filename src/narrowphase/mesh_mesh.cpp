@@ -54,6 +54,7 @@
 #include <limits>
 
 #include "geometry/box_separation.hpp"
+#include "pair_support.hpp"
 #include "shapes/oriented_tree.hpp"
 #include "spatial/bvh_pair_descent.hpp"
 
@@ -393,8 +394,9 @@ void load_leaf(const TriangleMesh& b, const RelativeFrame& f, const BvhNode& lea
 inline bool triangles_within(const std::array<Vec3, 3>& a, const std::array<Vec3, 3>& b, Real contact_distance) {
   if (contact_distance <= Real(0)) return geometry::triangles_intersect(a[0], a[1], a[2], b[0], b[1], b[2]);
   if (geometry::triangles_intersect(a[0], a[1], a[2], b[0], b[1], b[2])) return true;
-  return geometry::closest_points_triangle_triangle(a[0], a[1], a[2], b[0], b[1], b[2]).distance_squared <=
-         contact_distance * contact_distance;
+  // As the distance query compares it: the square root of the closest points' squared distance.
+  return std::sqrt(geometry::closest_points_triangle_triangle(a[0], a[1], a[2], b[0], b[1], b[2]).distance_squared) <=
+         contact_distance;
 }
 
 /// True when `hint` names a triangle of A and a triangle of B.
@@ -449,7 +451,7 @@ bool find_pair_within(const TriangleMesh& a, const TriangleMesh& b, const Relati
 bool mesh_mesh_intersect(const TriangleMesh& a, const Transform& pose_a, const TriangleMesh& b, const Transform& pose_b,
                          const PairRequest& request, MeshMeshNodes node_kind, PartHint* hint) {
   const RelativeFrame f = make_frame(pose_a, pose_b);
-  const Real cd = std::max(request.contact_distance, Real(0));
+  const Real cd = request_reach(request);  // the touching rule (contact.hpp)
   if (valid_pair(a, b, hint) && triangles_within(a.triangle(hint->a), b_in_a(b, f, hint->b), cd)) return true;
   const Real margin = node_margin(pair_scale(a, b, f), cd);
   std::uint32_t ta = kNoIndex;
@@ -464,7 +466,7 @@ void mesh_mesh_collide_all(const TriangleMesh& a, const Transform& pose_a, const
                            const Transform& pose_b, const PairRequest& request, ContactCollector& collector,
                            MeshMeshNodes node_kind) {
   const RelativeFrame f = make_frame(pose_a, pose_b);
-  const Real cd = std::max(request.contact_distance, Real(0));
+  const Real cd = request_reach(request);  // the touching rule (contact.hpp)
   const Real scale = pair_scale(a, b, f);
   const Real margin = node_margin(scale, cd);
   const auto prims_a = a.bvh().primitives();
@@ -683,6 +685,7 @@ DistanceResult distance_descent(const TriangleMesh& a, const Transform& pose_a, 
   }
   r.status = status_from_distance(d, tol);
   r.method = PairMethod::Analytic;
+  r.tolerance = tol;
   out.sub_a.triangle = best_a;
   out.sub_b.triangle = best_b;
   if (hint != nullptr) *hint = {best_a, best_b};
