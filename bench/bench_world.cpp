@@ -202,7 +202,13 @@ CollisionWorld make_proxima_world(const Scene& scene, const proxima::WorldSettin
   return world;
 }
 
-void proxima_world(benchmark::State& state, const Scene* scene, std::string broadphase, bool continuous) {
+/// Proxima's world on `broadphase`; `threads` > 0 steps it on a ThreadPool of that many
+/// threads (0: the serial executor, the default of step()).
+void proxima_world(benchmark::State& state, const Scene* scene, std::string broadphase, bool continuous,
+                   std::size_t threads) {
+  std::unique_ptr<proxima::ThreadPool> pool;
+  if (threads > 0) pool = std::make_unique<proxima::ThreadPool>(threads);
+  proxima::Executor& executor = pool ? static_cast<proxima::Executor&>(*pool) : proxima::serial_executor();
   const pb::World& w = world_of(*scene);
   proxima::WorldSettings settings;
   settings.broadphase = broadphase;
@@ -219,7 +225,7 @@ void proxima_world(benchmark::State& state, const Scene* scene, std::string broa
   const Real dt = static_cast<Real>(w.dt);
   PairCounts counts;
   for (int r = 0; r < 2; ++r) {
-    if (world.move(moves[0]) || world.step(dt)) {
+    if (world.move(moves[0]) || world.step(dt, executor)) {
       state.SkipWithError("move or step failed at frame 0");
       return;
     }
@@ -230,8 +236,8 @@ void proxima_world(benchmark::State& state, const Scene* scene, std::string broa
   for (auto _ : state) {
     counts.sum = 0;
     for (int k = 1; k <= scene->frames; ++k) {
-      world.move(moves[k]);
-      world.step(dt);
+      world.move(moves[k], executor);
+      world.step(dt, executor);
       const proxima::StepEvents& ev = world.events();
       events += ev.begin.size() + ev.persist.size() + ev.end.size();
       for (const proxima::WorldManifold& m : world.contacts()) points += static_cast<std::uint64_t>(m.count);
@@ -761,14 +767,24 @@ bool register_world(const std::string& dir) {
     report_memory(*scene);
     const std::string prefix = "World/" + scene->name + "/";
     for (const char* bp : {"tree", "sap", "mbp"}) {
-      benchmark::RegisterBenchmark((prefix + "proxima/" + bp).c_str(), proxima_world, scene, std::string(bp), true)
+      benchmark::RegisterBenchmark((prefix + "proxima/" + bp).c_str(), proxima_world, scene, std::string(bp), true,
+                                   std::size_t(0))
           ->Iterations(1)
           ->Unit(benchmark::kMillisecond);
     }
     benchmark::RegisterBenchmark((prefix + "proxima/tree_discrete").c_str(), proxima_world, scene, std::string("tree"),
-                                 false)
+                                 false, std::size_t(0))
         ->Iterations(1)
         ->Unit(benchmark::kMillisecond);
+    // The step on a ThreadPool of 1 and 2 threads (wall-clock time: the work of the other
+    // threads is not in the calling thread's CPU time).
+    for (std::size_t threads : {1u, 2u}) {
+      benchmark::RegisterBenchmark((prefix + "proxima/tree_threads:" + std::to_string(threads)).c_str(), proxima_world,
+                                   scene, std::string("tree"), true, threads)
+          ->Iterations(1)
+          ->UseRealTime()
+          ->Unit(benchmark::kMillisecond);
+    }
 #if PROXIMA_HAVE_BULLET
     benchmark::RegisterBenchmark((prefix + "bullet").c_str(), bullet_world, scene, false)
         ->Iterations(1)

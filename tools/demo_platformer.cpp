@@ -166,16 +166,15 @@ int run_platformer_demo(const PlatformerDemoOptions& options, std::ostream& out,
   config.projectile_ccd = d2::CcdMode::Bullet;
   const int png_frame = std::clamp(options.png_frame, 0, std::max(config.frames - 1, 0));
   std::optional<Error> picture_error;
-  const PlatformerRun continuous = run_platformer(config, [&](int frame, const d2::CollisionWorld& world,
-                                                              std::span<const debug::WorldObject2D> objects,
-                                                              const PlatformerRun& run) {
-    if (frame != png_frame || options.png_path.empty()) return;
-    RenderOptions picture;
-    picture.width = 1240;
-    picture.height = 220;
-    const DrawBuffer overlay = platformer_overlay(run);
-    picture_error = write_world_picture_2d(world, objects, options.png_path, picture, platformer_capture(), &overlay);
-  });
+  const PlatformerRun continuous =
+      run_platformer(config, [&](int frame, const d2::CollisionWorld& world, const PlatformerRun& run) {
+        if (frame != png_frame || options.png_path.empty()) return;
+        RenderOptions picture;
+        picture.width = 1240;
+        picture.height = 220;
+        const DrawBuffer overlay = platformer_overlay(run);
+        picture_error = write_world_picture_2d(world, options.png_path, picture, platformer_capture(), &overlay);
+      });
   if (picture_error) {
     err << "proxima demo-platformer: " << picture_error->what() << "\n";
     return 1;

@@ -29,6 +29,9 @@ std::string without_exception_tag(const std::string& what) {
 // Thrown by the parser callback at the nesting limit.
 struct TooDeep {};
 
+// Thrown by the parser callback at the member limit.
+struct TooManyMembers {};
+
 }  // namespace
 
 std::string read_op(const Json& request) { return read_string(require_member(request, "", "op"), "op"); }
@@ -56,8 +59,14 @@ Json answer_line_with(std::string_view line, bool& rejected, RequestHandler hand
   try {
     // Arrays and objects nested deeper than kMaxJsonNesting are refused while parsing, so
     // that nothing after (copies, echoes, destruction, the readers) recurses that deep.
-    request = Json::parse(line, [](int depth, Json::parse_event_t, Json&) {
+    // Objects of more than kMaxJsonObjectMembers members are refused too: inserting a
+    // member searches the object's earlier members, so a large object parses in quadratic
+    // time. members[d] counts the keys of the open object at depth d.
+    std::size_t members[kMaxJsonNesting + 2] = {};
+    request = Json::parse(line, [&members](int depth, Json::parse_event_t event, Json&) {
       if (depth > kMaxJsonNesting) throw TooDeep{};
+      if (event == Json::parse_event_t::object_start) members[depth + 1] = 0;
+      if (event == Json::parse_event_t::key && ++members[depth] > kMaxJsonObjectMembers) throw TooManyMembers{};
       return true;
     });
   } catch (const Json::exception& e) {
@@ -68,6 +77,11 @@ Json answer_line_with(std::string_view line, bool& rejected, RequestHandler hand
     return error_answer(
         nullptr, "invalid JSON: arrays and objects nested deeper than " + std::to_string(kMaxJsonNesting) + " levels",
         "", "bad_json");
+  } catch (const TooManyMembers&) {
+    rejected = true;
+    return error_answer(nullptr,
+                        "invalid JSON: an object has more than " + std::to_string(kMaxJsonObjectMembers) + " members",
+                        "", "bad_json");
   }
   return answer_request_with(request, rejected, handler);
 }

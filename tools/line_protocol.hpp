@@ -36,8 +36,14 @@ Json answer_request_with(const Json& request, bool& rejected, RequestHandler han
 /// refused while parsing).
 inline constexpr int kMaxJsonNesting = 64;
 
-/// Parses one input line and answers it with `handler` (invalid JSON, or nested deeper than
-/// kMaxJsonNesting: a "bad_json" error).
+/// Most members one object of a request line may have (more: a "bad_json" error, refused
+/// while parsing). The parsed objects keep their members in order and look keys up one by
+/// one, so a line's parsing costs at most its member count times this limit.
+inline constexpr std::size_t kMaxJsonObjectMembers = 1024;
+
+/// Parses one input line and answers it with `handler` (invalid JSON, nested deeper than
+/// kMaxJsonNesting or an object of more than kMaxJsonObjectMembers members: a "bad_json"
+/// error).
 Json answer_line_with(std::string_view line, bool& rejected, RequestHandler handler);
 
 /// Reads requests from `in` line by line (blank lines are skipped) and writes one compact

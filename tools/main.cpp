@@ -367,10 +367,6 @@ int run(int argc, char** argv) {
     if (view_cmd->parsed()) return proxima::tool::run_view(view, executable_path(argv[0]), std::cout, std::cerr);
     if (world_cmd->parsed()) {
       world.settings.contact_distance = static_cast<proxima::Real>(world_contact_distance);
-      if (world_2d && !world.record_path.empty()) {
-        std::cerr << "proxima world: --record records 3D worlds only\n";
-        return 1;
-      }
       return world_2d ? run_world<proxima::tool::WorldSession2d>(world, world_input)
                       : run_world<proxima::tool::WorldSession>(world, world_input);
     }

@@ -100,11 +100,7 @@ PlatformerRun run_platformer(const PlatformerConfig& config, const PlatformerFra
   run.wall_top = {Real(50), Real(8)};
   run.player_half_extents = {Real(0.4), Real(0.5)};
   d2::CollisionWorld world = d2::CollisionWorld::create().value();
-  std::vector<debug::WorldObject2D> objects;
-  const auto add = [&](const d2::ObjectDesc& desc) {
-    objects.push_back({world.add(desc).value(), desc});
-    return objects.back().handle;
-  };
+  const auto add = [&](const d2::ObjectDesc& desc) { return world.add(desc).value(); };
   add({d2::Chain::create(run.ground, false).value(), d2::Pose::identity(), d2::ObjectKind::Static});
   // Layers: 1 ground, 2 player, 4 projectiles, 8 wall. The player walks on the ground and
   // through the wall (a doorway); projectiles meet the ground and the wall, not the player.
@@ -153,7 +149,7 @@ PlatformerRun run_platformer(const PlatformerConfig& config, const PlatformerFra
     resolve_player(world, player, position, velocity, run);
     world.teleport(player, d2::Pose::from(position, 0));
     run.player_trail.push_back(d2::Pose::from(position, 0));
-    if (observer) observer(frame, world, objects, run);
+    if (observer) observer(frame, world, run);
   }
   for (ProjectileTrack& track : run.projectiles) track.tunnelled = !track.stopped && track.end.x > run.wall_bottom.x;
   run.sprites = run_sprites(config.frames);

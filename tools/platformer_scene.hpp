@@ -65,12 +65,11 @@ struct PlatformerRun {
   SpriteEncounter sprites;  ///< the pixel-perfect sprite pair
 };
 
-/// Called after each frame's step and collision response: the frame (0, 1, ...), the world,
-/// the objects added to it so far (the ground, the wall, the player, the projectiles) and
-/// the run so far (the player's trail and the projectiles' tracks up to this frame).
+/// Called after each frame's step and collision response: the frame (0, 1, ...), the world
+/// (the ground, the wall, the player, the projectiles added so far) and the run so far (the
+/// player's trail and the projectiles' tracks up to this frame).
 using PlatformerFrameObserver =
-    std::function<void(int frame, const d2::CollisionWorld& world, std::span<const debug::WorldObject2D> objects,
-                       const PlatformerRun& run)>;
+    std::function<void(int frame, const d2::CollisionWorld& world, const PlatformerRun& run)>;
 
 /// Runs the scene, calling `observer` (when set) after every frame.
 PlatformerRun run_platformer(const PlatformerConfig& config, const PlatformerFrameObserver& observer = {});

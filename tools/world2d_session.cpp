@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <array>
+#include <fstream>
 
 #include "json_shapes_2d.hpp"
 #include "world_json.hpp"
@@ -63,7 +64,15 @@ Result<WorldSession2d> WorldSession2d::create(const WorldOptions& options) {
   if (!world.ok()) return world.error();
   std::unique_ptr<ThreadPool> pool;
   if (options.threads != 1) pool = std::make_unique<ThreadPool>(options.threads);
-  return WorldSession2d(std::move(world).value(), std::move(pool));
+  WorldSession2d session(std::move(world).value(), std::move(pool));
+  if (!options.record_path.empty()) {
+    session.record_file_ = std::make_unique<std::ofstream>(options.record_path, std::ios::trunc);
+    if (!*session.record_file_) {
+      return Error{ErrorCode::InvalidArgument, "record", "cannot write " + options.record_path};
+    }
+    session.recorder_ = std::make_unique<debug::CaptureRecorder2D>(*session.record_file_);
+  }
+  return session;
 }
 
 d2::ObjectHandle WorldSession2d::live_handle(const Json& request, std::string_view key) const {
@@ -122,6 +131,8 @@ Json WorldSession2d::step(const Json& request) {
   bool contacts = false;
   if (const Json* c = find_member(request, "contacts")) contacts = read_bool(*c, "contacts");
   check_world(world_.step(pool_ ? static_cast<Executor&>(*pool_) : serial_executor()));
+  // A 2D step has no duration: its capture line's dt is 1 (one step).
+  if (recorder_ && recorder_->record_step(world_, Real(1))) record_failed_ = true;
   const d2::StepEvents& ev = world_.events();
   Json answer = {{"begin", pairs(ev.begin)},
                  {"persist", pairs(ev.persist)},
@@ -193,6 +204,7 @@ Json WorldSession2d::save(const Json& request) const {
 Json WorldSession2d::load(const Json& request) {
   reject_unknown_fields(request, "", {"id", "op", "file"});
   world_ = load_snapshot_file<d2::CollisionWorld>(request);
+  if (recorder_) recorder_->reset_objects();
   return Json{{"objects", world_.size()}};
 }
 

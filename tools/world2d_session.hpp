@@ -5,6 +5,7 @@
 // load.
 #include <proxima/core/executor.hpp>
 #include <proxima/d2/collision_world.hpp>
+#include <proxima/debug/capture_recorder_2d.hpp>
 
 #include <iosfwd>
 #include <memory>
@@ -26,6 +27,8 @@ class WorldSession2d {
   Json answer_line(std::string_view line, bool& rejected);
   /// Answers every line of `in` on `out` (see run_lines; `progress` may be null).
   QuerySummary run(std::istream& in, std::ostream& out, ProgressBar* progress = nullptr);
+  /// True when writing the capture of `--record` failed (the session went on without it).
+  bool record_failed() const { return record_failed_; }
 
  private:
   WorldSession2d(d2::CollisionWorld world, std::unique_ptr<ThreadPool> pool)
@@ -46,6 +49,9 @@ class WorldSession2d {
 
   d2::CollisionWorld world_;
   std::unique_ptr<ThreadPool> pool_;
+  std::unique_ptr<std::ofstream> record_file_;
+  std::unique_ptr<debug::CaptureRecorder2D> recorder_;
+  bool record_failed_ = false;
 };
 
 }  // namespace proxima::tool

@@ -30,13 +30,14 @@ std::optional<Error> write_world_picture(const CollisionWorld& world, const std:
   return render_recorded(text, path, options);
 }
 
-std::optional<Error> write_world_picture_2d(const d2::CollisionWorld& world,
-                                            std::span<const debug::WorldObject2D> objects, const std::string& path,
+std::optional<Error> write_world_picture_2d(const d2::CollisionWorld& world, const std::string& path,
                                             const RenderOptions& options, const debug::CaptureOptions& capture,
                                             const DrawBuffer* extra) {
   std::stringstream text;
-  debug::CaptureRecorder2D recorder(text, capture);
-  if (auto e = recorder.record_step(world, objects, Real(1), extra)) return e;
+  debug::CaptureOptions options_2d = capture;
+  options_2d.snapshot = false;  // a picture needs no snapshot
+  debug::CaptureRecorder2D recorder(text, options_2d);
+  if (auto e = recorder.record_step(world, Real(1), extra)) return e;
   return render_recorded(text, path, options);
 }
 

@@ -25,13 +25,11 @@ std::optional<Error> write_world_picture(const CollisionWorld& world, const std:
                                          const std::optional<debug::CaptureCamera>& camera = std::nullopt,
                                          const DrawBuffer* extra = nullptr);
 
-/// Writes the picture of 2D `world` after its last step to `path` (.png or .svg): the
-/// `objects` its owner added, its contacts and impacts, and `extra` (may be null), all in
-/// the plane z = 0 as debug::CaptureRecorder2D records them with `capture` (its camera when
-/// given, else from above, fitted to the drawing; how contacts are drawn). Errors as
-/// render_file's.
-std::optional<Error> write_world_picture_2d(const d2::CollisionWorld& world,
-                                            std::span<const debug::WorldObject2D> objects, const std::string& path,
+/// Writes the picture of 2D `world` after its last step to `path` (.png or .svg): its
+/// objects, contacts and impacts, and `extra` (may be null), all in the plane z = 0 as
+/// debug::CaptureRecorder2D records them with `capture` (its camera when given, else from
+/// above, fitted to the drawing; how contacts are drawn). Errors as render_file's.
+std::optional<Error> write_world_picture_2d(const d2::CollisionWorld& world, const std::string& path,
                                             const RenderOptions& options, const debug::CaptureOptions& capture = {},
                                             const DrawBuffer* extra = nullptr);
 

@@ -15,6 +15,7 @@ import copy
 import json
 
 from ._proxima import CollisionWorld, Error
+from ._proxima.d2 import CollisionWorld as D2CollisionWorld
 
 FORMAT = "proxima-capture"
 VERSION = 1
@@ -75,11 +76,13 @@ class Capture:
         return objects
 
     def world(self):
-        """The recorded world (as after the first recorded step), rebuilt from the snapshot."""
+        """The recorded world (as after the first recorded step), rebuilt from the snapshot:
+        a CollisionWorld, or a d2.CollisionWorld for a 2D capture (header "dimension": 2)."""
         snapshot = self.scene.get("snapshot")
         if snapshot is None:
             raise CaptureError(2, "snapshot", "this capture was recorded without a snapshot")
-        return CollisionWorld.load(base64.b64decode(snapshot))
+        world_type = D2CollisionWorld if self.header.get("dimension", 3) == 2 else CollisionWorld
+        return world_type.load(base64.b64decode(snapshot))
 
 
 def read(lines):

@@ -49,9 +49,11 @@ class CollisionWorld:
     def load(snapshot: bytes) -> CollisionWorld: """A world from save()'s bytes; proxima.Error names what is wrong (field 'snapshot...')."""
     def manifolds(self: CollisionWorld) -> numpy.ndarray: """Every point of the touching pairs' manifolds, by pair then chain segment: an array of d2.MANIFOLD_POINT_DTYPE (a, b, part_a, part_b, normal, point_a, point_b, depth, feature_id)."""
     def move(self: CollisionWorld, object: int, pose: Any) -> None: """Sets the object's pose for the next step (its motion for CCD starts at the old one)."""
+    def objects(self: CollisionWorld) -> numpy.ndarray: """Handles of every object, as a uint64 array (slot order)."""
     def overlap(self: CollisionWorld, shape: Any, pose: Any = ..., *, mask: int = ..., group: int = ..., ignore: Any = ...) -> List[int]: """Handles of the objects the placed shape touches or overlaps, ascending."""
     def pose(self: CollisionWorld, object: int) -> tuple: """The object's pose as (x, y, angle)."""
     def raycast(self: CollisionWorld, origin: Any, direction: Any, max_t: float = ..., *, mask: int = ..., group: int = ..., ignore: Any = ...) -> Optional[WorldRayHit]: """The first object hit within [0, max_t] (t in units of the direction's length): a d2.WorldRayHit or None."""
+    def record(self: CollisionWorld, path: str, camera: Any = ...) -> None: """Records every following step to a 2D capture file (docs/capture-format.md, dimension 2: the objects in the plane z = 0; a step's dt is 1); read it with proxima.capture, draw it with proxima.render or proxima view. camera: a dict of position, target, up, fov_degrees, ortho_height."""
     def remove(self: CollisionWorld, object: int) -> None: """Removes the object (its touching pairs end at the next step)."""
     def save(self: CollisionWorld) -> bytes: """The world as a versioned binary snapshot (bytes)."""
     def set_filter(self: CollisionWorld, object: int, filter: CollisionFilter) -> None: """Replaces the object's filter."""
@@ -59,6 +61,7 @@ class CollisionWorld:
     def set_pair_excluded(self: CollisionWorld, a: int, b: int, excluded: bool = ...) -> None: """Never pair these two objects (or again allow it)."""
     def state_hash(self: CollisionWorld) -> int: """A hash of the whole state: equal hashes mean equal worlds."""
     def step(self: CollisionWorld, *, threads: int = ...) -> None: """Runs the broad and narrow phases and continuous detection, then calls the listener. threads: 0 every hardware thread; the GIL is released."""
+    def stop_recording(self: CollisionWorld) -> None: """Closes the capture file."""
     def teleport(self: CollisionWorld, object: int, pose: Any) -> None: """Sets the pose with no motion (continuous detection sweeps nothing)."""
 
 class ContactEvent:

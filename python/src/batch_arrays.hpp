@@ -65,6 +65,15 @@ py::ssize_t common_rows(const RowReader& a, const char* field_a, const RowReader
 /// quaternion that is not unit (within 1e-3) raises proxima.Error naming "field[i]".
 std::vector<Transform> read_poses(const RowReader& rows, py::ssize_t n, const char* field);
 
+/// max_t of a batch of n rays: None (unbounded: one infinity), one number (one value for
+/// every ray), or a 1-D array of n numbers; anything else raises proxima.Error naming
+/// "max_t". Values are not checked here (the caller names the bad ray).
+std::vector<double> read_limits(py::handle max_t, py::ssize_t n);
+
+/// The points of an (N, 3) array (world frame); a non-finite number raises proxima.Error
+/// naming "points[i]".
+std::vector<Vec3> read_points(py::handle points);
+
 /// A thread pool of `threads` threads, made on first use and kept; a forked child
 /// (multiprocessing) makes its own, since a parent's threads do not exist in it.
 Executor& thread_pool(std::size_t threads);

@@ -110,6 +110,30 @@ void parallel_for(std::size_t n, long threads, RangeTask task) {
   thread_pool(count).run(n, task);
 }
 
+std::vector<double> read_limits(py::handle max_t, py::ssize_t n) {
+  if (max_t.is_none()) return {std::numeric_limits<double>::infinity()};
+  py::array_t<double, py::array::forcecast> a;
+  try {
+    a = py::array_t<double, py::array::forcecast>::ensure(max_t);
+  } catch (const py::error_already_set&) {
+  }
+  if (a && a.ndim() == 0) return {*a.data()};
+  if (!a || a.ndim() != 1 || a.shape(0) != n) raise_argument_error("max_t", "expected a number or one per ray");
+  return {a.data(), a.data() + n};
+}
+
+std::vector<Vec3> read_points(py::handle points) {
+  const RowReader r(points, 3, "points", false);
+  std::vector<Vec3> list(static_cast<std::size_t>(r.rows()));
+  const py::ssize_t bad = r.find_rejected(0, r.rows(), [&](py::ssize_t i, const auto& number) {
+    Vec3& p = list[static_cast<std::size_t>(i)];
+    p = {number(0), number(1), number(2)};
+    return validate::is_acceptable(p);
+  });
+  if (bad >= 0) raise_error(make_error(ErrorCode::NotFinite, "points[" + std::to_string(bad) + "]", "must be finite"));
+  return list;
+}
+
 namespace {
 
 void put(double (&out)[3], const Vec3& v) { out[0] = double(v.x), out[1] = double(v.y), out[2] = double(v.z); }
@@ -173,19 +197,6 @@ std::int64_t part_number(const SubShapeId& sub) {
   return -1;
 }
 
-/// max_t of raycast_batch: None (unbounded), one number, or one per ray.
-std::vector<double> read_limits(py::handle max_t, py::ssize_t n) {
-  if (max_t.is_none()) return {std::numeric_limits<double>::infinity()};
-  py::array_t<double, py::array::forcecast> a;
-  try {
-    a = py::array_t<double, py::array::forcecast>::ensure(max_t);
-  } catch (const py::error_already_set&) {
-  }
-  if (a && a.ndim() == 0) return {*a.data()};
-  if (!a || a.ndim() != 1 || a.shape(0) != n) raise_argument_error("max_t", "expected a number or one per ray");
-  return {a.data(), a.data() + n};
-}
-
 /// The error of ray `i`, which raycast_batch's checks rejected.
 [[noreturn]] void raise_ray_error(const Ray& ray, py::ssize_t i, bool one_limit) {
   const std::string row = "[" + std::to_string(i) + "]";
@@ -231,19 +242,6 @@ py::array raycast_batch(py::handle shape, py::handle pose, py::handle rays, py::
     }
   });
   return result;
-}
-
-/// The points of an (N, 3) array, validated.
-std::vector<Vec3> read_points(py::handle points) {
-  const RowReader r(points, 3, "points", false);
-  std::vector<Vec3> list(static_cast<std::size_t>(r.rows()));
-  const py::ssize_t bad = r.find_rejected(0, r.rows(), [&](py::ssize_t i, const auto& number) {
-    Vec3& p = list[static_cast<std::size_t>(i)];
-    p = {number(0), number(1), number(2)};
-    return validate::is_acceptable(p);
-  });
-  if (bad >= 0) raise_error(make_error(ErrorCode::NotFinite, "points[" + std::to_string(bad) + "]", "must be finite"));
-  return list;
 }
 
 template <class F>

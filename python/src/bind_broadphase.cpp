@@ -24,11 +24,10 @@ void check_status(BroadPhaseStatus status, const std::string& field) {
 std::vector<Aabb> read_boxes(py::handle boxes) {
   const RowReader r(boxes, 6, "boxes", false);
   std::vector<Aabb> list(static_cast<std::size_t>(r.rows()));
-  for (std::size_t i = 0; i < list.size(); ++i) {
-    const auto k = static_cast<py::ssize_t>(i);
-    list[i] = {{Real(r.at(k, 0)), Real(r.at(k, 1)), Real(r.at(k, 2))},
-               {Real(r.at(k, 3)), Real(r.at(k, 4)), Real(r.at(k, 5))}};
-  }
+  r.find_rejected(0, r.rows(), [&](py::ssize_t i, const auto& number) {
+    list[static_cast<std::size_t>(i)] = {{number(0), number(1), number(2)}, {number(3), number(4), number(5)}};
+    return true;  // the broad phase names a bad box
+  });
   return list;
 }
 

@@ -16,6 +16,7 @@
 
 #include "batch_arrays.hpp"
 #include "module_parts.hpp"
+#include "recording.hpp"
 #include "shape_object.hpp"
 #include "world_rows.hpp"
 
@@ -68,17 +69,11 @@ class PyListener final : public WorldListener, public ListenerForwarder {
   void on_impact(CollisionWorld&, const ImpactEvent& e) override { call("on_impact", e); }
 };
 
-/// A capture file being written (docs/capture-format.md): one line per step.
-struct Recording {
-  std::ofstream file;
-  std::unique_ptr<debug::CaptureRecorder> recorder;
-};
-
 /// The world and what the bindings keep beside it.
 struct PyWorld {
   std::unique_ptr<CollisionWorld> world;
   PyListener listener;
-  std::unique_ptr<Recording> recording;  ///< set while recording
+  std::unique_ptr<Recording<debug::CaptureRecorder>> recording;  ///< set while recording
 };
 
 QueryMode query_mode(const std::string& mode) {
@@ -274,18 +269,16 @@ namespace {
 py::array world_raycast_batch(const PyWorld& w, py::handle rays, py::handle max_t, std::uint64_t mask,
                               std::int32_t group, py::handle ignore, long threads) {
   const RowReader r(rays, 6, "rays", false);
-  const py::array_t<double, py::array::forcecast> limits = py::array_t<double, py::array::forcecast>::ensure(max_t);
-  if (!limits || (limits.ndim() != 0 && (limits.ndim() != 1 || limits.shape(0) != r.rows()))) {
-    raise_argument_error("max_t", "expected a number or one per ray");
-  }
+  const std::vector<double> limits = read_limits(max_t, r.rows());
   std::vector<WorldRay> list(static_cast<std::size_t>(r.rows()));
-  for (std::size_t i = 0; i < list.size(); ++i) {
-    const auto k = static_cast<py::ssize_t>(i);
-    list[i].origin = {Real(r.at(k, 0)), Real(r.at(k, 1)), Real(r.at(k, 2))};
-    list[i].direction = {Real(r.at(k, 3)), Real(r.at(k, 4)), Real(r.at(k, 5))};
-    const double m = limits.ndim() == 0 ? *limits.data() : limits.at(k);
-    list[i].max_t = m > double(kRealMax) ? kRealMax : Real(m);
-  }
+  r.find_rejected(0, r.rows(), [&](py::ssize_t i, const auto& number) {
+    WorldRay& ray = list[static_cast<std::size_t>(i)];
+    ray.origin = {number(0), number(1), number(2)};
+    ray.direction = {number(3), number(4), number(5)};
+    const double m = limits.size() == 1 ? limits[0] : limits[static_cast<std::size_t>(i)];
+    ray.max_t = m > double(kRealMax) ? kRealMax : Real(m);  // the world names a bad ray
+    return true;
+  });
   std::vector<WorldHit> hits(list.size());
   const QueryFilter filter = query_filter(mask, group, ignore);
   const std::size_t count = resolve_threads(threads);
@@ -312,12 +305,7 @@ py::array world_raycast_batch(const PyWorld& w, py::handle rays, py::handle max_
 
 py::array world_closest_point_batch(const PyWorld& w, py::handle points, Real max_distance, std::uint64_t mask,
                                     std::int32_t group, py::handle ignore, long threads) {
-  const RowReader r(points, 3, "points", false);
-  std::vector<Vec3> list(static_cast<std::size_t>(r.rows()));
-  for (std::size_t i = 0; i < list.size(); ++i) {
-    const auto k = static_cast<py::ssize_t>(i);
-    list[i] = {Real(r.at(k, 0)), Real(r.at(k, 1)), Real(r.at(k, 2))};
-  }
+  const std::vector<Vec3> list = read_points(points);
   std::vector<WorldClosest> nearest(list.size());
   const QueryFilter filter = query_filter(mask, group, ignore);
   const std::size_t count = resolve_threads(threads);
@@ -492,13 +480,7 @@ void bind_world(py::module_& m) {
           py::arg("object"), py::arg("parent"), py::arg("local_pose") = py::none(),
           "Attaches the object to parent at local_pose (parent frame); it then moves with it.")
       .def(
-          "objects",
-          [](const PyWorld& w) {
-            const std::vector<ObjectHandle> list = w.world->objects();
-            py::array_t<std::uint64_t> out(static_cast<py::ssize_t>(list.size()));
-            for (std::size_t i = 0; i < list.size(); ++i) out.mutable_data()[i] = list[i].to_integer();
-            return out;
-          },
+          "objects", [](const PyWorld& w) { return handle_array(w.world->objects()); },
           "Handles of every object, as a uint64 array.")
       .def(
           "object",
@@ -537,23 +519,7 @@ void bind_world(py::module_& m) {
       .def(
           "record",
           [](PyWorld& w, const std::string& path, py::handle camera) {
-            auto r = std::make_unique<Recording>();
-            r->file.open(path, std::ios::binary | std::ios::trunc);
-            if (!r->file) raise_argument_error("path", "cannot be opened for writing: " + path);
-            debug::CaptureOptions options;
-            if (!camera.is_none()) {
-              const py::dict spec = camera.cast<py::dict>();
-              debug::CaptureCamera cam;
-              if (spec.contains("position")) cam.position = to_vec3(spec["position"], "camera.position");
-              if (spec.contains("target")) cam.target = to_vec3(spec["target"], "camera.target");
-              if (spec.contains("up")) cam.up = to_vec3(spec["up"], "camera.up");
-              if (spec.contains("fov_degrees")) cam.fov_degrees = to_real(spec["fov_degrees"], "camera.fov_degrees");
-              if (spec.contains("ortho_height"))
-                cam.ortho_height = to_real(spec["ortho_height"], "camera.ortho_height");
-              options.camera = cam;
-            }
-            r->recorder = std::make_unique<debug::CaptureRecorder>(r->file, options);
-            w.recording = std::move(r);
+            w.recording = start_recording<debug::CaptureRecorder>(path, camera);
           },
           py::arg("path"), py::arg("camera") = py::none(),
           "Records every following step to a capture file (docs/capture-format.md; read it with proxima.capture, "

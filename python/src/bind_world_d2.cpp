@@ -7,12 +7,14 @@
 // events and manifolds are then read as numpy structured arrays. Snapshots are bytes, and
 // the world pickles through them.
 #include <proxima/d2/collision_world.hpp>
+#include <proxima/debug/capture_recorder_2d.hpp>
 
 #include <pybind11/stl.h>
 
 #include "batch_arrays.hpp"
 #include "d2_conversions.hpp"
 #include "module_parts.hpp"
+#include "recording.hpp"
 #include "world_rows.hpp"
 
 namespace proxima::python {
@@ -55,6 +57,7 @@ class PyListener2 final : public d2::WorldListener, public ListenerForwarder {
 struct PyWorld2 {
   std::unique_ptr<d2::CollisionWorld> world;
   PyListener2 listener;
+  std::unique_ptr<Recording<debug::CaptureRecorder2D>> recording;  ///< set while recording
 };
 
 std::unique_ptr<PyWorld2> wrap_world2(d2::CollisionWorld&& world) {
@@ -109,6 +112,8 @@ void step2(PyWorld2& w, long threads) {
     py::gil_scoped_release release;
     error = w.world->step(count <= 1 ? serial_executor() : thread_pool(count));
   }
+  // A 2D step has no duration: its capture line's dt is 1 (one step).
+  if (w.recording && !error) check(w.recording->recorder->record_step(*w.world, Real(1)));
   w.listener.raise_pending();
   check(error);
 }
@@ -167,6 +172,9 @@ void def_objects2(World2& c) {
         py::arg("ccd") = CcdMode::Auto, py::arg("user_data") = 0,
         "Adds an object at pose (x, y, angle); returns its handle (an int). A chain only as kind=ObjectKind.Static.")
       .def(
+          "objects", [](const PyWorld2& w) { return handle_array(w.world->objects()); },
+          "Handles of every object, as a uint64 array (slot order).")
+      .def(
           "pose",
           [](const PyWorld2& w, std::uint64_t h) {
             const std::optional<d2::Pose> p = w.world->pose(handle_of(h));
@@ -188,7 +196,18 @@ void def_step2(World2& c) {
       .def(
           "manifolds", [](const PyWorld2& w) { return manifold_points(w.world->manifolds()); },
           "Every point of the touching pairs' manifolds, by pair then chain segment: an array of "
-          "d2.MANIFOLD_POINT_DTYPE (a, b, part_a, part_b, normal, point_a, point_b, depth, feature_id).");
+          "d2.MANIFOLD_POINT_DTYPE (a, b, part_a, part_b, normal, point_a, point_b, depth, feature_id).")
+      .def(
+          "record",
+          [](PyWorld2& w, const std::string& path, py::handle camera) {
+            w.recording = start_recording<debug::CaptureRecorder2D>(path, camera);
+          },
+          py::arg("path"), py::arg("camera") = py::none(),
+          "Records every following step to a 2D capture file (docs/capture-format.md, dimension 2: the objects in "
+          "the plane z = 0; a step's dt is 1); read it with proxima.capture, draw it with proxima.render or "
+          "proxima view. camera: a dict of position, target, up, fov_degrees, ortho_height.")
+      .def(
+          "stop_recording", [](PyWorld2& w) { w.recording.reset(); }, "Closes the capture file.");
 }
 
 void def_queries2(World2& c) {

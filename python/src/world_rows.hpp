@@ -35,6 +35,13 @@ struct SensorEventRow {
 /// The handle a Python integer names.
 inline ObjectHandle handle_of(std::uint64_t h) { return ObjectHandle::from_integer(h); }
 
+/// Handles as a uint64 array of their Python integers.
+inline py::array_t<std::uint64_t> handle_array(const std::vector<ObjectHandle>& handles) {
+  py::array_t<std::uint64_t> out(static_cast<py::ssize_t>(handles.size()));
+  for (std::size_t i = 0; i < handles.size(); ++i) out.mutable_data()[i] = handles[i].to_integer();
+  return out;
+}
+
 /// A query filter from the keyword arguments mask, group and ignore (a handle or None).
 inline QueryFilter query_filter(std::uint64_t mask, std::int32_t group, py::handle ignore) {
   QueryFilter f;

@@ -1,8 +1,10 @@
 """Recording a world from Python and reading the capture back: the poses, events and contacts
 of every step equal what the world reported while it ran, the scene's snapshot rebuilds the
 recorded world, truncated or foreign files raise CaptureError naming the line, and the
-tool (`proxima render`) reads and draws the same file."""
+tool (`proxima render`) reads and draws the same file. A 2D world records a dimension-2
+capture whose objects lie in the plane z = 0 and whose snapshot rebuilds a d2.CollisionWorld."""
 
+import math
 import os
 import subprocess
 
@@ -10,7 +12,7 @@ import numpy as np
 import pytest
 
 import proxima
-from proxima import capture
+from proxima import capture, d2
 
 
 def falling_world():
@@ -104,3 +106,29 @@ def test_render_from_python_draws_the_objects_and_the_contact(recorded, tmp_path
     with pytest.raises(proxima.Error) as info:
         proxima.render(str(path), 99)
     assert info.value.field == "frame"
+
+
+def test_a_2d_world_records_a_dimension_2_capture(tmp_path):
+    w = d2.CollisionWorld()
+    floor = w.add(d2.Box(5, 0.5), (0, -0.5, 0), kind=proxima.ObjectKind.Static)
+    ball = w.add(d2.Circle(0.5), (0, 2, 0))
+    path = tmp_path / "fall2d.jsonl"
+    w.record(str(path))
+    hashes = []
+    for i in range(8):
+        w.move(ball, (0, 2 - 0.25 * i, 0.1 * i))
+        w.step()
+        hashes.append(w.state_hash())
+    w.stop_recording()
+    cap = capture.load(path)
+    assert cap.header["dimension"] == 2 and len(cap) == 8
+    objects = cap.objects_at(7)
+    assert objects[floor]["geometry"]["type"] == "polygon" and objects[ball]["geometry"]["type"] == "circle"
+    np.testing.assert_allclose(objects[ball]["position"], [0, 0.25, 0], atol=1e-6)
+    # The turn of 0.7 rad about +z as [x, y, z, w].
+    np.testing.assert_allclose(objects[ball]["rotation"], [0, 0, math.sin(0.35), math.cos(0.35)], atol=1e-6)
+    assert all(z == 0 for z in objects[ball]["mesh"]["positions"][2::3])
+    assert any(step["events"]["begin"] == [[floor, ball]] for step in cap.steps)
+    world = cap.world()
+    assert isinstance(world, d2.CollisionWorld) and world.state_hash() == hashes[0]
+    assert world.objects().tolist() == [floor, ball]

@@ -17,6 +17,11 @@
 //     pattern search over tilts of the axis (halving the angle when no tilt helps).
 //  4. The radius is reduced to the largest distance of a point from the final segment
 //     (evaluated as BoundingCapsule::contains does, nudged by ulps until all pass).
+//  Bounded work: with more than 2,048 (hull) points (the hull is built only up to 8,192
+//  points), the axis search runs on the points
+//  extreme along 512 directions spread over the sphere; only the final fine fit along the
+//  chosen axis and step 4 see every point, so the cost is O(n log n) for the hull plus a
+//  fixed number of passes.
 // Sources: Ericson, Real-Time Collision Detection, 4.5 (capsule/sphere-swept volumes);
 // Welzl 1991 for the enclosing circle; the end-shrinking rule is the exact condition for a
 // point to lie within r of the segment.
@@ -37,6 +42,16 @@ namespace proxima {
 namespace {
 
 constexpr double kPiD = 3.14159265358979323846;
+
+// Beyond this many (hull) points the axis search runs on the extreme points along
+// kCapsuleSearchDirections directions: each of its ~250 trial axes costs a pass over the
+// points, which took seconds on hulls of 100,000 vertices.
+constexpr std::size_t kCapsuleSearchPoints = 2048;
+constexpr int kCapsuleSearchDirections = 512;
+
+// Beyond this many points the hull is not built (qhull's facet merging took minutes on
+// 100,000 points of a sphere): the search subset comes from the points themselves.
+constexpr std::size_t kCapsuleHullPoints = 8192;
 
 struct AxisData {
   std::vector<double> s;     // axial coordinates
@@ -161,7 +176,7 @@ Result<BoundingCapsule> fit_capsule(std::span<const Vec3> points) {
   if (auto e = detail::validate_points(points)) return *e;
   // A capsule is convex: containing the hull's vertices is containing every point.
   std::vector<Vec3> hull_vertices;
-  if (points.size() > 256) {
+  if (points.size() > 256 && points.size() <= kCapsuleHullPoints) {
     if (auto hull = ConvexHull::create(points)) hull_vertices.assign(hull->vertices().begin(), hull->vertices().end());
   }
   const std::span<const Vec3> work = hull_vertices.empty() ? points : std::span<const Vec3>(hull_vertices);
@@ -173,11 +188,18 @@ Result<BoundingCapsule> fit_capsule(std::span<const Vec3> points) {
 
   // Step 0: the best principal axis; then a pattern search on the axis direction (tilts
   // of a shrinking angle about two orthogonal directions) while the volume decreases.
+  // Many points: the axis is searched on the points extreme along a fixed set of directions
+  // (the hull of the subset approximates theirs), then fitted finely on all of them.
+  std::vector<glm::dvec3> subset;
+  if (rel.size() > kCapsuleSearchPoints) {
+    for (const std::size_t i : detail::extreme_points(rel, kCapsuleSearchDirections)) subset.push_back(rel[i]);
+  }
+  const std::span<const glm::dvec3> search = subset.empty() ? std::span<const glm::dvec3>(rel) : subset;
   std::vector<glm::dvec3> perp;
   glm::dvec3 axis = frame[0];
-  AxisFit best = fit_along_axis(rel, axis, perp, false);
+  AxisFit best = fit_along_axis(search, axis, perp, false);
   for (int k = 1; k < 3; ++k) {
-    const AxisFit f = fit_along_axis(rel, frame[k], perp, false);
+    const AxisFit f = fit_along_axis(search, frame[k], perp, false);
     if (f.volume < best.volume) {
       best = f;
       axis = frame[k];
@@ -190,7 +212,7 @@ Result<BoundingCapsule> fit_capsule(std::span<const Vec3> points) {
     for (int k = 0; k < 4; ++k) {
       const glm::dvec3 tilt = (k < 2 ? basis[1] : basis[2]) * (k % 2 == 0 ? 1.0 : -1.0);
       const glm::dvec3 candidate = glm::normalize(std::cos(angle) * axis + std::sin(angle) * tilt);
-      const AxisFit f = fit_along_axis(rel, candidate, perp, false);
+      const AxisFit f = fit_along_axis(search, candidate, perp, false);
       if (f.volume < best.volume * (1.0 - 1e-5)) {
         best = f;
         axis = candidate;

@@ -10,6 +10,13 @@
 //     rectangle by rotating calipers (the rectangle has a side on a polygon edge:
 //     Freeman-Shapira); box volume = rectangle area * extent along u (measured on the
 //     resulting frame).
+//  2b. Hulls of more than kObbExactHullVertices vertices: steps 2-3 run on the hull of the
+//     hull vertices extreme along 512 directions spread over the sphere (a Fibonacci
+//     lattice), and the frames found (and that hull's PCA frame) are measured on all hull
+//     vertices, beside the axis-aligned and PCA frames. More than 8,192 input points: the
+//     same on the points themselves, without their exact hull. This bounds the work at
+//     O(n log n) for the hull (or none) plus O(512 n) for the extremes; the box is then
+//     near-minimal rather than searched exactly.
 //  4. The smallest-volume frame is fitted to all the points.
 // Flat inputs (no hull): the normal of the points' plane (their smallest principal axis)
 // is the only candidate, so the result is the minimum-area rectangle in that plane;
@@ -117,37 +124,89 @@ glm::dmat3 min_area_frame_for_axis(std::span<const glm::dvec3> points, const glm
 
 }  // namespace detail
 
-Result<Obb> fit_obb_min_volume(std::span<const Vec3> points) {
-  if (auto e = detail::validate_points(points)) return *e;
-  auto hull = ConvexHull::create(points);
-  if (!hull) {
-    // Flat, collinear, coincident or fewer than 4 points: the plane normal (smallest
-    // principal axis) with the minimum-area rectangle in the plane.
-    const glm::dmat3 pca = detail::pca_frame_of_points(points);
-    const glm::dvec3 origin(points[0]);
-    std::vector<glm::dvec3> rel;
-    rel.reserve(points.size());
-    for (const Vec3& p : points) rel.push_back(glm::dvec3(p) - origin);
-    double volume = 0.0;
-    const glm::dmat3 frame = detail::min_area_frame_for_axis(rel, pca[2], volume);
-    return detail::fit_obb_to_frame(points, frame);
-  }
-  const std::span<const Vec3> hv = hull->vertices();
-  const glm::dvec3 origin(hv[0]);
-  std::vector<glm::dvec3> v;
-  v.reserve(hv.size());
-  for (const Vec3& p : hv) v.push_back(glm::dvec3(p) - origin);
+namespace {
 
-  detail::LeastFrame best{glm::dmat3(1.0), detail::frame_extent(v, glm::dmat3(1.0)).volume};
+// Extreme directions sampled for the subset of step 2b (at most this many subset points).
+constexpr int kObbSubsetDirections = 512;
+
+// Beyond this many input points the exact hull (qhull with facet merging, which took
+// minutes on 100,000 points of a sphere) is not built: step 2b runs on the points.
+constexpr std::size_t kObbHullPoints = 8192;
+
+// Steps 2-3 on one hull: every face normal and edge direction, each frame measured on `v`
+// (the hull's vertices relative to an origin, in the hull's vertex order).
+void search_hull_axes(const ConvexHull& hull, std::span<const glm::dvec3> v, detail::LeastFrame& best) {
   auto consider_axis = [&](const glm::dvec3& axis) {
     double volume = 0.0;
     const glm::dmat3 f = detail::min_area_frame_for_axis(v, axis, volume);
     best.offer(f, volume);
   };
+  for (const HullFace& f : hull.faces()) consider_axis(glm::dvec3(f.normal));
+  for (const HullEdge& e : hull.edges()) consider_axis(v[e.v1] - v[e.v0]);
+}
+
+// Step 2b: the search runs on the hull of the points of `source` extreme along a fixed set of
+// directions; the frames it finds (and that hull's PCA frame) are measured on `v` (`source`
+// relative to `origin`). False when the subset has no hull (flat).
+bool search_extreme_subset(std::span<const Vec3> source, std::span<const glm::dvec3> v, const glm::dvec3& origin,
+                           detail::LeastFrame& best) {
+  std::vector<Vec3> subset;
+  for (const std::size_t i : detail::extreme_points(v, kObbSubsetDirections)) subset.push_back(source[i]);
+  auto sub = ConvexHull::create(subset);
+  if (!sub) return false;
+  std::vector<glm::dvec3> sv;
+  sv.reserve(sub->vertices().size());
+  for (const Vec3& p : sub->vertices()) sv.push_back(glm::dvec3(p) - origin);
+  detail::LeastFrame sub_best{glm::dmat3(1.0), std::numeric_limits<double>::max()};
+  search_hull_axes(*sub, sv, sub_best);
+  best.offer(sub_best.frame, detail::frame_extent(v, sub_best.frame).volume);
+  const glm::dmat3 pca = detail::pca_frame_of_hull(*sub);
+  best.offer(pca, detail::frame_extent(v, pca).volume);
+  return true;
+}
+
+std::vector<glm::dvec3> relative_to(std::span<const Vec3> points, const glm::dvec3& origin) {
+  std::vector<glm::dvec3> rel;
+  rel.reserve(points.size());
+  for (const Vec3& p : points) rel.push_back(glm::dvec3(p) - origin);
+  return rel;
+}
+
+// Flat, collinear, coincident or fewer than 4 points: the plane normal (smallest principal
+// axis) with the minimum-area rectangle in the plane.
+Obb fit_flat(std::span<const Vec3> points) {
+  const glm::dmat3 pca = detail::pca_frame_of_points(points);
+  const std::vector<glm::dvec3> rel = relative_to(points, glm::dvec3(points[0]));
+  double volume = 0.0;
+  const glm::dmat3 frame = detail::min_area_frame_for_axis(rel, pca[2], volume);
+  return detail::fit_obb_to_frame(points, frame);
+}
+
+}  // namespace
+
+Result<Obb> fit_obb_min_volume(std::span<const Vec3> points) {
+  if (auto e = detail::validate_points(points)) return *e;
+  if (points.size() > kObbHullPoints) {
+    // Step 2b on the points themselves: their exact hull is not built.
+    const glm::dvec3 origin(points[0]);
+    const std::vector<glm::dvec3> v = relative_to(points, origin);
+    detail::LeastFrame best{glm::dmat3(1.0), detail::frame_extent(v, glm::dmat3(1.0)).volume};
+    if (!search_extreme_subset(points, v, origin, best)) return fit_flat(points);
+    return detail::fit_obb_to_frame(points, best.frame);
+  }
+  auto hull = ConvexHull::create(points);
+  if (!hull) return fit_flat(points);
+  const std::span<const Vec3> hv = hull->vertices();
+  const glm::dvec3 origin(hv[0]);
+  const std::vector<glm::dvec3> v = relative_to(hv, origin);
+  detail::LeastFrame best{glm::dmat3(1.0), detail::frame_extent(v, glm::dmat3(1.0)).volume};
   const glm::dmat3 pca = detail::pca_frame_of_hull(*hull);
   best.offer(pca, detail::frame_extent(v, pca).volume);
-  for (const HullFace& f : hull->faces()) consider_axis(glm::dvec3(f.normal));
-  for (const HullEdge& e : hull->edges()) consider_axis(v[e.v1] - v[e.v0]);
+  if (v.size() <= kObbExactHullVertices) {
+    search_hull_axes(*hull, v, best);
+  } else {
+    search_extreme_subset(hv, v, origin, best);
+  }
   return detail::fit_obb_to_frame(points, best.frame);
 }
 

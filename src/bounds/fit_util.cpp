@@ -12,6 +12,7 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <vector>
 
 namespace proxima::detail {
 
@@ -91,6 +92,34 @@ BoundingSphere finish_sphere(std::span<const Vec3> points, const Vec3& center) {
     while (!s.contains(p)) s.radius = std::nextafter(s.radius, kRealMax);
   }
   return s;
+}
+
+}  // namespace proxima::detail
+
+namespace proxima::detail {
+
+std::vector<std::size_t> extreme_points(std::span<const glm::dvec3> points, int directions) {
+  const double golden = 3.14159265358979323846 * (3.0 - std::sqrt(5.0));
+  std::vector<std::size_t> best(static_cast<std::size_t>(directions), 0);
+  std::vector<glm::dvec3> dirs(static_cast<std::size_t>(directions));
+  for (int k = 0; k < directions; ++k) {
+    const double z = 1.0 - (2.0 * k + 1.0) / directions;
+    const double r = std::sqrt(std::max(0.0, 1.0 - z * z));
+    dirs[std::size_t(k)] = glm::dvec3(r * std::cos(golden * k), r * std::sin(golden * k), z);
+  }
+  std::vector<double> top(static_cast<std::size_t>(directions), -std::numeric_limits<double>::max());
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    for (std::size_t k = 0; k < dirs.size(); ++k) {
+      const double d = glm::dot(points[i], dirs[k]);
+      if (d > top[k]) {
+        top[k] = d;
+        best[k] = i;
+      }
+    }
+  }
+  std::sort(best.begin(), best.end());
+  best.erase(std::unique(best.begin(), best.end()), best.end());
+  return best;
 }
 
 }  // namespace proxima::detail

@@ -14,6 +14,7 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <vector>
 
 #include "geometry/eigen_frame.hpp"
 
@@ -50,6 +51,11 @@ struct LeastFrame {
 /// Sphere centred at `center` whose radius is the smallest Real for which every point
 /// passes BoundingSphere::contains.
 BoundingSphere finish_sphere(std::span<const Vec3> points, const Vec3& center);
+
+/// The indices of the points (double, any origin) extreme along `directions` directions
+/// spread evenly over the sphere (a Fibonacci lattice), each once, increasing: a subset of at
+/// most `directions` points whose hull approximates the points' hull. O(n directions).
+std::vector<std::size_t> extreme_points(std::span<const glm::dvec3> points, int directions);
 
 /// splitmix64: the deterministic generator behind the fitters' fixed-seed shuffles.
 inline std::uint64_t splitmix64(std::uint64_t& state) {

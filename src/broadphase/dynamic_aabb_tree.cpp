@@ -26,6 +26,7 @@
 #include <proxima/geometry/raycast.hpp>
 
 #include <algorithm>
+#include <array>
 #include <utility>
 
 #include "broadphase/batch_update_check.hpp"
@@ -421,17 +422,30 @@ void DynamicAabbTree::rebuild() {
 }
 
 void DynamicAabbTree::rebuild_tree(Tree& tree) {
-  std::vector<BuildItem> items;
-  items.reserve(tree.leaves);
+  // Scratch kept per thread, so that a steady rebuild allocates nothing: the build items, and
+  // `fresh`, which holds the buffers of the tree the last rebuild replaced (swapped out).
+  static thread_local std::vector<BuildItem> item_scratch;
+  static thread_local Tree tree_scratch;
+  std::vector<BuildItem>& items = item_scratch;
+  Tree& fresh = tree_scratch;
+  items.clear();
   for (std::size_t i = 0; i < tree.nodes.size(); ++i) {
     const Node& n = tree.nodes[i];
     if (n.height == 0 && n.is_leaf() && n.child2 != kNull)
       items.push_back({n.box, tree.real[i], n.box.center(), n.child2});
   }
   // Leaves must be exactly the proxies of this tree (freed nodes have height -1).
-  Tree fresh;
+  fresh.nodes.clear();
+  fresh.real.clear();
+  fresh.refit_order.clear();
+  fresh.order_valid = false;
+  fresh.built_cost = Real(0);
+  fresh.root = kNull;
+  fresh.free_list = kNull;
+  fresh.in_use = 0;
+  fresh.leaves = 0;
   if (items.empty()) {
-    tree = fresh;
+    std::swap(tree, fresh);
     return;
   }
   fresh.nodes.reserve(2 * items.size() - 1);
@@ -565,7 +579,7 @@ void DynamicAabbTree::rebuild_tree(Tree& tree) {
   }
   fresh.order_valid = true;
   fresh.built_cost = tree_cost(fresh);
-  tree = std::move(fresh);
+  std::swap(tree, fresh);
 }
 
 // ---- pair finding -----------------------------------------------------------------------------
@@ -583,9 +597,13 @@ void DynamicAabbTree::collide_task(const PairTask& task, std::vector<ProxyPair>&
   // stack never holds more than 3 (height_a + height_b) + 4 items: sized once per task.
   // Pushes are branch-free: the item is written, and the top advances only if the boxes
   // overlap (the overlap outcomes are unpredictable).
+  // The stack lives on the thread's stack (no allocation per call) unless the trees are
+  // taller than a balanced tree of billions of leaves.
   const std::size_t capacity = 3 * static_cast<std::size_t>(na[task.a].height + nb[task.b].height) + 8;
-  std::vector<Item> storage(capacity);
-  Item* stack = storage.data();
+  std::array<Item, 256> local;
+  std::vector<Item> tall;
+  if (capacity > local.size()) tall.resize(capacity);
+  Item* stack = capacity > local.size() ? tall.data() : local.data();
   std::size_t top = 0;
   if (task.cross || task.a != task.b) {
     if (!overlap(na[task.a].box, nb[task.b].box)) return;
@@ -651,9 +669,9 @@ void DynamicAabbTree::collide_task(const PairTask& task, std::vector<ProxyPair>&
 
 void DynamicAabbTree::split_tasks(std::vector<PairTask>& tasks, std::size_t wanted) const {
   // Same rules as collide_task, one level per round, until there are `wanted` tasks.
+  static thread_local std::vector<PairTask> next;  // kept per thread: no allocation per call once warm
   for (int round = 0; round < 24 && tasks.size() < wanted; ++round) {
-    std::vector<PairTask> next;
-    next.reserve(tasks.size() * 3);
+    next.clear();
     bool expanded = false;
     for (const PairTask& t : tasks) {
       const Node& a = moving_.nodes[t.a];
@@ -688,7 +706,14 @@ void DynamicAabbTree::split_tasks(std::vector<PairTask>& tasks, std::size_t want
 void DynamicAabbTree::find_pairs(std::vector<ProxyPair>& out, Executor& executor) {
   out.clear();
   BroadPhaseStats st;
-  std::vector<PairTask> tasks;
+  // Kept per thread (the calling one), so that a steady find_pairs allocates nothing; named
+  // through references, which the chunks' lambda captures (a thread_local named inside it
+  // would be the worker's own).
+  static thread_local std::vector<PairTask> task_scratch;
+  static thread_local std::vector<BroadPhaseStats> stats_scratch;
+  std::vector<PairTask>& tasks = task_scratch;
+  std::vector<BroadPhaseStats>& per = stats_scratch;
+  tasks.clear();
   if (moving_.root != kNull) {
     tasks.push_back({moving_.root, moving_.root, false});
     if (static_.root != kNull) tasks.push_back({moving_.root, static_.root, true});
@@ -700,7 +725,7 @@ void DynamicAabbTree::find_pairs(std::vector<ProxyPair>& out, Executor& executor
     // Independent node-pair tasks from the top of the traversal, in chunks run by the
     // executor; per-task counters, per-chunk lists joined in chunk order.
     split_tasks(tasks, threads * 16);
-    std::vector<BroadPhaseStats> per(tasks.size());
+    per.assign(tasks.size(), BroadPhaseStats{});
     run_pair_chunks(tasks.size(), threads * 16, executor, chunk_lists_, out,
                     [&](std::size_t begin, std::size_t end, std::vector<ProxyPair>& list) {
                       for (std::size_t k = begin; k < end; ++k) collide_task(tasks[k], list, per[k]);

@@ -2,7 +2,8 @@
 /// Loose octree and quadtree (looseness 2), after Ulrich, "Loose Octrees" (Game Programming
 /// Gems 1, 4.11) and Ericson, Real-Time Collision Detection 7.3.6.
 ///
-/// Steps: 1. the root covers the boxes (doubling towards any box outside its loose bounds);
+/// Steps: 1. the root covers the boxes (doubling towards any box outside its loose bounds; an
+/// empty root is replaced by one around the box instead);
 /// 2. a box goes down the child holding its centre while that child's loose bounds (centre
 /// +- 2 half) contain it, children created on demand; the stored loose bounds are the only
 /// numbers the placement, the pair walk and the queries compare with, so "every box lies in
@@ -79,6 +80,14 @@ std::int32_t LooseTree<Dim>::new_node(const Vec3& center, Real half, std::int32_
 
 template <int Dim>
 void LooseTree<Dim>::make_room(const Aabb& box) {
+  // An empty root (the last box removed) is dropped rather than grown around: nested under a
+  // new root it would be an empty leaf.
+  if (root_ != kNil && nodes_[std::size_t(root_)].count == 0 && nodes_[std::size_t(root_)].children == 0 &&
+      !contains(nodes_[std::size_t(root_)].loose, box)) {
+    nodes_.clear();
+    free_.clear();
+    root_ = kNil;
+  }
   if (root_ == kNil) {
     Real half = 0;
     const Vec3 h = box.half_extents();

@@ -435,8 +435,11 @@ Result<CastResult> shape_cast(ShapeRef a, const Transform& pose_a, const Vec3& t
   if (auto e = validate_pose(pose_a, "pose_a")) return *e;
   if (auto e = validate::finite(translation, "translation")) return *e;
   if (auto e = validate_pose(pose_b, "pose_b")) return *e;
-  if (auto e = validate::non_negative(options.target_distance, "options.target_distance")) return *e;
-  if (auto e = validate::non_negative(options.tolerance, "options.tolerance")) return *e;
+  const auto fine = [](Real x) { return std::isfinite(x) && x >= Real(0); };  // no field name built when valid
+  if (!fine(options.target_distance) || !fine(options.tolerance)) {
+    if (auto e = validate::non_negative(options.target_distance, "options.target_distance")) return *e;
+    if (auto e = validate::non_negative(options.tolerance, "options.tolerance")) return *e;
+  }
   if (options.max_iterations < 1)
     return make_error(ErrorCode::OutOfRange, "options.max_iterations", "must be at least 1");
 

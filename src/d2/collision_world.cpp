@@ -136,6 +136,21 @@ std::optional<Pose> CollisionWorld::pose(ObjectHandle handle) const {
 }
 
 std::size_t CollisionWorld::size() const { return state_->live; }
+
+std::vector<ObjectHandle> CollisionWorld::objects() const {
+  std::vector<ObjectHandle> out;
+  out.reserve(state_->live);
+  for (std::uint32_t i = 0; i < state_->slots.size(); ++i) {
+    if (state_->slots[i].alive) out.push_back(state_->handle(i));
+  }
+  return out;
+}
+
+std::optional<ObjectDesc> CollisionWorld::object(ObjectHandle handle) const {
+  const detail::Slot* s = state_->live_slot(handle);
+  if (s == nullptr) return std::nullopt;
+  return ObjectDesc{s->shape, s->pose, s->kind, s->filter, s->sensor, s->ccd, s->user_data};
+}
 const StepEvents& CollisionWorld::events() const { return state_->events; }
 std::span<const WorldManifold> CollisionWorld::manifolds() const { return state_->manifolds; }
 void CollisionWorld::set_listener(WorldListener* listener) { state_->listener = listener; }

@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <ostream>
+#include <type_traits>
+#include <variant>
 
 #include "debug/json_text.hpp"
 
@@ -167,6 +169,43 @@ void geometry(std::string& out, ShapeRef shape) {
   out += "{\"type\":";
   string(out, to_string(shape.type()));
   dimensions(out, shape);
+  out += '}';
+}
+
+void geometry(std::string& out, const d2::Shape& shape) {
+  const auto point = [](const Vec2& p) { return Vec3(p.x, p.y, Real(0)); };
+  // The 2D protocol's names (docs/query-protocol.md, "2D").
+  constexpr const char* kNames[] = {"point2d", "circle", "segment2d", "capsule2d", "polygon", "chain"};
+  out += "{\"type\":";
+  string(out, kNames[static_cast<int>(shape.type())]);
+  std::visit(
+      [&](const auto& s) {
+        using S = std::decay_t<decltype(s)>;
+        if constexpr (std::is_same_v<S, d2::Point>) {
+          vec3_member(out, "position", point(s.position()));
+        } else if constexpr (std::is_same_v<S, d2::Circle>) {
+          vec3_member(out, "center", point(s.center()));
+          real_member(out, "radius", s.radius());
+        } else if constexpr (std::is_same_v<S, d2::Segment> || std::is_same_v<S, d2::Capsule>) {
+          vec3_member(out, "a", point(s.a()));
+          vec3_member(out, "b", point(s.b()));
+          if constexpr (std::is_same_v<S, d2::Capsule>) real_member(out, "radius", s.radius());
+        } else if constexpr (std::is_same_v<S, d2::Polygon>) {
+          key(out, "vertices");
+          out += '[';
+          for (int i = 0; i < s.count(); ++i) {
+            if (i) out += ',';
+            vec3(out, point(s.core().vertices[static_cast<std::size_t>(i)]));
+          }
+          out += ']';
+          real_member(out, "radius", s.radius());
+        } else {
+          key(out, "point_count");
+          integer(out, s.points().size());
+          out += s.loop() ? ",\"loop\":true" : ",\"loop\":false";
+        }
+      },
+      shape.variant());
   out += '}';
 }
 

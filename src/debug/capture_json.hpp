@@ -24,6 +24,10 @@ bool write_line(std::ostream& out, const std::string& line, bool& failed);
 void header(std::string& out, const CaptureOptions& options, int dimension);
 /// {"type": ..., dimensions...}: what a click-to-inspect panel shows of a geometry.
 void geometry(std::string& out, ShapeRef shape);
+/// {"type": ..., dimensions...} of a 2D shape by the 2D protocol's names, points at z = 0:
+/// "point2d" (position), "circle" (center, radius), "segment2d" (a, b), "capsule2d" (a, b,
+/// radius), "polygon" (vertices, radius), "chain" (point_count, loop).
+void geometry(std::string& out, const d2::Shape& shape);
 /// {"positions": [x, y, z, ...], "indices": [...]} (flat arrays, as a WebGL buffer wants).
 void mesh(std::string& out, const DrawMesh& mesh);
 /// {"lines": [...], "triangles": [...], "points": [...], "boxes": [...], "texts": [...]}.

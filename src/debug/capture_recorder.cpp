@@ -14,32 +14,18 @@
 #include <proxima/debug/draw_world.hpp>
 
 #include <ostream>
-#include <set>
-#include <sstream>
 
 #include "debug/capture_json.hpp"
+#include "debug/capture_objects.hpp"
 #include "debug/json_text.hpp"
 
 namespace proxima::debug {
 
 namespace {
 
-std::string filter_record(const CollisionFilter& filter) {
-  // 64-bit masks as decimal strings: JavaScript numbers hold integers exactly only to 2^53.
-  std::string out = "{\"layer\":\"";
-  out.append(std::to_string(filter.layer)).append("\",\"mask\":\"").append(std::to_string(filter.mask));
-  out.append("\",\"group\":").append(std::to_string(filter.group)).append("}");
-  return out;
+detail::CaptureObjectState state_of(const ObjectDesc& desc) {
+  return {desc.pose, desc.kind, desc.sensor, desc.filter, desc.user_data, desc.ccd};
 }
-
-void pose_members(std::string& out, const Transform& pose) {
-  json::key(out, "position");
-  json::vec3(out, pose.position);
-  json::key(out, "rotation");
-  json::quat(out, pose.rotation);
-}
-
-bool same_pose(const Transform& a, const Transform& b) { return a.position == b.position && a.rotation == b.rotation; }
 
 }  // namespace
 
@@ -47,20 +33,11 @@ CaptureRecorder::CaptureRecorder(std::ostream& out, CaptureOptions options)
     : out_(&out), options_(std::move(options)) {}
 
 std::string CaptureRecorder::object_record(ObjectHandle handle, const ObjectDesc& desc) const {
-  std::string out = "{\"id\":";
-  json::integer(out, handle.to_integer());
-  json::key(out, "kind");
-  json::string(out, to_string(desc.kind));
-  out += desc.sensor ? ",\"sensor\":true" : ",\"sensor\":false";
-  out.append(",\"filter\":").append(filter_record(desc.filter));
-  out.append(",\"user_data\":\"").append(std::to_string(desc.user_data)).append("\"");
-  json::key(out, "ccd");
-  json::string(out, to_string(desc.ccd));
-  json::key(out, "color");
-  json::color(out, object_color(desc));
+  std::string out = "{";
+  detail::object_members(out, handle.to_integer(), state_of(desc), object_color(desc));
   json::key(out, "geometry");
   json::geometry(out, desc.geometry);
-  pose_members(out, desc.pose);
+  detail::pose_members(out, desc.pose);
   json::key(out, "mesh");
   json::mesh(out, tessellate(desc.geometry, options_.tessellation));
   out += '}';
@@ -68,64 +45,13 @@ std::string CaptureRecorder::object_record(ObjectHandle handle, const ObjectDesc
 }
 
 std::string CaptureRecorder::scene_line(const CollisionWorld& world) {
-  std::string out = "{\"type\":\"scene\",\"objects\":[";
-  bool first = true;
-  for (const ObjectHandle handle : world.objects()) {
-    const std::optional<ObjectDesc> desc = world.object(handle);
-    if (!desc) continue;
-    if (!first) out += ',';
-    first = false;
-    out += object_record(handle, *desc);
-    written_[handle.to_integer()] = {desc->pose, desc->kind, desc->sensor, desc->filter, desc->user_data, desc->ccd};
-  }
-  out += ']';
-  if (options_.snapshot) {
-    std::ostringstream snapshot;
-    if (!world.save(snapshot)) {
-      json::key(out, "snapshot");
-      json::string(out, json::base64(snapshot.str()));
-    }
-  }
-  out += '}';
-  return out;
+  const auto record = [this](ObjectHandle handle, const ObjectDesc& desc) { return object_record(handle, desc); };
+  return detail::scene_line(world, options_.snapshot, written_, record, state_of);
 }
 
 std::string CaptureRecorder::object_changes(const CollisionWorld& world) {
-  std::string poses, added, removed;
-  std::set<std::uint64_t> live;
-  for (const ObjectHandle handle : world.objects()) {
-    const std::optional<ObjectDesc> desc = world.object(handle);
-    if (!desc) continue;
-    const std::uint64_t id = handle.to_integer();
-    live.insert(id);
-    const Written now{desc->pose, desc->kind, desc->sensor, desc->filter, desc->user_data, desc->ccd};
-    const auto it = written_.find(id);
-    const bool same = it != written_.end() && !it->second.stale && it->second.kind == now.kind &&
-                      it->second.sensor == now.sensor && it->second.filter == now.filter &&
-                      it->second.user_data == now.user_data && it->second.ccd == now.ccd;
-    if (!same) {
-      if (!added.empty()) added += ',';
-      added += object_record(handle, *desc);
-    } else if (!same_pose(it->second.pose, now.pose)) {
-      poses += poses.empty() ? "{\"id\":" : ",{\"id\":";
-      json::integer(poses, id);
-      pose_members(poses, now.pose);
-      poses += '}';
-    }
-    written_[id] = now;
-  }
-  for (auto it = written_.begin(); it != written_.end();) {
-    if (live.count(it->first)) {
-      ++it;
-      continue;
-    }
-    if (!removed.empty()) removed += ',';
-    json::integer(removed, it->first);
-    it = written_.erase(it);
-  }
-  std::string out = ",\"poses\":[";
-  out.append(poses).append("],\"added\":[").append(added).append("],\"removed\":[").append(removed).append("]");
-  return out;
+  const auto record = [this](ObjectHandle handle, const ObjectDesc& desc) { return object_record(handle, desc); };
+  return detail::object_changes(world, written_, record, state_of);
 }
 
 std::string CaptureRecorder::step_line(const CollisionWorld& world, Real dt, const DrawBuffer* extra) {

@@ -59,7 +59,30 @@ void draw_fan(DebugDraw& sink, const Vec3& center, std::span<const Vec3> loop, R
   sink.draw_triangles(triangles);
 }
 
+/// The mean of the core's vertices: inside the convex core, so a fan from it is
+/// counter-clockwise throughout.
+Vec2 core_mean(const d2::ConvexCore& core, int count) {
+  Vec2 mean(Real(0));
+  for (int i = 0; i < count; ++i) mean += core.vertices[static_cast<std::size_t>(i)] / Real(count);
+  return mean;
+}
+
 }  // namespace
+
+Transform plane_pose(const d2::Pose& pose) {
+  // cos(a/2) and sin(a/2) from cos a and sin a, each from the larger half-angle term so that
+  // neither divides by a small number.
+  const Real c = std::clamp(pose.rotation.c, Real(-1), Real(1)), s = pose.rotation.s;
+  Real w, z;
+  if (c >= Real(0)) {
+    w = std::sqrt((Real(1) + c) / Real(2));
+    z = s / (Real(2) * w);
+  } else {
+    z = std::copysign(std::sqrt((Real(1) - c) / Real(2)), s);
+    w = s / (Real(2) * z);
+  }
+  return Transform{plane_point(pose.position), Quat(w, Real(0), Real(0), z)};
+}
 
 Rgba outline_color(Rgba color) {
   const auto dim = [](std::uint8_t c) { return static_cast<std::uint8_t>(c * 55 / 100); };
@@ -87,6 +110,19 @@ std::vector<Vec2> core_outline(const d2::ConvexCore& core, int segments) {
   return out;
 }
 
+DrawMesh tessellate_2d(const d2::Shape& shape, int segments) {
+  DrawMesh mesh;
+  if (!shape.is_convex()) return mesh;
+  const d2::ConvexCore& core = shape.core();
+  const std::vector<Vec2> loop = core_outline(core, segments);
+  if (loop.size() < 3) return mesh;
+  mesh.positions.push_back(plane_point(core_mean(core, std::clamp(core.count, 1, d2::kMaxPolygonVertices))));
+  for (const Vec2& p : loop) mesh.positions.push_back(plane_point(p));
+  const auto n = static_cast<std::uint32_t>(loop.size());
+  for (std::uint32_t i = 0; i < n; ++i) mesh.indices.insert(mesh.indices.end(), {0u, i + 1, (i + 1) % n + 1});
+  return mesh;
+}
+
 void draw_convex_2d(DebugDraw& sink, const d2::ConvexCore& core, const d2::Pose& pose, Rgba color,
                     const Shape2DDrawOptions& options) {
   const int count = std::clamp(core.count, 0, d2::kMaxPolygonVertices);
@@ -104,9 +140,7 @@ void draw_convex_2d(DebugDraw& sink, const d2::ConvexCore& core, const d2::Pose&
     sink.draw_lines({&line, 1});
     return;
   }
-  Vec2 mean(Real(0));
-  for (int i = 0; i < count; ++i) mean += core.vertices[static_cast<std::size_t>(i)] / Real(count);
-  if (options.fill) draw_fan(sink, plane_point(pose.apply(mean)), loop, color, tag);
+  if (options.fill) draw_fan(sink, plane_point(pose.apply(core_mean(core, count))), loop, color, tag);
   if (options.outline) draw_outline_lines(sink, loop, outline_color(color), tag);
 }
 

@@ -216,6 +216,7 @@ std::optional<Error> stale(const std::string& field) {
 }  // namespace
 
 Result<ObjectHandle> CollisionWorld::add(const ObjectDesc& desc) {
+  const detail::WriteScope writing(impl_->access);
   Impl& w = *impl_;
   if (auto e = check_not_in_pre_contact(w)) return *e;
   const ObjectSlot* parent = nullptr;
@@ -308,6 +309,7 @@ void free_slot(CollisionWorld::Impl& w, std::uint32_t i) {
 }  // namespace
 
 std::optional<Error> CollisionWorld::remove(ObjectHandle object) {
+  const detail::WriteScope writing(impl_->access);
   Impl& w = *impl_;
   if (auto e = check_not_in_pre_contact(w)) return e;
   if (w.find(object) == nullptr) return stale("object");
@@ -354,14 +356,52 @@ std::optional<Error> set_pose(CollisionWorld::Impl& w, ObjectHandle object, cons
 }  // namespace
 
 std::optional<Error> CollisionWorld::move(ObjectHandle object, const Transform& pose) {
+  const detail::WriteScope writing(impl_->access);
   return set_pose(*impl_, object, pose, false);
 }
 
 std::optional<Error> CollisionWorld::teleport(ObjectHandle object, const Transform& pose) {
+  const detail::WriteScope writing(impl_->access);
   return set_pose(*impl_, object, pose, true);
 }
 
-std::optional<Error> CollisionWorld::move(std::span<const ObjectMove> moves) {
+namespace {
+
+/// move(span)'s placing (validated entries): the new boxes of the objects that are neither
+/// attached nor carry attached ones, on the executor (each entry writes its own box), then
+/// every entry applied in order on the calling thread (attached ones through place(), which
+/// carries their trees); the moved trees' roots into w.move_roots.
+void place_all(CollisionWorld::Impl& w, std::span<const ObjectMove> moves, Executor& executor) {
+  const auto simple = [&](std::uint32_t i) { return w.slots[i].parent == kNone && w.slots[i].first_child == kNone; };
+  std::vector<Aabb>& boxes = w.move_boxes;
+  boxes.resize(moves.size());
+  const Real pad = w.settings.contact_distance * Real(0.5);
+  const std::size_t n = moves.size();
+  const std::size_t grain = std::max<std::size_t>(64, n / (executor.concurrency() * 8 + 1));
+  executor.run((n + grain - 1) / grain, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t k = begin * grain; k < std::min(n, end * grain); ++k) {
+      const std::uint32_t i = moves[k].object.index;
+      if (simple(i)) boxes[k] = proxy_box(world_aabb(w.slots[i].geometry, moves[k].pose), pad);
+    }
+  });
+  w.move_roots.clear();
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::uint32_t i = moves[k].object.index;
+    if (simple(i)) {  // place() without the tree: the same pose, box and moved mark
+      w.slots[i].pose = moves[k].pose;
+      w.slots[i].box = boxes[k];
+      w.mark_moved(i);
+    } else {
+      place(w, i, moves[k].pose);
+    }
+    w.move_roots.push_back(w.slots[i].root);
+  }
+}
+
+}  // namespace
+
+std::optional<Error> CollisionWorld::move(std::span<const ObjectMove> moves, Executor& executor) {
+  const detail::WriteScope writing(impl_->access);
   Impl& w = *impl_;
   if (auto e = check_not_in_pre_contact(w)) return e;
   for (std::size_t k = 0; k < moves.size(); ++k) {
@@ -371,16 +411,12 @@ std::optional<Error> CollisionWorld::move(std::span<const ObjectMove> moves) {
     if (!live) return stale(field + ".object");
     return check_pose(moves[k].pose, field + ".pose");
   }
-  std::vector<std::uint32_t> roots;
-  roots.reserve(moves.size());
-  for (const ObjectMove& m : moves) {
-    place(w, m.object.index, m.pose);
-    roots.push_back(w.slots[m.object.index].root);
-  }
+  place_all(w, moves, executor);
+  std::vector<std::uint32_t>& roots = w.move_roots;  // scratch kept by the world: no allocation per call
   std::sort(roots.begin(), roots.end());
   roots.erase(std::unique(roots.begin(), roots.end()), roots.end());
-  std::vector<ProxyUpdate> updates;
-  updates.reserve(roots.size());
+  std::vector<ProxyUpdate>& updates = w.move_updates;
+  updates.clear();
   for (std::uint32_t r : roots) updates.push_back({r, w.tree_box(r)});
   [[maybe_unused]] const BroadPhaseStatus st = w.broadphase->update(updates);
   PROXIMA_ASSERT(st == BroadPhaseStatus::Ok);
@@ -388,6 +424,7 @@ std::optional<Error> CollisionWorld::move(std::span<const ObjectMove> moves) {
 }
 
 std::optional<Error> CollisionWorld::set_geometry(ObjectHandle object, const Shape& geometry) {
+  const detail::WriteScope writing(impl_->access);
   Impl& w = *impl_;
   if (auto e = check_not_in_pre_contact(w)) return e;
   ObjectSlot* s = w.find(object);
@@ -403,6 +440,7 @@ std::optional<Error> CollisionWorld::set_geometry(ObjectHandle object, const Sha
 }
 
 std::optional<Error> CollisionWorld::set_filter(ObjectHandle object, const CollisionFilter& filter) {
+  const detail::WriteScope writing(impl_->access);
   Impl& w = *impl_;
   if (auto e = check_not_in_pre_contact(w)) return e;
   ObjectSlot* s = w.find(object);
@@ -414,6 +452,7 @@ std::optional<Error> CollisionWorld::set_filter(ObjectHandle object, const Colli
 }
 
 std::optional<Error> CollisionWorld::set_kind(ObjectHandle object, ObjectKind kind) {
+  const detail::WriteScope writing(impl_->access);
   Impl& w = *impl_;
   if (auto e = check_not_in_pre_contact(w)) return e;
   ObjectSlot* s = w.find(object);
@@ -431,6 +470,7 @@ std::optional<Error> CollisionWorld::set_kind(ObjectHandle object, ObjectKind ki
 }
 
 std::optional<Error> CollisionWorld::set_ccd(ObjectHandle object, CcdMode mode) {
+  const detail::WriteScope writing(impl_->access);
   ObjectSlot* s = impl_->find(object);
   if (s == nullptr) return stale("object");
   s->ccd = mode;
@@ -438,6 +478,7 @@ std::optional<Error> CollisionWorld::set_ccd(ObjectHandle object, CcdMode mode) 
 }
 
 std::optional<Error> CollisionWorld::set_user_data(ObjectHandle object, std::uint64_t user_data) {
+  const detail::WriteScope writing(impl_->access);
   ObjectSlot* s = impl_->find(object);
   if (s == nullptr) return stale("object");
   s->user_data = user_data;
@@ -445,6 +486,7 @@ std::optional<Error> CollisionWorld::set_user_data(ObjectHandle object, std::uin
 }
 
 std::optional<Error> CollisionWorld::attach(ObjectHandle object, ObjectHandle parent, const Transform& local_pose) {
+  const detail::WriteScope writing(impl_->access);
   Impl& w = *impl_;
   if (auto e = check_not_in_pre_contact(w)) return e;
   if (w.find(object) == nullptr) return stale("object");
@@ -491,6 +533,7 @@ std::optional<Error> CollisionWorld::attach(ObjectHandle object, ObjectHandle pa
 }
 
 std::optional<Error> CollisionWorld::set_pair_excluded(ObjectHandle a, ObjectHandle b, bool excluded) {
+  const detail::WriteScope writing(impl_->access);
   Impl& w = *impl_;
   if (w.find(a) == nullptr) return stale("a");
   if (w.find(b) == nullptr) return stale("b");
@@ -510,11 +553,18 @@ std::optional<Error> CollisionWorld::set_pair_excluded(ObjectHandle a, ObjectHan
 
 // ---- accessors -------------------------------------------------------------------------
 
-bool CollisionWorld::contains(ObjectHandle object) const { return impl_->find(object) != nullptr; }
+bool CollisionWorld::contains(ObjectHandle object) const {
+  const detail::ReadScope reading(impl_->access);
+  return impl_->find(object) != nullptr;
+}
 
-std::size_t CollisionWorld::size() const { return impl_->live; }
+std::size_t CollisionWorld::size() const {
+  const detail::ReadScope reading(impl_->access);
+  return impl_->live;
+}
 
 std::vector<ObjectHandle> CollisionWorld::objects() const {
+  const detail::ReadScope reading(impl_->access);
   std::vector<ObjectHandle> out;
   out.reserve(impl_->live);
   for (std::uint32_t i = 0; i < impl_->slots.size(); ++i)
@@ -523,6 +573,7 @@ std::vector<ObjectHandle> CollisionWorld::objects() const {
 }
 
 std::optional<ObjectDesc> CollisionWorld::object(ObjectHandle object) const {
+  const detail::ReadScope reading(impl_->access);
   const ObjectSlot* s = impl_->find(object);
   if (s == nullptr) return std::nullopt;
   ObjectDesc d;
@@ -541,18 +592,24 @@ std::optional<ObjectDesc> CollisionWorld::object(ObjectHandle object) const {
 }
 
 Transform CollisionWorld::pose(ObjectHandle object) const {
+  const detail::ReadScope reading(impl_->access);
   const ObjectSlot* s = impl_->find(object);
   return s != nullptr ? s->pose : Transform::identity();
 }
 
 Aabb CollisionWorld::bounds(ObjectHandle object) const {
+  const detail::ReadScope reading(impl_->access);
   const ObjectSlot* s = impl_->find(object);
   return s != nullptr ? s->box : Aabb{};
 }
 
-void CollisionWorld::set_listener(WorldListener* listener) { impl_->listener = listener; }
+void CollisionWorld::set_listener(WorldListener* listener) {
+  const detail::WriteScope writing(impl_->access);
+  impl_->listener = listener;
+}
 
 std::optional<Error> CollisionWorld::set_object_listener(ObjectHandle object, WorldListener* listener) {
+  const detail::WriteScope writing(impl_->access);
   if (impl_->find(object) == nullptr) return stale("object");
   if (listener == nullptr)
     impl_->object_listeners.erase(object.index);
@@ -561,6 +618,9 @@ std::optional<Error> CollisionWorld::set_object_listener(ObjectHandle object, Wo
   return std::nullopt;
 }
 
-void CollisionWorld::set_pair_filter(PairFilterCallback* filter) { impl_->pair_filter = filter; }
+void CollisionWorld::set_pair_filter(PairFilterCallback* filter) {
+  const detail::WriteScope writing(impl_->access);
+  impl_->pair_filter = filter;
+}
 
 }  // namespace proxima

@@ -7,8 +7,9 @@
 namespace proxima::detail {
 
 /// Step 5 of the step: impacts of the fast objects moved since the last step, and the
-/// sensors they cross; appends to w.events (sorted later by the step).
-void continuous_pass(CollisionWorld::Impl& w, const CollisionWorld& world);
+/// sensors they cross, swept on `executor` (the calling thread when a pair filter is set);
+/// appends to w.events in the serial order (sorted later by the step).
+void continuous_pass(CollisionWorld::Impl& w, const CollisionWorld& world, Executor& executor);
 
 /// True when object `s`, moving along `motion`, is fast for `safety_factor`: a point of it
 /// may move farther than safety_factor times its thinnest extent.

@@ -42,6 +42,7 @@ void support_hint(Digest& d, const Shape& g, std::uint32_t hint) {
 }  // namespace
 
 std::uint64_t CollisionWorld::state_hash() const {
+  const detail::ReadScope reading(impl_->access);
   const Impl& w = *impl_;
   Digest d;
   d.word(w.steps);

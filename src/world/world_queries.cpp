@@ -87,6 +87,7 @@ std::vector<WorldOverlap> overlaps(const Impl& w, const Aabb& box, const QueryFi
 
 Result<std::vector<WorldHit>> CollisionWorld::raycast(const Ray& ray, Real max_t, const QueryFilter& filter,
                                                       QueryMode mode) const {
+  const detail::ReadScope reading(impl_->access);
   const Impl& w = *impl_;
   if (auto e = check_point(ray.origin, "ray.origin")) return *e;
   if (!is_acceptable(ray.direction) || glm::dot(ray.direction, ray.direction) == Real(0))
@@ -115,6 +116,7 @@ Result<std::vector<WorldHit>> CollisionWorld::raycast(const Ray& ray, Real max_t
 }
 
 Result<bool> CollisionWorld::line_of_sight(const Vec3& from, const Vec3& to, const QueryFilter& filter) const {
+  const detail::ReadScope reading(impl_->access);
   if (auto e = check_point(from, "from")) return *e;
   if (auto e = check_point(to, "to")) return *e;
   if (from == to) {
@@ -128,6 +130,7 @@ Result<bool> CollisionWorld::line_of_sight(const Vec3& from, const Vec3& to, con
 
 Result<std::vector<WorldOverlap>> CollisionWorld::overlap(ShapeRef geometry, const Transform& pose,
                                                           const QueryFilter& filter, QueryMode mode) const {
+  const detail::ReadScope reading(impl_->access);
   if (auto e = check_pose(pose, "pose")) return *e;
   const Impl& w = *impl_;
   const Aabb shape_box = world_aabb(geometry, pose);
@@ -138,6 +141,7 @@ Result<std::vector<WorldOverlap>> CollisionWorld::overlap(ShapeRef geometry, con
 
 Result<std::vector<WorldOverlap>> CollisionWorld::overlap_box(const Aabb& box, const QueryFilter& filter,
                                                               QueryMode mode) const {
+  const detail::ReadScope reading(impl_->access);
   if (auto e = check_point(box.min, "box.min")) return *e;
   if (auto e = check_point(box.max, "box.max")) return *e;
   if (box.min.x > box.max.x || box.min.y > box.max.y || box.min.z > box.max.z)
@@ -152,6 +156,7 @@ Result<std::vector<WorldOverlap>> CollisionWorld::overlap_box(const Aabb& box, c
 
 Result<std::vector<WorldOverlap>> CollisionWorld::overlap_point(const Vec3& point, const QueryFilter& filter,
                                                                 QueryMode mode) const {
+  const detail::ReadScope reading(impl_->access);
   if (auto e = check_point(point, "point")) return *e;
   const Impl& w = *impl_;
   const Point shape = *Point::create();
@@ -162,6 +167,7 @@ Result<std::vector<WorldOverlap>> CollisionWorld::overlap_point(const Vec3& poin
 
 Result<std::vector<WorldHit>> CollisionWorld::sweep(ShapeRef geometry, const Transform& pose, const Vec3& translation,
                                                     const QueryFilter& filter, QueryMode mode) const {
+  const detail::ReadScope reading(impl_->access);
   if (auto e = check_pose(pose, "pose")) return *e;
   if (auto e = check_point(translation, "translation")) return *e;
   if (!is_convex(geometry.type()))
@@ -186,6 +192,7 @@ Result<std::vector<WorldHit>> CollisionWorld::sweep(ShapeRef geometry, const Tra
 
 Result<std::optional<WorldClosest>> CollisionWorld::closest(ShapeRef geometry, const Transform& pose, Real max_distance,
                                                             const QueryFilter& filter) const {
+  const detail::ReadScope reading(impl_->access);
   if (auto e = check_pose(pose, "pose")) return *e;
   if (auto e = check_distance(max_distance, "max_distance")) return *e;
   const Impl& w = *impl_;
@@ -204,6 +211,7 @@ Result<std::optional<WorldClosest>> CollisionWorld::closest(ShapeRef geometry, c
 
 Result<std::optional<WorldClosest>> CollisionWorld::closest_point(const Vec3& point, Real max_distance,
                                                                   const QueryFilter& filter) const {
+  const detail::ReadScope reading(impl_->access);
   if (auto e = check_point(point, "point")) return *e;
   return closest(*Point::create(), Transform{point, kIdentityQuat}, max_distance, filter);
 }

@@ -57,6 +57,7 @@ void for_each_item(Executor& executor, std::size_t count, Item&& item) {
 
 Result<std::size_t> CollisionWorld::raycast_batch(std::span<const WorldRay> rays, std::span<WorldHit> hits,
                                                   const QueryFilter& filter, Executor& executor) const {
+  const detail::ReadScope reading(impl_->access);
   if (auto e = check_sizes(rays.size(), hits.size(), "hits", "rays")) return *e;
   for (std::size_t i = 0; i < rays.size(); ++i) {
     const WorldRay& r = rays[i];
@@ -98,6 +99,7 @@ Result<std::size_t> CollisionWorld::raycast_batch(std::span<const WorldRay> rays
 Result<std::size_t> CollisionWorld::line_of_sight_batch(std::span<const WorldSegment> segments,
                                                         std::span<std::uint8_t> visible, const QueryFilter& filter,
                                                         Executor& executor) const {
+  const detail::ReadScope reading(impl_->access);
   if (auto e = check_sizes(segments.size(), visible.size(), "visible", "segments")) return *e;
   for (std::size_t i = 0; i < segments.size(); ++i) {
     if (auto e = check_point(segments[i].from, "segments", i, "from")) return *e;
@@ -113,6 +115,7 @@ Result<std::size_t> CollisionWorld::line_of_sight_batch(std::span<const WorldSeg
 Result<std::size_t> CollisionWorld::closest_point_batch(std::span<const Vec3> points, Real max_distance,
                                                         std::span<WorldClosest> nearest, const QueryFilter& filter,
                                                         Executor& executor) const {
+  const detail::ReadScope reading(impl_->access);
   if (auto e = check_sizes(points.size(), nearest.size(), "nearest", "points")) return *e;
   if (!std::isfinite(max_distance) || max_distance < Real(0)) {
     return make_error(ErrorCode::Negative, "max_distance", "must be finite and >= 0");

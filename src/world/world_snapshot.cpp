@@ -154,6 +154,7 @@ void write_events(Writer& w, const StepEvents& ev) {
 }  // namespace
 
 std::optional<Error> CollisionWorld::save(std::ostream& out) const {
+  const detail::ReadScope reading(impl_->access);
   const Impl& m = *impl_;
   Writer w(out);
   write_snapshot_header(w, kMagic, kVersion);

@@ -17,6 +17,8 @@
 #include <unordered_set>
 #include <vector>
 
+#include "world/access_check.hpp"
+
 namespace proxima {
 
 /// One object (or a free slot: alive false).
@@ -61,6 +63,15 @@ struct PairState {
   ObjectPair pair() const { return {{lo, gen_lo}, {hi, gen_hi}}; }
 };
 
+/// One block of the continuous pass (world_ccd.cpp): the scratch of its sweeps and its
+/// events, merged in block order after the parallel sweeps. Kept across steps.
+struct CcdChunk {
+  std::vector<std::uint32_t> roots;        ///< proxies met by one swept box
+  std::vector<std::uint32_t> candidates;   ///< objects one fast object may reach
+  std::vector<ImpactEvent> impacts;        ///< the block's first impacts, by object
+  std::vector<SensorEvent> sensor_events;  ///< the sensors crossed: enter and exit alike
+};
+
 /// Key of an unordered index pair (lo in the high half).
 inline std::uint64_t pair_key(std::uint32_t a, std::uint32_t b) {
   return a < b ? (std::uint64_t(a) << 32) | b : (std::uint64_t(b) << 32) | a;
@@ -85,6 +96,7 @@ struct CollisionWorld::Impl {
   std::uint64_t steps = 0;
   bool in_callback = false;     ///< true while step() runs callbacks (a nested step is refused)
   bool in_pre_contact = false;  ///< true during on_pre_contact (changes are refused)
+  detail::AccessCheck access;   ///< debug checks of the thread-safety rules (access_check.hpp)
 
   // scratch of the step, kept so that a step allocates nothing once warmed up
   std::vector<ProxyPair> proxy_pairs;        ///< the broad phase's pairs of trees
@@ -93,6 +105,11 @@ struct CollisionWorld::Impl {
   std::vector<ContactManifold> manifolds;    ///< the narrow phase's answer per candidate
   std::vector<std::uint8_t> overlaps;        ///< the narrow phase's answer per sensor candidate
   std::vector<WorldManifold> next_contacts;  ///< the manifolds being built (swapped with contacts)
+  std::vector<Aabb> move_boxes;              ///< move(span): the new box of each entry (unattached objects)
+  std::vector<std::uint32_t> move_roots;     ///< move(span): the moved trees' roots
+  std::vector<ProxyUpdate> move_updates;     ///< move(span): their proxies' new boxes
+  std::vector<std::uint32_t> fast;           ///< continuous pass: the fast objects, by index
+  std::vector<CcdChunk> ccd_chunks;          ///< continuous pass: one per block of fast objects
 
   // ---- helpers shared by the translation units ----
 

@@ -12,7 +12,7 @@
 //      collide, or intersect for a pair with a sensor, warm-started by the pair's cache;
 //   4. in pair order: points matched to the previous manifold (contact_matching.hpp),
 //      on_pre_contact, then begin / persist / end and sensor enter / exit;
-//   5. continuous detection for the fast objects (world_ccd.cpp);
+//   5. continuous detection for the fast objects, on the executor (world_ccd.cpp);
 //   6. the moved objects' step poses become their poses; every event array is sorted;
 //   7. callbacks in event order (world_listener.hpp).
 #include <proxima/broadphase/pair_tracker.hpp>
@@ -240,6 +240,7 @@ void run_callbacks(Impl& w, CollisionWorld& world) {
 }  // namespace
 
 std::optional<Error> CollisionWorld::step(Real dt, Executor& executor) {
+  const detail::WriteScope writing(impl_->access);
   Impl& w = *impl_;
   if (!std::isfinite(dt) || dt <= 0) return make_error(ErrorCode::NonPositive, "dt", "must be finite and > 0");
   if (w.in_callback || w.in_pre_contact)
@@ -250,21 +251,29 @@ std::optional<Error> CollisionWorld::step(Real dt, Executor& executor) {
   narrow_phase(w, w.next_pairs, w.manifolds, w.overlaps, executor);
   derive_events(w, *this, w.next_pairs, w.manifolds, w.overlaps);
   std::swap(w.pairs, w.next_pairs);
-  if (w.settings.continuous) detail::continuous_pass(w, *this);
+  if (w.settings.continuous) detail::continuous_pass(w, *this, executor);
   finish_step(w);
   run_callbacks(w, *this);
   return std::nullopt;
 }
 
-const StepEvents& CollisionWorld::events() const { return impl_->events; }
+const StepEvents& CollisionWorld::events() const {
+  const detail::ReadScope reading(impl_->access);
+  return impl_->events;
+}
 
-std::span<const WorldManifold> CollisionWorld::contacts() const { return impl_->contacts; }
+std::span<const WorldManifold> CollisionWorld::contacts() const {
+  const detail::ReadScope reading(impl_->access);
+  return impl_->contacts;
+}
 
 const WorldManifold* CollisionWorld::contact(ObjectHandle a, ObjectHandle b) const {
+  const detail::ReadScope reading(impl_->access);
   return const_cast<CollisionWorld*>(this)->contact(a, b);
 }
 
 WorldManifold* CollisionWorld::contact(ObjectHandle a, ObjectHandle b) {
+  const detail::ReadScope reading(impl_->access);
   const ObjectPair key = a.index < b.index ? ObjectPair{a, b} : ObjectPair{b, a};
   auto& c = impl_->contacts;
   const auto it =
@@ -272,6 +281,9 @@ WorldManifold* CollisionWorld::contact(ObjectHandle a, ObjectHandle b) {
   return it != c.end() && it->pair == key ? &*it : nullptr;
 }
 
-std::uint64_t CollisionWorld::step_count() const { return impl_->steps; }
+std::uint64_t CollisionWorld::step_count() const {
+  const detail::ReadScope reading(impl_->access);
+  return impl_->steps;
+}
 
 }  // namespace proxima

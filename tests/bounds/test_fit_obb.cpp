@@ -195,5 +195,33 @@ TEST(FitObb, ValidationErrors) {
   EXPECT_EQ(fit_obb_dito(ok, 10).error().field, "k");
 }
 
+// Hulls beyond kObbExactHullVertices are searched on a subset of extreme vertices: the
+// largest inputs of the hardening issue (20,000 points on a sphere, all of them hull
+// vertices, and 200,000 points near the surface of a rotated box) finish, contain every
+// point, and the box stays near the one sampled (its time is reported by bench/, not
+// asserted here).
+TEST(FitObb, MinVolumeOnLargeHullsFinishesAndStaysTight) {
+  test::Random rng(403);
+  std::vector<Vec3> sphere;
+  for (int i = 0; i < 20000; ++i) sphere.push_back(rng.unit_vector() * Real(3));
+  const Obb ball = *fit_obb_min_volume(sphere);
+  expect_frame(ball, "sphere");
+  for (const Vec3& p : sphere) ASSERT_TRUE(ball.contains(p));
+  EXPECT_LE(double(ball.volume()), 1.05 * 216.0);  // a cube of side 6 holds the ball
+  const Quat q = rng.rotation();
+  const Vec3 half(Real(3), Real(2), Real(1));
+  std::vector<Vec3> shell;
+  for (int i = 0; i < 200000; ++i) {
+    Vec3 l = rng.in_box(-half, half);
+    const int face = rng.integer(0, 2);
+    l[face] = (rng.integer(0, 1) == 0 ? Real(-1) : Real(1)) * half[face] * rng.uniform(Real(0.999), Real(1.001));
+    shell.push_back(q * l + Vec3(1, 2, 3));
+  }
+  const Obb box = *fit_obb_min_volume(shell);
+  expect_frame(box, "shell");
+  for (const Vec3& p : shell) ASSERT_TRUE(box.contains(p));
+  EXPECT_LE(double(box.volume()), 1.02 * 48.0 * 1.001 * 1.001 * 1.001);
+}
+
 }  // namespace test_fit_obb
 }  // namespace proxima

@@ -116,6 +116,28 @@ TEST(FitVolumes, CapsuleIsTightOnSampledCapsules) {
   std::printf("capsule fit / generating capsule volume: worst %.4f\n", worst);
 }
 
+// The largest input of the hardening issue's capsule case (100,000 points, nearly all of
+// them hull vertices, where the axis search runs on a subset of extreme points): it
+// finishes, contains every point and stays within the sampling slack of the generator.
+TEST(FitVolumes, CapsuleOfALargeHullFinishesAndStaysTight) {
+  test::Random rng(509);
+  const Real r = Real(1), half = Real(2);
+  const Quat q = rng.rotation();
+  const Vec3 c(3, -2, 1);
+  std::vector<Vec3> pts;
+  for (int k = 0; k < 100000; ++k) {
+    const Vec3 u = rng.unit_vector();
+    const Real z = rng.uniform(-half, half);
+    const Vec3 radial = glm::normalize(Vec3(u.x, u.y, Real(0)) + Vec3(Real(1e-3), 0, 0));
+    const Vec3 local = k % 3 == 0 ? Vec3(0, 0, u.z >= 0 ? half : -half) + u * r : radial * r + Vec3(0, 0, z);
+    pts.push_back(c + q * local);
+  }
+  const BoundingCapsule gen{c + q * Vec3(0, 0, -half), c + q * Vec3(0, 0, half), r};
+  const BoundingCapsule fit = *fit_capsule(pts);
+  for (const Vec3& p : pts) ASSERT_TRUE(fit.contains(p));
+  EXPECT_LE(double(fit.volume()) / double(gen.volume()), 1.02);
+}
+
 TEST(FitVolumes, CapsuleOfDegenerateClouds) {
   const std::vector<Vec3> one{{1, 2, 3}};
   const BoundingCapsule a = *fit_capsule(one);

@@ -76,6 +76,24 @@ TYPED_TEST(LooseTreeTest, EmptyNodesArePruned) {
   EXPECT_TRUE(s.validate());
 }
 
+// Found by the fuzz target broadphase_ops (fuzz/corpus/broadphase_ops/regression_octree_empty_root):
+// the last box removed leaves an empty root; a box outside it then grew the tree above that
+// root, which stayed as an empty leaf (validate() failed).
+TYPED_TEST(LooseTreeTest, EmptyRootIsNotKeptWhenAFarBoxArrives) {
+  TypeParam s;
+  ASSERT_EQ(s.insert(0, {Vec3(Real(-2), Real(-5), Real(-3)), Vec3(Real(1), Real(-4), Real(-2))}, ProxyKind::Moving, {}),
+            BroadPhaseStatus::Ok);
+  ASSERT_EQ(s.remove(0), BroadPhaseStatus::Ok);
+  EXPECT_TRUE(s.validate());
+  ASSERT_EQ(s.insert(46, {Vec3(Real(6), Real(-1.75), Real(0.25)), Vec3(Real(13), Real(2.5), Real(3.25))},
+                     ProxyKind::Moving, {}),
+            BroadPhaseStatus::Ok);
+  EXPECT_TRUE(s.validate());
+  std::size_t found = 0;
+  s.query_point(Vec3(Real(10), Real(0), Real(1)), [&](ProxyId id) { return found += (id == 46), true; });
+  EXPECT_EQ(found, 1u);
+}
+
 TYPED_TEST(LooseTreeTest, RootGrowsTowardsFarBoxes) {
   TypeParam s;
   ASSERT_EQ(s.insert(0, {Vec3(0), Vec3(1)}, ProxyKind::Moving, {}), BroadPhaseStatus::Ok);

@@ -10,6 +10,7 @@
 #include <proxima/d2/collision_world.hpp>
 #include <proxima/d2/narrowphase.hpp>
 
+#include <algorithm>
 #include <set>
 #include <string>
 #include <support/random.hpp>
@@ -284,6 +285,62 @@ TEST(D2World, BadCallsNameTheirFieldAndChangeNothing) {
   world.step();
   EXPECT_EQ(meddler.refused, 1);
   EXPECT_TRUE(world.contains(a));
+}
+
+// objects() and object() against a map kept beside the world: after random adds, removals
+// (slots reused), moves and filter changes, the live handles are exactly the map's keys in
+// slot order and each description is the last one the caller gave.
+TEST(D2World, ObjectsListTheLiveObjectsAsTheCallerLastSetThem) {
+  proxima::test::Random rng(77);
+  CollisionWorld world = CollisionWorld::create().value();
+  std::vector<std::pair<ObjectHandle, ObjectDesc>> expected;
+  const std::vector<SceneObject> scene = random_scene(rng, 60);
+  for (int round = 0; round < 200; ++round) {
+    const int op = rng.integer(0, 3);
+    if (op == 0 || expected.empty()) {
+      const ObjectDesc& d = scene[static_cast<std::size_t>(rng.integer(0, int(scene.size()) - 1))].desc;
+      expected.emplace_back(world.add(d).value(), d);
+      continue;
+    }
+    const auto k = static_cast<std::size_t>(rng.integer(0, int(expected.size()) - 1));
+    auto& [handle, desc] = expected[k];
+    if (op == 1) {
+      ASSERT_FALSE(world.remove(handle));
+      EXPECT_FALSE(world.object(handle).has_value());
+      expected.erase(expected.begin() + static_cast<std::ptrdiff_t>(k));
+    } else if (op == 2) {
+      const Vec2 position{rng.uniform(Real(-9), Real(9)), rng.uniform(Real(-9), Real(9))};
+      desc.pose = Pose::from(position, rng.uniform(Real(-1), Real(1)));
+      ASSERT_FALSE(world.move(handle, desc.pose));
+    } else {
+      desc.filter.layer = 1ull << rng.integer(0, 5);
+      ASSERT_FALSE(world.set_filter(handle, desc.filter));
+    }
+  }
+  std::sort(expected.begin(), expected.end(),
+            [](const auto& x, const auto& y) { return x.first.index < y.first.index; });
+  const std::vector<ObjectHandle> live = world.objects();
+  ASSERT_EQ(live.size(), expected.size());
+  ASSERT_EQ(world.size(), expected.size());
+  for (std::size_t i = 0; i < live.size(); ++i) {
+    EXPECT_EQ(live[i], expected[i].first);
+    const std::optional<ObjectDesc> got = world.object(live[i]);
+    ASSERT_TRUE(got.has_value());
+    const ObjectDesc& want = expected[i].second;
+    EXPECT_EQ(got->shape.type(), want.shape.type());
+    const Aabb gb = got->shape.world_aabb(Pose::identity()), wb = want.shape.world_aabb(Pose::identity());
+    EXPECT_EQ(gb.min, wb.min);
+    EXPECT_EQ(gb.max, wb.max);
+    EXPECT_EQ(got->pose.position, want.pose.position);
+    EXPECT_EQ(got->pose.rotation.c, want.pose.rotation.c);
+    EXPECT_EQ(got->pose.rotation.s, want.pose.rotation.s);
+    EXPECT_EQ(got->kind, want.kind);
+    EXPECT_EQ(got->filter.layer, want.filter.layer);
+    EXPECT_EQ(got->filter.mask, want.filter.mask);
+    EXPECT_EQ(got->sensor, want.sensor);
+    EXPECT_EQ(got->ccd, want.ccd);
+    EXPECT_EQ(got->user_data, want.user_data);
+  }
 }
 
 }  // namespace

@@ -265,10 +265,10 @@ TEST(DrawEmitters2D, SweepPlacesTheShapeAtTheImpactTime) {
 
 TEST(DrawEmitters2D, WorldObjectsAtTheirPosesWithContactsAndImpacts) {
   d2::CollisionWorld world = d2::CollisionWorld::create().value();
-  std::vector<WorldObject2D> objects;
+  std::vector<d2::ObjectDesc> objects;
   const auto add = [&](const d2::ObjectDesc& desc) {
-    objects.push_back({world.add(desc).value(), desc});
-    return objects.back().handle;
+    objects.push_back(desc);
+    return world.add(desc).value();
   };
   add({d2::Polygon::box(Real(5), Real(0.5)).value(), d2::Pose::identity(), d2::ObjectKind::Static});
   const d2::ObjectHandle crate =
@@ -292,13 +292,13 @@ TEST(DrawEmitters2D, WorldObjectsAtTheirPosesWithContactsAndImpacts) {
   World2DDrawOptions options;
   options.bounds = true;
   DrawBuffer buffer;
-  draw_world_2d(buffer, world, objects, options);
+  draw_world_2d(buffer, world, options);
   // Fans: the ground box 4, the crate 4, the sensor 32, the bullet 32; the segment is a line.
   ASSERT_EQ(buffer.triangles.size(), 4 + 4 + 32 + 32u);
-  EXPECT_EQ(buffer.triangles[0].color, object_color(objects[0].desc));
-  EXPECT_EQ(buffer.triangles[4].color, object_color(objects[1].desc));
+  EXPECT_EQ(buffer.triangles[0].color, object_color(objects[0]));
+  EXPECT_EQ(buffer.triangles[4].color, object_color(objects[1]));
   EXPECT_EQ(buffer.triangles[8].color.a, 96);  // the sensor
-  EXPECT_NE(object_color(objects[0].desc), object_color(objects[1].desc));
+  EXPECT_NE(object_color(objects[0]), object_color(objects[1]));
   EXPECT_EQ(flat(buffer.triangles[4].a), Vec2(Real(0.25), Real(0.9)));  // the crate where the world has it
   EXPECT_EQ(buffer.boxes.size(), 5u);                                   // the removed object is skipped
   const d2::Manifold& m = world.manifolds()[0].manifold;
@@ -307,6 +307,55 @@ TEST(DrawEmitters2D, WorldObjectsAtTheirPosesWithContactsAndImpacts) {
   EXPECT_EQ(flat(buffer.points.back().position), impact.point);
   EXPECT_NEAR(impact.point.x, 10, 1e-3);
   EXPECT_TRUE(all_in_plane(buffer));
+}
+
+// plane_pose against the 2D pose itself: over angles around the whole turn (both branches of
+// the half-angle formulas, and the half turn), the quaternion is unit, turns about +z only,
+// and maps local points where the 2D pose maps them.
+TEST(DrawEmitters2D, PlanePoseTurnsAboutZAsThe2DPose) {
+  for (int k = -400; k <= 400; ++k) {
+    const Real angle = Real(k) * std::numbers::pi_v<Real> / Real(400);
+    const d2::Pose pose = d2::Pose::from({Real(3), Real(-2)}, angle);
+    const Transform t = plane_pose(pose);
+    EXPECT_NEAR(glm::length(t.rotation), 1, 1e-6) << angle;
+    EXPECT_EQ(t.rotation.x, 0);
+    EXPECT_EQ(t.rotation.y, 0);
+    for (const Vec2 p : {Vec2(1, 0), Vec2(0, 1), Vec2(Real(-0.5), Real(2))}) {
+      const Vec3 mapped = t.apply(Vec3(p.x, p.y, 0));
+      const Vec2 expected = pose.apply(p);
+      EXPECT_NEAR(mapped.x, expected.x, 1e-5) << angle;
+      EXPECT_NEAR(mapped.y, expected.y, 1e-5) << angle;
+      EXPECT_EQ(mapped.z, 0);
+    }
+  }
+}
+
+// tessellate_2d: every kind with area is a fan whose signed area (seen from +z) is the
+// shape's up to the chords of its round parts; a point, a bare segment and a chain have none.
+TEST(DrawEmitters2D, FlatMeshesHaveTheShapesArea) {
+  const auto area = [](const DrawMesh& m) {
+    double a = 0;
+    for (std::size_t i = 0; i + 2 < m.indices.size(); i += 3) {
+      const Vec3 p = m.positions[m.indices[i]], q = m.positions[m.indices[i + 1]], r = m.positions[m.indices[i + 2]];
+      const double t = 0.5 * (double(q.x - p.x) * double(r.y - p.y) - double(q.y - p.y) * double(r.x - p.x));
+      EXPECT_GT(t, 0);
+      a += t;
+    }
+    return a;
+  };
+  const std::vector<Vec2> tri = {{0, 0}, {2, 0}, {0, 1}};
+  EXPECT_NEAR(area(tessellate_2d(d2::Polygon::create(tri, Real(0)).value(), 32)), 1, 1e-6);
+  EXPECT_NEAR(area(tessellate_2d(d2::Polygon::box(Real(1.5), Real(0.5)).value(), 32)), 3, 1e-6);
+  const double pi = std::numbers::pi;
+  // A circle of radius 2: the inscribed 256-gon; a capsule: its box plus an inscribed circle.
+  EXPECT_NEAR(area(tessellate_2d(d2::Circle::create(Real(2)).value(), 256)), 0.5 * 256 * 4 * std::sin(2 * pi / 256),
+              1e-4);
+  const double capsule = area(tessellate_2d(d2::Capsule::create({-1, 0}, {1, 0}, Real(0.5)).value(), 256));
+  EXPECT_NEAR(capsule, 2 * 1 + 0.5 * 256 * 0.25 * std::sin(2 * pi / 256), 1e-4);
+  EXPECT_TRUE(tessellate_2d(d2::Point::create({1, 1}).value(), 32).indices.empty());
+  EXPECT_TRUE(tessellate_2d(d2::Segment::create({0, 0}, {1, 0}).value(), 32).indices.empty());
+  const std::vector<Vec2> ground = {{0, 0}, {1, 0}, {2, 1}};
+  EXPECT_TRUE(tessellate_2d(d2::Chain::create(ground, false).value(), 32).indices.empty());
 }
 
 }  // namespace proxima::test_draw_emitters_2d

@@ -14,27 +14,12 @@
 #include <sstream>
 #include <string>
 
+#include "base64_decode.hpp"
 #include "capture_reader.hpp"
 
 namespace proxima::test_capture {
 
-/// RFC 4648 decoding, written here from the standard (the library only encodes).
-std::string decode_base64(const std::string& text) {
-  const std::string alphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::string out;
-  std::uint32_t bits = 0;
-  int count = 0;
-  for (const char c : text) {
-    if (c == '=') break;
-    bits = (bits << 6) | static_cast<std::uint32_t>(alphabet.find(c));
-    count += 6;
-    if (count >= 8) {
-      count -= 8;
-      out += static_cast<char>((bits >> count) & 0xffu);
-    }
-  }
-  return out;
-}
+using test::decode_base64;
 
 struct Recorded {
   std::string text;

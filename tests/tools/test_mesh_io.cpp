@@ -1,7 +1,9 @@
-// Tests of load_mesh (assimp): the same tetrahedron as OBJ, ASCII STL, ASCII PLY and glTF gives the
-// same closed, outward mesh with the file's winding; an OBJ with two objects and quads is
-// merged and triangulated; the shared noisy icosphere matches the test's own line-by-line
-// OBJ parse triangle by triangle; unreadable files are errors naming "file".
+// Tests of load_mesh (the strict readers for OBJ, STL and PLY, assimp for glTF): the same
+// tetrahedron as OBJ, ASCII STL, ASCII PLY and glTF gives the same closed, outward mesh with
+// the file's winding; an OBJ with two objects and quads is merged and triangulated; the
+// shared noisy icosphere matches the test's own line-by-line OBJ parse triangle by triangle;
+// unreadable files are errors naming "file"; the hostile files of the hardening issue are
+// errors through load_mesh too, and a file over the size limit is refused unread.
 #include <gtest/gtest.h>
 
 #include <proxima/shapes/indexed_mesh.hpp>
@@ -12,12 +14,15 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <set>
 #include <sstream>
 #include <string>
+#include <unistd.h>
 #include <vector>
 
 #include "mesh_io.hpp"
+#include "mesh_readers.hpp"
 #include "support/random.hpp"
 
 namespace proxima {
@@ -55,7 +60,7 @@ IndexedMesh parse_simple_obj(const std::string& path) {
     if (tag == "v") {
       double x = 0, y = 0, z = 0;
       s >> x >> y >> z;
-      m.vertices.emplace_back(static_cast<float>(x), static_cast<float>(y), static_cast<float>(z));
+      m.vertices.emplace_back(Real(x), Real(y), Real(z));  // the readers round to Real once
     } else if (tag == "f") {
       TriangleIndices t{};
       for (auto& k : t) {
@@ -160,6 +165,78 @@ TEST(MeshIo, Errors) {
   EXPECT_NE(tool::mesh_file_extensions().find("stl"), std::string::npos);
   EXPECT_NE(tool::mesh_file_extensions().find("ply"), std::string::npos);
   EXPECT_NE(tool::mesh_file_extensions().find("gltf"), std::string::npos);
+}
+
+// Writes `bytes` to a fresh temporary file named `name` and returns its path.
+std::string temporary_file(const std::string& name, const std::string& bytes) {
+  const auto path =
+      std::filesystem::temp_directory_path() / ("proxima-mesh-io-" + std::to_string(::getpid()) + "-" + name);
+  std::ofstream(path, std::ios::binary) << bytes;
+  return path.string();
+}
+
+// The hostile PLY files of the hardening issue, each once crashing, aborting, hanging or
+// reading out of bounds through assimp: now an error naming "file" and the element.
+TEST(MeshIo, HostilePlyFilesAreErrors) {
+  const std::string header =
+      "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+      "element face 1\nproperty list uchar int vertex_indices\nend_header\n";
+  const std::string vertices = "0 0 0\n1 0 0\n0 1 0\n";
+  struct Case {
+    const char* name;
+    std::string bytes;
+    const char* message;
+  };
+  std::string fewer = header;
+  fewer.replace(fewer.find("face 1"), 6, "face 0");
+  std::string more = header;
+  more.replace(more.find("vertex 3"), 8, "vertex 300000");
+  const Case cases[] = {
+      {"negative.ply", header + vertices + "3 0 -1 2\n", "negative vertex index -1"},
+      {"out_of_range.ply", header + vertices + "3 0 1 3\n", "vertex index 3 is beyond the 3 vertices"},
+      {"counts_smaller.ply", fewer + vertices + "3 0 1 2\n", "data continues past the declared elements"},
+      {"counts_larger.ply", more + vertices + "3 0 1 2\n", "declares 300000 instances"},
+      {"truncated_header.ply", header.substr(0, 60), "header is truncated"},
+      {"garbage.ply", std::string("ply\n\xff\x00\x13garbage\n", 15), "header line 2"},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.name);
+    const std::string path = temporary_file(c.name, c.bytes);
+    const auto r = tool::load_mesh(path);
+    std::filesystem::remove(path);
+    ASSERT_FALSE(r.ok());
+    EXPECT_EQ(r.error().field, "file");
+    EXPECT_NE(r.error().message.find(path), std::string::npos) << r.error().message;
+    EXPECT_NE(r.error().message.find(c.message), std::string::npos) << r.error().message;
+  }
+}
+
+// The strict readers are chosen by the extension in any case, and their vertices are joined
+// (an STL's three corners per facet become the tetrahedron's four vertices).
+TEST(MeshIo, ExtensionPicksTheReaderAndVerticesAreJoined) {
+  std::ifstream in(data_file("tetrahedron.stl"), std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), {});
+  const std::string path = temporary_file("TETRA.STL", bytes);
+  const auto r = tool::load_mesh(path);
+  std::filesystem::remove(path);
+  ASSERT_TRUE(r.ok()) << r.error().what();
+  EXPECT_EQ(r->vertices.size(), 4u);
+  EXPECT_EQ(r->triangles.size(), 4u);
+}
+
+// A file over kMaxMeshFileBytes is refused before it is read, whatever its format (a sparse
+// file: nothing is written).
+TEST(MeshIo, FileOverTheSizeLimitIsRefused) {
+  for (const char* name : {"big.obj", "big.gltf"}) {
+    const std::string path = temporary_file(name, "");
+    std::filesystem::resize_file(path, tool::kMaxMeshFileBytes + 1);
+    const auto r = tool::load_mesh(path);
+    std::filesystem::remove(path);
+    ASSERT_FALSE(r.ok());
+    EXPECT_EQ(r.error().code, ErrorCode::OutOfRange);
+    EXPECT_EQ(r.error().field, "file");
+    EXPECT_NE(r.error().message.find("more than the limit of 268435456"), std::string::npos) << r.error().message;
+  }
 }
 
 }  // namespace test_mesh_io

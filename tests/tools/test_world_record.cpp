@@ -1,7 +1,9 @@
 // `proxima world --record FILE`: every step request writes one step of a capture that the
-// tool's reader accepts, holding the session's objects, moves, contacts and ray queries.
+// tool's reader accepts, holding the session's objects, moves, contacts and ray queries;
+// with --2d, a 2D capture of the 2D world's objects, moves, removals and contacts.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <fstream>
 #include <string>
 
@@ -44,10 +46,49 @@ TEST(WorldRecord, EveryStepIsRecorded) {
   EXPECT_NEAR(c.steps[2].dt, 1.0 / 60, 1e-7);
 }
 
+const char* const kRequests2d =
+    R"({"op":"add","geometry":{"type":"chain","points":[[10,0],[5,0],[0,0],[-5,0]]},"kind":"static"}
+{"op":"add","geometry":{"type":"box2d","half_extents":[0.5,0.5]},"pose":{"position":[2,0.49]}}
+{"op":"add","geometry":{"type":"circle","radius":0.25},"pose":{"position":[-3,4]}}
+{"op":"step"}
+{"op":"move","object":1,"pose":{"position":[2,3],"angle":0.5}}
+{"op":"remove","object":2}
+{"op":"step"}
+)";
+
+TEST(WorldRecord, Every2dStepIsRecorded) {
+  const std::string dir = testing::TempDir();
+  std::ofstream(dir + "record_requests_2d.jsonl") << kRequests2d;
+  const std::string capture_path = dir + "record_2d.capture.jsonl";
+  const test::CliRun run =
+      test::run_cli("world --2d --record '" + capture_path + "' '" + dir + "record_requests_2d.jsonl'");
+  ASSERT_EQ(run.status, 0) << run.output;
+  std::ifstream in(capture_path);
+  const Result<tool::Capture> read = tool::read_capture(in);
+  ASSERT_TRUE(read.ok()) << read.error().what();
+  const tool::Capture& c = read.value();
+  EXPECT_EQ(c.dimension, 2);
+  ASSERT_EQ(c.objects.size(), 3u);
+  EXPECT_EQ(c.objects[0].geometry_type, "chain");
+  EXPECT_EQ(c.objects[1].geometry_type, "polygon");
+  EXPECT_EQ(c.objects[2].geometry_type, "circle");
+  EXPECT_FALSE(c.snapshot.empty());
+  ASSERT_EQ(c.steps.size(), 2u);
+  ASSERT_EQ(c.steps[0].contacts.size(), 1u);  // the box rests 0.01 deep on the chain
+  EXPECT_NEAR(c.steps[0].contacts[0].points[0].depth, 0.01, 1e-5);
+  ASSERT_EQ(c.steps[1].poses.size(), 1u);
+  EXPECT_EQ(c.steps[1].poses[0].second.position, Vec3(2, 3, 0));
+  EXPECT_NEAR(c.steps[1].poses[0].second.rotation.z, std::sin(0.25), 1e-6);
+  ASSERT_EQ(c.steps[1].removed.size(), 1u);
+  EXPECT_EQ(c.steps[1].removed[0], c.objects[2].id);
+  EXPECT_TRUE(c.steps[1].contacts.empty());
+  EXPECT_EQ(c.steps[1].dt, 1);
+}
+
 TEST(WorldRecord, UnwritableFileFailsBeforeAnything) {
   const test::CliRun run = test::run_cli("world --record /nonexistent-dir/x.jsonl < /dev/null 2>/dev/null");
   EXPECT_EQ(run.status, 1);
-  const test::CliRun two_d = test::run_cli("world --2d --record x.jsonl < /dev/null 2>/dev/null");
+  const test::CliRun two_d = test::run_cli("world --2d --record /nonexistent-dir/x.jsonl < /dev/null 2>/dev/null");
   EXPECT_EQ(two_d.status, 1);
 }
 

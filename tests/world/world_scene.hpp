@@ -178,6 +178,18 @@ inline std::string pair_text(const std::vector<ObjectPair>& pairs) {
   return out.str();
 }
 
+/// A single-thread executor that runs every item as a call of its own, last item first: a
+/// split and an order no thread pool gives, for the tests that the answer depends on neither.
+class ReverseExecutor final : public Executor {
+ public:
+  /// Always 1.
+  std::size_t concurrency() const override { return 1; }
+  /// task(i, i + 1) for i = count - 1 down to 0.
+  void run(std::size_t count, RangeTask task) override {
+    for (std::size_t i = count; i > 0; --i) task(i - 1, i);
+  }
+};
+
 /// Sorted set intersection.
 inline std::vector<ObjectPair> common(const std::vector<ObjectPair>& a, const std::vector<ObjectPair>& b) {
   std::vector<ObjectPair> out;

@@ -10,6 +10,9 @@
 //      not blue (it was elsewhere), and with the layers off both colours are gone;
 //   3. click the capsule: the inspector shows its fields; the slider scrubs, Play plays to the end;
 //   4. a truncated capture shows the error naming the cut line;
+//   5. a 2D capture (test/scene2d.jsonl through `proxima world --2d --record`: a chain floor and
+//      a blue box moved and turned over three steps) shows the box in the plane z = 0 where
+//      the camera puts its centre at the last step, not there at step 0, and its fields;
 //   and the browser console holds no error throughout.
 import assert from 'node:assert/strict';
 import { rmSync, writeFileSync } from 'node:fs';
@@ -148,6 +151,36 @@ test('a truncated capture shows which line is cut', async () => {
     assert.ok(await page.isVisible('#error'), 'the error panel is shown');
     const message = await page.textContent('#error');
     assert.match(message, new RegExp(`line ${lastLine}: the line is cut`));
+    assert.deepEqual(consoleErrors, []);
+    await page.close();
+  } finally {
+    assert.equal(await server.stop(), 0);
+  }
+});
+
+test('a 2D capture shows its objects in the plane z = 0', async () => {
+  const path = join(dir, 'scene2d.capture.jsonl');
+  recordScene(path, 'scene2d.jsonl', ['--2d']);
+  const server = await startViewer(path);
+  try {
+    const page = await newPage();
+    await page.goto(server.address);
+    assert.equal(await loaded(page), 'ready', await page.evaluate(() => window.proximaViewer.error));
+    assert.equal(await page.evaluate(() => window.proximaViewer.stepCount), 3);
+    await page.evaluate(() => window.proximaViewer.setStep(2));
+    const box = await projected(page, [-2, 3, 0]);
+    assert.ok(box.visible, 'the box centre is in view');
+    const shot = await screenshot(page);
+    assert.ok(isBlue(shot.at(box.x, box.y)), `box pixel ${shot.at(box.x, box.y)} is not the moving objects' blue`);
+    await page.evaluate(() => window.proximaViewer.setStep(0));
+    const before = await screenshot(page);
+    assert.ok(!isBlue(before.at(box.x, box.y)), `step 0 at the box's later place: ${before.at(box.x, box.y)}`);
+    await page.evaluate(() => window.proximaViewer.setStep(2));
+    await page.mouse.click(box.x, box.y);
+    assert.equal(await page.evaluate(() => window.proximaViewer.selectedId), 1);
+    const fields = await page.textContent('#inspector');
+    assert.match(fields, /polygon/);
+    assert.match(fields, /user data\s*7/);
     assert.deepEqual(consoleErrors, []);
     await page.close();
   } finally {

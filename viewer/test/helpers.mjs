@@ -1,6 +1,7 @@
 // What the viewer's tests share: recording the test scene with `proxima world --record`,
 // starting `proxima view` on a free port, and decoding the PNG screenshots to pixels.
-//   recordScene: runs the proxima executable ($PROXIMA_CLI) on test/scene.jsonl;
+//   recordScene: runs the proxima executable ($PROXIMA_CLI) on test/scene.jsonl (or
+//                test/scene2d.jsonl with --2d);
 //   startViewer: spawns `proxima view CAPTURE --port 0` and reads the address it prints
 //                (a time limit, never a hang); stop() sends SIGTERM and waits for exit 0;
 //   decodePng:   8-bit RGB / RGBA PNG (what Chromium writes) to {width, height, at(x, y)}.
@@ -25,9 +26,9 @@ export function scratchDir() {
   return mkdtempSync(join(tmpdir(), 'proxima-viewer-'));
 }
 
-/** Records test/scene.jsonl into `capturePath` with `proxima world --record`. */
-export function recordScene(capturePath) {
-  const run = spawnSync(proximaPath(), ['world', '--record', capturePath, join(testDir, 'scene.jsonl')], {
+/** Records test/`scene` into `capturePath` with `proxima world --record` (`options`: e.g. ['--2d']). */
+export function recordScene(capturePath, scene = 'scene.jsonl', options = []) {
+  const run = spawnSync(proximaPath(), ['world', ...options, '--record', capturePath, join(testDir, scene)], {
     encoding: 'utf8',
     timeout: 30000,
   });

@@ -30,6 +30,11 @@ inline Real pad_up(Real x, Real scale) {
 }
 /// x moved down by a few ulps of max(|x|, scale), never past -kRealMax.
 inline Real pad_down(Real x, Real scale) { return -pad_up(-x, scale); }
+/// Sum of the magnitudes of the terms of d . p: the scale of the rounding error of a
+/// projection onto d, which exceeds |d . p| when the terms cancel (far points).
+inline Real projection_terms(const Vec3& d, const Vec3& p) {
+  return std::abs(d.x * p.x) + std::abs(d.y * p.y) + std::abs(d.z * p.z);
+}
 }  // namespace detail
 
 /// World box of the shape: world_aabb (exact for every shape), padded by a few ulps.
@@ -56,15 +61,21 @@ Obb fit_shape_obb(const S& shape, const Transform& pose) {
 
 /// Exact world k-DOP of the shape from its support mapping: slab i spans
 /// [d_i . support(-d_i), d_i . support(d_i)] (world support of the placed shape), padded
-/// by a few ulps. O(K) support queries.
+/// by a few ulps of the largest of the pose's coordinates and the magnitudes of the
+/// projections' terms (a far support point whose coordinates cancel in d_i . p carries
+/// their rounding, not that of the sum). O(K) support queries.
 template <int K, class S>
 Kdop<K> fit_shape_kdop(const S& shape, const Transform& pose) {
   Kdop<K> k;
-  const Real scale = std::max({std::abs(pose.position.x), std::abs(pose.position.y), std::abs(pose.position.z)});
+  const Real position_scale =
+      std::max({std::abs(pose.position.x), std::abs(pose.position.y), std::abs(pose.position.z)});
   for (int i = 0; i < K / 2; ++i) {
     const Vec3 d = Kdop<K>::direction(i);
-    const Real hi = Kdop<K>::project(i, support(shape, pose, d));
-    const Real lo = Kdop<K>::project(i, support(shape, pose, -d));
+    const Vec3 p_hi = support(shape, pose, d);
+    const Vec3 p_lo = support(shape, pose, -d);
+    const Real hi = Kdop<K>::project(i, p_hi);
+    const Real lo = Kdop<K>::project(i, p_lo);
+    const Real scale = std::max({position_scale, detail::projection_terms(d, p_hi), detail::projection_terms(d, p_lo)});
     k.min[i] = detail::pad_down(std::min(lo, hi), scale);
     k.max[i] = detail::pad_up(std::max(lo, hi), scale);
   }

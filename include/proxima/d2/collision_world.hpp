@@ -162,6 +162,11 @@ class CollisionWorld {
   std::optional<Pose> pose(ObjectHandle handle) const;
   /// The number of live objects.
   std::size_t size() const;
+  /// The handles of the live objects, by slot index (the order of the snapshot).
+  std::vector<ObjectHandle> objects() const;
+  /// What a live object is now (its shape, current pose, kind, filter, sensor flag,
+  /// continuous mode and user data); nothing for a stale handle.
+  std::optional<ObjectDesc> object(ObjectHandle handle) const;
 
   /// Runs a step (see the file comment) on `executor`. Error: called from a callback.
   std::optional<Error> step(Executor& executor = serial_executor());

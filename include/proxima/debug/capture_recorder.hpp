@@ -51,6 +51,21 @@ struct CaptureOptions {
   ContactDrawOptions contact;           ///< how they are drawn (draw_manifold)
 };
 
+namespace detail {
+/// What a recorder last wrote of an object, to find what changed by the next step.
+struct CaptureObjectState {
+  Transform pose;  ///< world frame (a 2D object's pose in the plane z = 0)
+  ObjectKind kind = ObjectKind::Moving;
+  bool sensor = false;
+  CollisionFilter filter;
+  std::uint64_t user_data = 0;
+  CcdMode ccd = CcdMode::Auto;
+  bool stale = false;  ///< to be written again in full (geometry changed, world replaced)
+};
+/// What was written of each object, by handle integer.
+using CaptureObjectLog = std::map<std::uint64_t, CaptureObjectState>;
+}  // namespace detail
+
 /// Writes a capture of one world to a stream (see the file comment). The stream must
 /// outlive the recorder. Not thread-safe.
 class CaptureRecorder {
@@ -79,16 +94,6 @@ class CaptureRecorder {
   std::uint64_t steps_recorded() const { return steps_; }
 
  private:
-  /// What was last written of an object, to find what changed.
-  struct Written {
-    Transform pose;
-    ObjectKind kind = ObjectKind::Moving;
-    bool sensor = false;
-    CollisionFilter filter;
-    std::uint64_t user_data = 0;
-    CcdMode ccd = CcdMode::Auto;
-    bool stale = false;
-  };
   std::string object_record(ObjectHandle handle, const ObjectDesc& desc) const;
   std::string scene_line(const CollisionWorld& world);
   std::string step_line(const CollisionWorld& world, Real dt, const DrawBuffer* extra);
@@ -99,8 +104,8 @@ class CaptureRecorder {
   bool started_ = false;
   bool failed_ = false;
   std::uint64_t steps_ = 0;
-  std::map<std::uint64_t, Written> written_;  ///< by handle integer
-  std::vector<std::string> queries_;          ///< JSON of the queries for the next step
+  detail::CaptureObjectLog written_;  ///< what was written of each object
+  std::vector<std::string> queries_;  ///< JSON of the queries for the next step
 };
 
 }  // namespace proxima::debug

@@ -8,7 +8,9 @@
 ///   DrawBuffer buffer;
 ///   debug::draw_shape_2d(buffer, d2::Shape(d2::Circle::create(1).value()), pose, Rgba{70, 130, 230, 255});
 #include <proxima/core/debug_draw.hpp>
+#include <proxima/core/transform.hpp>
 #include <proxima/d2/shape.hpp>
+#include <proxima/debug/tessellate.hpp>
 
 #include <span>
 #include <vector>
@@ -33,6 +35,11 @@ struct Shape2DDrawOptions {
 /// The point (x, y) of the 2D world at z = 0.
 inline Vec3 plane_point(const Vec2& p) { return Vec3(p.x, p.y, Real(0)); }
 
+/// A 2D pose as the 3D transform that places its frame in the plane z = 0: position
+/// (x, y, 0), rotation the pose's turn about +z (the half-angle quaternion, from the
+/// rotation's cosine and sine without an arctangent).
+Transform plane_pose(const d2::Pose& pose);
+
 /// The colour of outlines drawn over a fill of `color`: each channel at 55 %, same opacity.
 Rgba outline_color(Rgba color);
 
@@ -41,6 +48,12 @@ Rgba outline_color(Rgba color);
 /// vertex (a circle: `segments` points; radius 0: the vertices alone). Chords lie inside the
 /// boundary by at most radius * (1 - cos(pi / segments)). Empty for an empty core.
 std::vector<Vec2> core_outline(const d2::ConvexCore& core, int segments);
+
+/// The fill of `shape` as a mesh in its local frame at z = 0 (what a capture stores per 2D
+/// object): the core_outline fanned from the mean of the core's vertices, counter-clockwise
+/// seen from +z. Empty for a shape without area (a point, a segment of radius 0) and for a
+/// chain (which bounds no area of its own; draw_chain draws it as lines).
+DrawMesh tessellate_2d(const d2::Shape& shape, int segments);
 
 /// Draws a convex shape at `pose`, tagged {options.layer, 0}: with area (circle, capsule,
 /// polygon, rounded segment or point) its outline fanned into triangles from the vertices'

@@ -18,12 +18,6 @@
 
 namespace proxima::debug {
 
-/// An object of a 2D world as its owner added it.
-struct WorldObject2D {
-  d2::ObjectHandle handle;  ///< what CollisionWorld::add returned
-  d2::ObjectDesc desc;      ///< what was passed to add (its pose is not used: the world's is)
-};
-
 /// The colour of a 2D object, by the rule of the 3D world's objects (object_color).
 Rgba object_color(const d2::ObjectDesc& object);
 
@@ -37,10 +31,9 @@ struct World2DDrawOptions {
   ContactDrawOptions contact;  ///< how manifolds and impacts are drawn
 };
 
-/// Draws `world` as it is after its last step: `objects` in the given order (those the world
-/// no longer contains skipped), then its manifolds and impacts. O(objects + their outlines +
-/// contacts).
-void draw_world_2d(DebugDraw& sink, const d2::CollisionWorld& world, std::span<const WorldObject2D> objects,
-                   const World2DDrawOptions& options = {});
+/// Draws `world` as it is after its last step: its objects in slot order
+/// (d2::CollisionWorld::objects), then its manifolds and impacts. O(objects + their outlines
+/// + contacts).
+void draw_world_2d(DebugDraw& sink, const d2::CollisionWorld& world, const World2DDrawOptions& options = {});
 
 }  // namespace proxima::debug

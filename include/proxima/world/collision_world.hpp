@@ -38,10 +38,22 @@
 /// one axis: ccd/motion.hpp).
 ///
 /// Determinism: the same calls in the same order give bit-identical events, contacts and
-/// state hashes, whatever the executor and its thread count.
+/// state hashes, whatever the executor and its thread count (the step's parallel parts
+/// write per-item or per-block results merged in item order), and in every build of one
+/// precision (the library is compiled without fused multiply-add contraction).
 ///
-/// Thread safety: const members (queries) may run concurrently with each other; nothing may
-/// run concurrently with a changing call or step().
+/// Thread safety:
+///   - const members (queries, the batches, state_hash, save, the accessors) may run at the
+///     same time as each other, from any number of threads;
+///   - a changing call (add, remove, move, teleport, set_*, attach, the listeners) or step()
+///     runs alone: no query and no other change may overlap it, from any thread;
+///   - step() calls the pair filter, on_pre_contact and the event callbacks on its own
+///     thread only (never on the executor's workers), and they may query the world there;
+///     the event callbacks may also change it;
+///   - two worlds share nothing: different worlds may be stepped on different threads.
+/// Builds with assertions (debug, PROXIMA_ENABLE_ASSERTS: the asan and tsan presets) check
+/// these rules and fail PROXIMA_ASSERT on a query during a change or step from another
+/// thread, or on two overlapping changes.
 #include <proxima/core/executor.hpp>
 #include <proxima/core/result.hpp>
 #include <proxima/core/transform.hpp>
@@ -102,7 +114,10 @@ class CollisionWorld {
   /// parent's); the objects attached below it follow. Errors: "object", "pose".
   std::optional<Error> move(ObjectHandle object, const Transform& pose);
   /// Moves many objects; all or nothing (the first bad entry is named: "moves[3].pose").
-  std::optional<Error> move(std::span<const ObjectMove> moves);
+  /// The new boxes of objects neither attached nor carrying attached ones are computed on
+  /// `executor`; the result is the serial one (entries apply in order; a later entry for
+  /// the same object wins).
+  std::optional<Error> move(std::span<const ObjectMove> moves, Executor& executor = serial_executor());
   /// Sets an object's world pose with no motion (a warp, like Box2D's b2Body_SetTransform or
   /// Jolt's SetPosition beside MoveKinematic): the next step's motion of the object and of
   /// its attached subtree starts at this pose, so continuous detection sweeps nothing up to
@@ -154,8 +169,10 @@ class CollisionWorld {
   // ---- the step ----------------------------------------------------------------------
 
   /// Runs one step (see the file comment): `dt` is the step's duration (seconds, > 0, used
-  /// for nothing but the validation of velocities and reported back); the narrow phase runs
-  /// on `executor`. Error: "dt" (not finite or <= 0), or a step called from a callback.
+  /// for nothing but the validation of velocities and reported back); the broad phase's
+  /// pair finding, the narrow phase and continuous detection run on `executor`, with the
+  /// serial answer (the callbacks stay on the calling thread). Error: "dt" (not finite or
+  /// <= 0), or a step called from a callback.
   std::optional<Error> step(Real dt, Executor& executor = serial_executor());
   /// The events of the last step.
   const StepEvents& events() const;
