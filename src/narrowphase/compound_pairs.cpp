@@ -115,8 +115,11 @@ bool compound_intersect(const Compound& a, const Transform& pa, ShapeRef b, cons
   const auto kids = a.children();
   if (b.type() == ShapeType::Compound) {
     const auto kb = b.as<Compound>().children();
+    // B's part first, as compound_distance meets the pair (A's part against compound B is
+    // B's descent against A's part): at exactly the contact distance both compute the same
+    // number in the same frame.
     const auto touch = [&](std::uint32_t i, std::uint32_t j) {
-      return intersect(kids[i].shape, pa * kids[i].pose, kb[j].shape, pb * kb[j].pose, req);
+      return intersect(kb[j].shape, pb * kb[j].pose, kids[i].shape, pa * kids[i].pose, req);
     };
     if (hint != nullptr && hint->a < kids.size() && hint->b < kb.size() && touch(hint->a, hint->b)) return true;
     bool hit = false;
@@ -172,8 +175,10 @@ void compound_collide_all(const Compound& a, const Transform& pa, ShapeRef b, co
   if (b.type() == ShapeType::Compound) {
     const auto kb = b.as<Compound>().children();
     pair_descent(a, pa, b.as<Compound>(), pb, cull_margin(req), [&](std::uint32_t i, std::uint32_t j) {
+      // B's part first, as in compound_intersect and compound_distance, mirrored back.
       ChildPairCollector tagged(collector, i, j);
-      collide_all(kids[i].shape, pa * kids[i].pose, kb[j].shape, pb * kb[j].pose, req, tagged);
+      MirroredCollector b_first(tagged);
+      collide_all(kb[j].shape, pb * kb[j].pose, kids[i].shape, pa * kids[i].pose, req, b_first);
       return !collector.done();
     });
     return;
