@@ -158,6 +158,9 @@ void CellEngine::choose_cell_size() {
       base *= Real(1.26);
     }
   }
+  // A cell below the smallest normal number (a fixed size of 1e-310, or a world of points
+  // at one place) has an infinite inverse, and an offset of 0 times it is NaN.
+  base = std::max(base, std::numeric_limits<Real>::min());
   cell_ = base;
   inv_cell_ = Real(1) / base;
 }

@@ -884,7 +884,7 @@ bool pair_intersect(const Box& a, const Transform& pose_a, const Box& b, const T
                     const PairRequest& request, PairCache* cache) {
   if (!finite_poses(pose_a, pose_b)) return false;
   const BoxPair p = make_pair(a, pose_a, b, pose_b, request);
-  const Real limit = std::max(request.contact_distance, Real(0));
+  const Real limit = contact_reach(request.contact_distance, p.tol);  // the touching rule
   const int cached = cached_separating_axis(p, limit, cache);
   if (cached >= 0) return false;
   SatResult s;
@@ -893,7 +893,8 @@ bool pair_intersect(const Box& a, const Transform& pose_a, const Box& b, const T
   store_cache(cache, p, s.max_axis, s.max_sep > limit);
   if (s.max_sep > limit) return false;
   if (s.max_sep <= Real(0)) return true;
-  return closest_features(p, s).d2 <= limit * limit;
+  // As pair_distance: max(|closest features|, max_sep) within the reach.
+  return std::sqrt(closest_features(p, s).d2) <= limit;
 }
 
 DistanceResult pair_distance(const Box& a, const Transform& pose_a, const Box& b, const Transform& pose_b,
@@ -917,6 +918,7 @@ DistanceResult pair_distance(const Box& a, const Transform& pose_a, const Box& b
     r.point_b = pose_a.position + to_world(p.ma, f.on_b);
     r.normal = to_world(p.ma, n);
     r.status = status_from_distance(r.signed_distance, p.tol);
+    r.tolerance = p.tol;
     return r;
   }
   // Overlapping: exact depth on the deepest-separating axis. Face axis: the deepest clipped
@@ -926,6 +928,7 @@ DistanceResult pair_distance(const Box& a, const Transform& pose_a, const Box& b
   r.normal = world_normal(p, s.max_axis);
   r.signed_distance = s.max_sep;
   r.status = status_from_distance(r.signed_distance, p.tol);
+  r.tolerance = p.tol;
   ContactManifold m;
   m.normal = r.normal;
   if (s.max_axis < 6) {
@@ -946,10 +949,12 @@ DistanceResult pair_distance(const Box& a, const Transform& pose_a, const Box& b
 }
 
 ContactManifold pair_collide(const Box& a, const Transform& pose_a, const Box& b, const Transform& pose_b,
-                             const PairRequest& request, PairCache* cache) {
+                             const PairRequest& request_in, PairCache* cache) {
   if (!finite_poses(pose_a, pose_b)) return invalid_manifold();
-  const BoxPair p = make_pair(a, pose_a, b, pose_b, request);
-  const Real limit = std::max(request.contact_distance, Real(0));
+  const BoxPair p = make_pair(a, pose_a, b, pose_b, request_in);
+  // Gaps are compared with the contact reach (the touching rule of contact.hpp).
+  const PairRequest request = request_within_reach(request_in, p.tol);
+  const Real limit = request.contact_distance;
   ContactManifold m;
   m.method = PairMethod::Sat;
   m.status = PairStatus::Separated;

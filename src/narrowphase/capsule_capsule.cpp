@@ -48,9 +48,10 @@ DistanceResult pair_distance(const Capsule& a, const Transform& pose_a, const Ca
 bool pair_intersect(const Capsule& a, const Transform& pose_a, const Capsule& b, const Transform& pose_b,
                     const PairRequest& request, PairCache* /*cache*/) {
   if (!finite_poses(pose_a, pose_b)) return false;
-  return detail::core_segments_within(pose_a.apply(a.bottom()), pose_a.apply(a.top()), pose_b.apply(b.bottom()),
-                                      pose_b.apply(b.top()), a.radius(), b.radius(), request.contact_distance,
-                                      capsule_pair_tolerance(a, pose_a, b, pose_b, request));
+  return detail::core_segments_within(
+      pose_a.apply(a.bottom()), pose_a.apply(a.top()), pose_b.apply(b.bottom()), pose_b.apply(b.top()), a.radius(),
+      b.radius(), request.contact_distance, capsule_pair_tolerance(a, pose_a, b, pose_b, request),
+      [&] { return in_contact(pair_distance(a, pose_a, b, pose_b, request, nullptr), request); });
 }
 
 ContactManifold pair_collide(const Capsule& a, const Transform& pose_a, const Capsule& b, const Transform& pose_b,

@@ -38,6 +38,7 @@
 #include "collector_adapters.hpp"
 #include "dispatch.hpp"
 #include "manifold_reduction.hpp"
+#include "pair_support.hpp"
 #include "shapes/shape_visit.hpp"
 #include "spatial/bvh_pair_descent.hpp"
 
@@ -85,6 +86,25 @@ std::uint32_t mix_sub_ids(const ContactPoint& c) {
 
 }  // namespace
 
+namespace {
+
+/// Largest |world coordinate| of a placed shape's box (a half-space: of its position).
+Real world_extent(ShapeRef s, const Transform& pose) {
+  if (s.type() == ShapeType::HalfSpace) return max_abs_component(pose.position);
+  const Aabb box = world_aabb(s, pose);
+  return std::max(max_abs_component(box.min), max_abs_component(box.max));
+}
+
+}  // namespace
+
+PairRequest composite_request(ShapeRef a, const Transform& pose_a, ShapeRef b, const Transform& pose_b,
+                              const PairRequest& request) {
+  if (request.tolerance > Real(0)) return request;
+  PairRequest r = request;
+  r.tolerance = linear_tolerance(std::max(world_extent(a, pose_a), world_extent(b, pose_b)));
+  return r;
+}
+
 DistanceResult distance_below(ShapeRef a, const Transform& pose_a, ShapeRef b, const Transform& pose_b,
                               const PairRequest& request, Real cutoff) {
   return pair_functions(a.type(), b.type()).distance(a.data(), pose_a, b.data(), pose_b, request, nullptr, cutoff);
@@ -95,12 +115,15 @@ bool compound_intersect(const Compound& a, const Transform& pa, ShapeRef b, cons
   const auto kids = a.children();
   if (b.type() == ShapeType::Compound) {
     const auto kb = b.as<Compound>().children();
+    // B's part first, as compound_distance meets the pair (A's part against compound B is
+    // B's descent against A's part): at exactly the contact distance both compute the same
+    // number in the same frame.
     const auto touch = [&](std::uint32_t i, std::uint32_t j) {
-      return intersect(kids[i].shape, pa * kids[i].pose, kb[j].shape, pb * kb[j].pose, req);
+      return intersect(kb[j].shape, pb * kb[j].pose, kids[i].shape, pa * kids[i].pose, req);
     };
     if (hint != nullptr && hint->a < kids.size() && hint->b < kb.size() && touch(hint->a, hint->b)) return true;
     bool hit = false;
-    pair_descent(a, pa, b.as<Compound>(), pb, req.contact_distance, [&](std::uint32_t i, std::uint32_t j) {
+    pair_descent(a, pa, b.as<Compound>(), pb, cull_margin(req), [&](std::uint32_t i, std::uint32_t j) {
       hit = touch(i, j);
       if (hit && hint != nullptr) *hint = {i, j};
       return !hit;
@@ -109,7 +132,7 @@ bool compound_intersect(const Compound& a, const Transform& pa, ShapeRef b, cons
   }
   const auto touch = [&](std::uint32_t i) { return intersect(kids[i].shape, pa * kids[i].pose, b, pb, req); };
   if (hint != nullptr && hint->a < kids.size() && touch(hint->a)) return true;
-  const Aabb box = world_aabb(b, relative(pa, pb)).inflated(req.contact_distance);
+  const Aabb box = world_aabb(b, relative(pa, pb)).inflated(cull_margin(req));
   bool hit = false;
   a.bvh().traverse([&](const BvhNode& n) { return n.bounds().overlaps(box); },
                    [&](std::uint32_t i) {
@@ -151,14 +174,16 @@ void compound_collide_all(const Compound& a, const Transform& pa, ShapeRef b, co
   const auto kids = a.children();
   if (b.type() == ShapeType::Compound) {
     const auto kb = b.as<Compound>().children();
-    pair_descent(a, pa, b.as<Compound>(), pb, req.contact_distance, [&](std::uint32_t i, std::uint32_t j) {
+    pair_descent(a, pa, b.as<Compound>(), pb, cull_margin(req), [&](std::uint32_t i, std::uint32_t j) {
+      // B's part first, as in compound_intersect and compound_distance, mirrored back.
       ChildPairCollector tagged(collector, i, j);
-      collide_all(kids[i].shape, pa * kids[i].pose, kb[j].shape, pb * kb[j].pose, req, tagged);
+      MirroredCollector b_first(tagged);
+      collide_all(kb[j].shape, pb * kb[j].pose, kids[i].shape, pa * kids[i].pose, req, b_first);
       return !collector.done();
     });
     return;
   }
-  const Aabb box = world_aabb(b, relative(pa, pb)).inflated(req.contact_distance);
+  const Aabb box = world_aabb(b, relative(pa, pb)).inflated(cull_margin(req));
   a.bvh().traverse([&](const BvhNode& n) { return n.bounds().overlaps(box); },
                    [&](std::uint32_t i) {
                      ChildOfACollector tagged(collector, i);
@@ -194,9 +219,7 @@ ContactManifold reduced_manifold(ShapeRef a, const Transform& pose_a, ShapeRef b
   m.count = reduce_contacts(candidates, n, std::clamp(request.max_contacts, 1, kMaxContactPoints), m.points);
   m.normal = n;
   const ContactPoint& top = m.points[0];
-  const Real scale = std::max({std::abs(top.point_a.x), std::abs(top.point_a.y), std::abs(top.point_a.z)});
-  const Real tol = request.tolerance > Real(0) ? request.tolerance : linear_tolerance(scale);
-  m.status = status_from_distance(-top.depth, tol);
+  m.status = status_from_distance(-top.depth, composite_request(a, pose_a, b, pose_b, request).tolerance);
   m.method = PairMethod::Analytic;
   return m;
 }

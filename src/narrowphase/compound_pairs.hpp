@@ -11,7 +11,7 @@
 
 namespace proxima::narrow {
 
-/// True when a child of `a` touches B (within request.contact_distance). `hint` (optional):
+/// True when a child of `a` is in contact with B (the touching rule of contact.hpp). `hint` (optional):
 /// the child pair tried first, then the one that touched (part_hint.hpp).
 bool compound_intersect(const Compound& a, const Transform& pose_a, ShapeRef b, const Transform& pose_b,
                         const PairRequest& request, PartHint* hint = nullptr);
@@ -32,6 +32,13 @@ void compound_collide_all(const Compound& a, const Transform& pose_a, ShapeRef b
 /// within about 26 degrees of the deepest one's normal reduced to request.max_contacts.
 ContactManifold reduced_manifold(ShapeRef a, const Transform& pose_a, ShapeRef b, const Transform& pose_b,
                                  const PairRequest& request);
+
+/// The request of a query with a mesh or compound side, its tolerance resolved once for
+/// every part (request.tolerance when set, else linear_tolerance of the largest world
+/// coordinate of either shape's box; a half-space: of its position): all parts then decide
+/// touching alike, so the composite answer obeys the touching rule of contact.hpp.
+PairRequest composite_request(ShapeRef a, const Transform& pose_a, ShapeRef b, const Transform& pose_b,
+                              const PairRequest& request);
 
 /// distance() with a cutoff: the dispatch table's cell, for the branch and bound across the
 /// parts of composite shapes.

@@ -18,8 +18,8 @@
 ///     its component along the core removed, or a perpendicular from orthonormal_basis when
 ///     the fallback lies along the core; the normal is turned towards B's centre;
 ///  4. manifold: both cores with length and parallel within kParallelSine: the ends of the
-///     overlap of B's projection on A's axis, each kept when its gap is within
-///     contact_distance + tolerance; else the single closest pair.
+///     overlap of B's projection on A's axis, each kept when its gap is within the contact
+///     reach (contact.hpp); else the single closest pair.
 
 #include <proxima/core/math.hpp>
 #include <proxima/geometry/closest_points.hpp>
@@ -134,14 +134,16 @@ inline Vec3 orthogonal_to_core(const Vec3& d, const Vec3& fallback) {
   return cc;
 }
 
-/// Whether two cores (radii ra, rb) are within `contact_distance` under the same rule as
-/// core_segment_pair: cores closer than the tolerance count as touching.
-inline bool core_segments_within(const Vec3& a0, const Vec3& a1, const Vec3& b0, const Vec3& b1, Real ra, Real rb,
-                                 Real contact_distance, Real tolerance) {
+/// Whether two cores (radii ra, rb) are in contact under the touching rule (contact.hpp):
+/// the squared core distance against (contact reach + radii)^2, `exact()` (in_contact of the
+/// pair's distance) where rounding could decide, so intersect agrees with distance.
+template <class Exact>
+bool core_segments_within(const Vec3& a0, const Vec3& a1, const Vec3& b0, const Vec3& b1, Real ra, Real rb,
+                          Real contact_distance, Real tolerance, Exact&& exact) {
   const geometry::SegmentPair sp = geometry::closest_points_segment_segment(a0, a1, b0, b1);
-  const Real reach = contact_distance + ra + rb;
-  if (sp.distance_squared <= tolerance * tolerance) return reach >= Real(0);
-  return reach >= Real(0) && sp.distance_squared <= reach * reach;
+  if (sp.distance_squared <= tolerance * tolerance) return true;  // touching cores (core_segment_pair)
+  return decide_contact_squared(sp.distance_squared, ra + rb, contact_reach(contact_distance, tolerance),
+                                Real(0.25) * tolerance, exact);
 }
 
 /// Manifold of two cores from their closest pair: two points (the ends of the overlap of the
@@ -186,7 +188,7 @@ inline ContactManifold core_segment_manifold(const CoreSegmentPair& cc, Real ra,
     const Vec3 pa = cc.a0 + s * ua;
     const Vec3 pb = geometry::closest_point_segment(pa, cc.b0, cc.b1).point;
     const Real gap = glm::dot(pb - pa, n) - rab;
-    if (!(gap <= request.contact_distance + cc.tolerance)) continue;
+    if (!(gap <= contact_reach(request.contact_distance, cc.tolerance))) continue;
     // The overlap end comes from A's end (vertex 0 / 1) or from B's end (vertex j).
     const bool from_a = k == 0 ? lo == Real(0) : hi == la;
     const std::uint32_t b_end = (k == 0) == b0_low ? 0u : 1u;

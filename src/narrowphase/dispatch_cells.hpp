@@ -170,9 +170,15 @@ struct CompositeCell {
     store_hint(*cache, hint, swap);
     return answer;
   }
-  static bool intersect(const void* a, const Transform& pa, const void* b, const Transform& pb, const PairRequest& r,
-                        PairCache* cache) {
+  /// The request with the pair's tolerance resolved once for every part.
+  static PairRequest resolved(const void* a, const Transform& pa, const void* b, const Transform& pb,
+                              const PairRequest& r) {
+    return composite_request(ShapeRef(sa(a)), pa, ShapeRef(sb(b)), pb, r);
+  }
+  static bool intersect(const void* a, const Transform& pa, const void* b, const Transform& pb,
+                        const PairRequest& request, PairCache* cache) {
     if (!finite_poses(pa, pb)) return false;
+    const PairRequest r = resolved(a, pa, b, pb, request);
     return with_hint(cache, [&](PartHint* hint) {
       if constexpr (kCompositeDirect<A, B>)
         return composite_intersect(sa(a), pa, sb(b), pb, r, hint);
@@ -181,8 +187,9 @@ struct CompositeCell {
     });
   }
   static DistanceResult distance(const void* a, const Transform& pa, const void* b, const Transform& pb,
-                                 const PairRequest& r, PairCache* cache, Real cutoff) {
+                                 const PairRequest& request, PairCache* cache, Real cutoff) {
     if (!finite_poses(pa, pb)) return invalid_distance();
+    const PairRequest r = resolved(a, pa, b, pb, request);
     return with_hint(cache, [&](PartHint* hint) {
       if constexpr (kCompositeDirect<A, B>)
         return composite_distance(sa(a), pa, sb(b), pb, r, cutoff, hint);
@@ -191,13 +198,14 @@ struct CompositeCell {
     });
   }
   static ContactManifold collide(const void* a, const Transform& pa, const void* b, const Transform& pb,
-                                 const PairRequest& r, PairCache* /*cache*/) {
+                                 const PairRequest& request, PairCache* /*cache*/) {
     if (!finite_poses(pa, pb)) return invalid_manifold();
-    return reduced_manifold(sa(a), pa, sb(b), pb, r);
+    return reduced_manifold(sa(a), pa, sb(b), pb, resolved(a, pa, b, pb, request));
   }
-  static void collide_all(const void* a, const Transform& pa, const void* b, const Transform& pb, const PairRequest& r,
-                          ContactCollector& collector) {
+  static void collide_all(const void* a, const Transform& pa, const void* b, const Transform& pb,
+                          const PairRequest& request, ContactCollector& collector) {
     if (!finite_poses(pa, pb)) return;
+    const PairRequest r = resolved(a, pa, b, pb, request);
     if constexpr (kCompositeDirect<A, B>) {
       composite_collide_all(sa(a), pa, sb(b), pb, r, collector);
     } else {

@@ -32,6 +32,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <type_traits>
 
 #include "pair_support.hpp"
@@ -144,6 +145,32 @@ struct LocalAnswer {
   bool sat_used = false;                      ///< the SAT answered
   GenericStage stage = GenericStage::NotRun;  ///< the stage that answered
 };
+
+/// Half-width of the band around the contact threshold inside which generic_intersect asks
+/// the distance query instead of trusting boolean GJK: one length tolerance in float; 64 in
+/// double, where boolean GJK (its simplex in Real) on curved sides was seen 3 tolerances off
+/// (a point 6.6e-14 outside a cylinder of size 0.4 reported overlapping, tolerance 2.2e-14).
+inline Real boolean_band(Real tolerance) { return sizeof(Real) == sizeof(float) ? tolerance : Real(64) * tolerance; }
+
+/// How deep the origin lies inside GJK's final simplex (a length): the smallest distance
+/// from the origin to a face of the tetrahedron, computed in Wide; 0 when the simplex is
+/// not a tetrahedron, is degenerate, or does not hold the origin. The tetrahedron lies in
+/// D = A - B, so the origin is at least this deep inside D.
+inline Real enclosed_depth(const gjk::Simplex& s) {
+  if (s.size != 4) return Real(0);
+  const gjk::WideVec3 p[4] = {gjk::WideVec3(s.v[0].w), gjk::WideVec3(s.v[1].w), gjk::WideVec3(s.v[2].w),
+                              gjk::WideVec3(s.v[3].w)};
+  constexpr int kFaces[4][4] = {{1, 2, 3, 0}, {0, 2, 3, 1}, {0, 1, 3, 2}, {0, 1, 2, 3}};  // face, opposite
+  gjk::Wide depth = std::numeric_limits<gjk::Wide>::max();
+  for (const auto& f : kFaces) {
+    gjk::WideVec3 n = glm::cross(p[f[1]] - p[f[0]], p[f[2]] - p[f[0]]);
+    const gjk::Wide len = std::sqrt(glm::dot(n, n));
+    if (!(len > gjk::Wide(0)) || !std::isfinite(len)) return Real(0);
+    if (glm::dot(n, p[f[3]] - p[f[0]]) > gjk::Wide(0)) n = -n;  // outward
+    depth = std::min(depth, glm::dot(n, p[f[0]]) / len);        // origin's depth below the face
+  }
+  return depth > gjk::Wide(0) ? Real(depth) : Real(0);
+}
 
 /// v made unit, else `fallback` made unit, else +z.
 inline Vec3 unit_or(const Vec3& v, const Vec3& fallback) {
@@ -444,6 +471,7 @@ GenericStage distance_into(const A& a, const Transform& pose_a, const B& b, cons
   r.status = ans.status;
   r.method = ans.method;
   r.iterations = ans.iterations;
+  r.tolerance = setup.tolerance;
   return ans.stage;
 }
 
@@ -475,8 +503,13 @@ StagedDistance generic_distance_staged(const A& a, const Transform& pose_a, cons
   return staged;
 }
 
-/// True when A and B are within request.contact_distance (plus tolerance) of each other: GJK
-/// in boolean mode, stopping at the first separating axis or the first proof of contact.
+/// True when A and B are in contact under the touching rule (contact.hpp: within
+/// max(request.contact_distance, tolerance)): GJK in boolean mode against the reach widened
+/// by a rounding band (boolean_band), stopping at the first separating axis or the first
+/// proof of contact. An overlap counts as proven when the origin lies deeper than the band
+/// inside GJK's final tetrahedron (enclosed_depth); a core distance in the band, or an
+/// overlap that shallow, is decided by the distance query itself, so that intersect and
+/// distance never disagree.
 template <class A, class B>
 bool generic_intersect(const A& a, const Transform& pose_a, const B& b, const Transform& pose_b,
                        const PairRequest& request, PairCache* cache) {
@@ -485,8 +518,9 @@ bool generic_intersect(const A& a, const Transform& pose_a, const B& b, const Tr
   if (!finite_poses(pose_a, pose_b)) return false;
   generic_detail::PairSetup<A, B> setup(a, pose_a, b, pose_b, request, cache);
   gjk::Settings s = setup.gjk_settings(request);
-  const Real margin = setup.radius_a + setup.radius_b + std::max(request.contact_distance, Real(0)) + setup.tolerance;
-  s.margin = margin;
+  const Real reach = setup.radius_a + setup.radius_b + contact_reach(request.contact_distance, setup.tolerance);
+  const Real band = generic_detail::boolean_band(setup.tolerance);
+  s.margin = reach + band;
   const gjk::Outcome g = gjk::distance(setup.support_a, setup.support_b, setup.axis, s);
   if (cache) {
     // A proven separating axis is the best start for the next, coherent query.
@@ -495,8 +529,12 @@ bool generic_intersect(const A& a, const Transform& pose_a, const B& b, const Tr
     setup.store(cache, n);
   }
   if (g.status == gjk::Status::EarlyExit) return false;
-  if (g.status == gjk::Status::Overlapping) return true;
-  return g.distance <= margin;
+  if (g.status == gjk::Status::Overlapping) {
+    if (generic_detail::enclosed_depth(g.simplex) > band) return true;
+  } else if (g.status != gjk::Status::MaxIterations && g.distance < reach - band) {
+    return true;
+  }
+  return in_contact(generic_distance(a, pose_a, b, pose_b, request, nullptr), request);
 }
 
 /// The generic distance as the pair routine of every pair without a closed-form one (the

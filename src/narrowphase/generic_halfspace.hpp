@@ -10,9 +10,9 @@
 ///     from both positions, the plane offset and A's size (halfspace_size);
 ///  2. A's core support point x in the direction -n (A's frame), the core radius r subtracted
 ///     along n: signed distance n . x - d - r, normal -n (A to B), point_a = x - r n, point_b
-///     its projection on the plane; intersect compares the signed distance with the contact
-///     distance and stops there;
-///  3. collide: no point when the signed distance exceeds the contact distance; else the
+///     its projection on the plane; intersect applies the touching rule (contact.hpp) to it
+///     and stops there;
+///  3. collide: no point when the pair is not in contact (in_contact); else the
 ///     candidate points of A's core (plane_contacts: by default A's supporting feature in the
 ///     direction -n), each kept when its gap is within contact_distance + tolerance, the 4
 ///     deepest, reduced to max_contacts by reduce_contacts (manifold_reduction.hpp).
@@ -158,6 +158,7 @@ DistanceResult support_distance(const S& a, const Transform& pose_a, const HalfS
   d.point_b = d.point_a - d.signed_distance * plane.n;
   d.status = status_from_distance(d.signed_distance, tolerance);
   d.method = PairMethod::Analytic;
+  d.tolerance = tolerance;
   return d;
 }
 
@@ -177,15 +178,13 @@ DistanceResult halfspace_distance(const S& a, const Transform& pose_a, const Hal
   return support_distance(a, pose_a, b, pose_b, halfspace_tolerance(request, pose_a, pose_b, b, halfspace_size(a)));
 }
 
-/// True when A reaches within the contact distance of the half-space (step 2 without the
-/// tolerance); false for non-finite poses.
+/// True when A is in contact with the half-space (step 2 and the touching rule of
+/// contact.hpp); false for non-finite poses.
 template <class S>
 bool halfspace_intersect(const S& a, const Transform& pose_a, const HalfSpace& b, const Transform& pose_b,
                          const PairRequest& request) {
   if (!finite_poses(pose_a, pose_b)) return false;
-  const WorldPlane plane = world_plane(b, pose_b);
-  const Vec3 x = pose_a.apply(a.core_support(pose_a.inverse_apply_vector(-plane.n)));
-  return plane.gap(x) - a.core_radius() <= request.contact_distance;
+  return in_contact(halfspace_distance(a, pose_a, b, pose_b, request), request);
 }
 
 /// Contact manifold of A and the half-space (steps 1 to 3); InvalidInput for non-finite poses.
@@ -194,7 +193,7 @@ ContactManifold halfspace_collide(const S& a, const Transform& pose_a, const Hal
                                   const PairRequest& request) {
   if (!finite_poses(pose_a, pose_b)) return invalid_manifold();
   const PlaneQuery q = plane_query(a, pose_a, b, pose_b, request);
-  if (!(q.distance.signed_distance <= request.contact_distance) || request.max_contacts < 1) {
+  if (!in_contact(q.distance, request) || request.max_contacts < 1) {
     return empty_manifold(q.distance);
   }
   return plane_contacts(a, pose_a, q, request);

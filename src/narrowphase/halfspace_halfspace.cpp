@@ -28,6 +28,7 @@ DistanceResult pair_distance(const HalfSpace& a, const Transform& pose_a, const 
   d.normal = pa.n;
   d.point_a = point_a;
   d.method = PairMethod::Analytic;
+  d.tolerance = tol;
   if (glm::dot(pa.n, pb.n) <= -(Real(1) - kRelativeTolerance)) {
     // point_a lies outside B by its height above B's plane, measured along n_a = -n_b.
     d.signed_distance = pb.gap(point_a);
@@ -43,7 +44,7 @@ DistanceResult pair_distance(const HalfSpace& a, const Transform& pose_a, const 
 bool pair_intersect(const HalfSpace& a, const Transform& pose_a, const HalfSpace& b, const Transform& pose_b,
                     const PairRequest& request, PairCache* cache) {
   if (!finite_poses(pose_a, pose_b)) return false;
-  return pair_distance(a, pose_a, b, pose_b, request, cache).signed_distance <= request.contact_distance;
+  return in_contact(pair_distance(a, pose_a, b, pose_b, request, cache), request);
 }
 
 ContactManifold pair_collide(const HalfSpace& a, const Transform& pose_a, const HalfSpace& b, const Transform& pose_b,

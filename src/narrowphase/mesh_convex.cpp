@@ -212,7 +212,7 @@ Scratch& scratch() {
 bool halfspace_intersect(const TriangleMesh& mesh, const Transform& pose_mesh, const HalfSpace& h,
                          const Transform& pose_h, const PairRequest& request) {
   const LocalPlane p = local_plane(h, pose_h, pose_mesh);
-  const Real cd = request.contact_distance;
+  const Real cd = request_reach(request);  // the touching rule (contact.hpp)
   const auto verts = mesh.vertices();
   const auto tris = mesh.triangles();
   bool hit = false;
@@ -263,13 +263,14 @@ DistanceResult halfspace_distance(const TriangleMesh& mesh, const Transform& pos
                        : linear_tolerance(std::max({std::abs(pa.x), std::abs(pa.y), std::abs(pa.z)}));
   r.status = status_from_distance(bound, tol);
   r.method = PairMethod::Support;
+  r.tolerance = tol;
   return best;
 }
 
 void halfspace_collide_all(const TriangleMesh& mesh, const Transform& pose_mesh, const HalfSpace& h,
                            const Transform& pose_h, const PairRequest& request, ContactCollector& collector) {
   const LocalPlane p = local_plane(h, pose_h, pose_mesh);
-  const Real cd = request.contact_distance;
+  const Real cd = request_reach(request);  // the touching rule (contact.hpp)
   const auto verts = mesh.vertices();
   const auto tris = mesh.triangles();
   std::vector<std::uint8_t>& seen = scratch().seen;
@@ -306,7 +307,7 @@ bool mesh_convex_intersect(const TriangleMesh& mesh, const Transform& pose_mesh,
     const Result<Triangle> tri = Triangle::create(v[0], v[1], v[2]);
     if (tri && intersect(*tri, pose_mesh, convex, pose_convex, request)) return true;
   }
-  const Aabb box = convex_box_in_mesh(convex, pose_mesh, pose_convex).inflated(request.contact_distance);
+  const Aabb box = convex_box_in_mesh(convex, pose_mesh, pose_convex).inflated(cull_margin(request));
   bool hit = false;
   for_each_triangle_near(mesh, box, [&](std::uint32_t t, const std::array<Vec3, 3>&, const Triangle& tri) {
     hit = intersect(tri, pose_mesh, convex, pose_convex, request);
@@ -352,9 +353,10 @@ void mesh_convex_collide_all(const TriangleMesh& mesh, const Transform& pose_mes
     halfspace_collide_all(mesh, pose_mesh, convex.as<HalfSpace>(), pose_convex, request, collector);
     return;
   }
-  const Real cd = request.contact_distance;
+  const Real cd = request_reach(request);  // the touching rule (contact.hpp)
   const Transform rel = relative(pose_mesh, pose_convex);
-  const Aabb box = detail::visit_convex(convex, [&](const auto& s) { return s.world_aabb(rel); }).inflated(cd);
+  const Aabb box =
+      detail::visit_convex(convex, [&](const auto& s) { return s.world_aabb(rel); }).inflated(cull_margin(request));
   const Vec3 center_local = box.center();
   // Cosine above which a manifold normal counts as the face normal (about 0.1 degree).
   const Real face_cos = Real(1) - Real(2e-6);

@@ -54,6 +54,7 @@
 #include <limits>
 
 #include "geometry/box_separation.hpp"
+#include "pair_support.hpp"
 #include "shapes/oriented_tree.hpp"
 #include "spatial/bvh_pair_descent.hpp"
 
@@ -389,13 +390,28 @@ void load_leaf(const TriangleMesh& b, const RelativeFrame& f, const BvhNode& lea
   }
 }
 
-/// The pair test shared by the boolean and all contacts (A's frame).
-inline bool triangles_within(const std::array<Vec3, 3>& a, const std::array<Vec3, 3>& b, Real contact_distance) {
+/// Closest points of two triangles apart, as the distance descent computes them: the short
+/// vertex-face and edge-edge search in the plain coordinate range (`plain_range`), the
+/// general routine beyond it. Unit normals na, nb as unit_normal gives them.
+inline geometry::ClosestPair apart_triangles(const std::array<Vec3, 3>& ta, const Vec3& na,
+                                             const std::array<Vec3, 3>& tb, const Vec3& nb, bool plain_range) {
+  return plain_range ? separated_triangles(ta, na, tb, nb)
+                     : geometry::closest_points_triangle_triangle(ta[0], ta[1], ta[2], tb[0], tb[1], tb[2]);
+}
+
+/// The pair test shared by the boolean and all contacts (A's frame). Within a positive
+/// contact distance it compares the same number the distance query does (apart_triangles,
+/// then the square root), so that the two agree to the last bit at the threshold.
+inline bool triangles_within(const std::array<Vec3, 3>& a, const std::array<Vec3, 3>& b, Real contact_distance,
+                             bool plain_range) {
   if (contact_distance <= Real(0)) return geometry::triangles_intersect(a[0], a[1], a[2], b[0], b[1], b[2]);
   if (geometry::triangles_intersect(a[0], a[1], a[2], b[0], b[1], b[2])) return true;
-  return geometry::closest_points_triangle_triangle(a[0], a[1], a[2], b[0], b[1], b[2]).distance_squared <=
-         contact_distance * contact_distance;
+  return std::sqrt(apart_triangles(a, unit_normal(a), b, unit_normal(b), plain_range).distance_squared) <=
+         contact_distance;
 }
+
+/// True when a pair of meshes at this scale needs no rescaling (apart_triangles).
+inline bool in_plain_range(Real scale) { return geometry::detail::rescale_exponent(scale) == 0; }
 
 /// True when `hint` names a triangle of A and a triangle of B.
 bool valid_pair(const TriangleMesh& a, const TriangleMesh& b, const PartHint* hint) {
@@ -416,7 +432,7 @@ Vec3 facing_normal(const std::array<Vec3, 3>& ta, const Vec3& towards, const Tra
 /// or false when there is none.
 template <class Nodes>
 bool find_pair_within(const TriangleMesh& a, const TriangleMesh& b, const RelativeFrame& f, const Nodes& nodes,
-                      Real margin, Real cd, std::uint32_t& found_a, std::uint32_t& found_b) {
+                      Real margin, Real cd, bool plain_range, std::uint32_t& found_a, std::uint32_t& found_b) {
   const auto prims_a = a.bvh().primitives();
   LeafTriangles leaf_b;
   std::uint32_t loaded = kNoIndex;
@@ -433,7 +449,7 @@ bool find_pair_within(const TriangleMesh& a, const TriangleMesh& b, const Relati
           Aabb{glm::min(glm::min(ta[0], ta[1]), ta[2]), glm::max(glm::max(ta[0], ta[1]), ta[2])}.inflated(margin);
       for (std::uint32_t k = 0; k < leaf_b.count; ++k) {
         if (!box_a.overlaps(leaf_b.box[k])) continue;
-        if (triangles_within(ta, leaf_b.v[k], cd)) {
+        if (triangles_within(ta, leaf_b.v[k], cd, plain_range)) {
           found_a = prims_a[i];
           found_b = leaf_b.index[k];
           return false;
@@ -449,13 +465,16 @@ bool find_pair_within(const TriangleMesh& a, const TriangleMesh& b, const Relati
 bool mesh_mesh_intersect(const TriangleMesh& a, const Transform& pose_a, const TriangleMesh& b, const Transform& pose_b,
                          const PairRequest& request, MeshMeshNodes node_kind, PartHint* hint) {
   const RelativeFrame f = make_frame(pose_a, pose_b);
-  const Real cd = std::max(request.contact_distance, Real(0));
-  if (valid_pair(a, b, hint) && triangles_within(a.triangle(hint->a), b_in_a(b, f, hint->b), cd)) return true;
-  const Real margin = node_margin(pair_scale(a, b, f), cd);
+  const Real cd = request_reach(request);  // the touching rule (contact.hpp)
+  const Real scale = pair_scale(a, b, f);
+  const bool plain = in_plain_range(scale);
+  if (valid_pair(a, b, hint) && triangles_within(a.triangle(hint->a), b_in_a(b, f, hint->b), cd, plain)) return true;
+  const Real margin = node_margin(scale, cd);
   std::uint32_t ta = kNoIndex;
   std::uint32_t tb = kNoIndex;
-  const bool hit = with_nodes(node_kind, a, b, f,
-                              [&](const auto& nodes) { return find_pair_within(a, b, f, nodes, margin, cd, ta, tb); });
+  const bool hit = with_nodes(node_kind, a, b, f, [&](const auto& nodes) {
+    return find_pair_within(a, b, f, nodes, margin, cd, plain, ta, tb);
+  });
   if (hit && hint != nullptr) *hint = {ta, tb};
   return hit;
 }
@@ -464,7 +483,7 @@ void mesh_mesh_collide_all(const TriangleMesh& a, const Transform& pose_a, const
                            const Transform& pose_b, const PairRequest& request, ContactCollector& collector,
                            MeshMeshNodes node_kind) {
   const RelativeFrame f = make_frame(pose_a, pose_b);
-  const Real cd = std::max(request.contact_distance, Real(0));
+  const Real cd = request_reach(request);  // the touching rule (contact.hpp)
   const Real scale = pair_scale(a, b, f);
   const Real margin = node_margin(scale, cd);
   const auto prims_a = a.bvh().primitives();
@@ -484,7 +503,7 @@ void mesh_mesh_collide_all(const TriangleMesh& a, const Transform& pose_a, const
           Aabb{glm::min(glm::min(ta[0], ta[1]), ta[2]), glm::max(glm::max(ta[0], ta[1]), ta[2])}.inflated(margin);
       for (std::uint32_t k = 0; k < leaf_b.count; ++k) {
         if (!box_a.overlaps(leaf_b.box[k])) continue;
-        if (!triangles_within(ta, leaf_b.v[k], cd)) continue;
+        if (!triangles_within(ta, leaf_b.v[k], cd, in_plain_range(scale))) continue;
         const std::uint32_t tri_b = leaf_b.index[k];
         const SubShapeId sub_a{kNoIndex, tri_a};
         const SubShapeId sub_b{kNoIndex, tri_b};
@@ -573,12 +592,12 @@ DistanceResult distance_descent(const TriangleMesh& a, const Transform& pose_a, 
     std::uint32_t hit_a = kNoIndex;
     std::uint32_t hit_b = kNoIndex;
     const bool hinted_touch =
-        valid_pair(a, b, hint) && triangles_within(a.triangle(hint->a), b_in_a(b, f, hint->b), Real(0));
+        valid_pair(a, b, hint) && triangles_within(a.triangle(hint->a), b_in_a(b, f, hint->b), Real(0), false);
     if (hinted_touch) {
       hit_a = hint->a;
       hit_b = hint->b;
     }
-    if (hinted_touch || find_pair_within(a, b, f, nodes, node_margin(scale, Real(0)), Real(0), hit_a, hit_b)) {
+    if (hinted_touch || find_pair_within(a, b, f, nodes, node_margin(scale, Real(0)), Real(0), false, hit_a, hit_b)) {
       const std::array<Vec3, 3> ta = a.triangle(hit_a);
       const std::array<Vec3, 3> tb = b_in_a(b, f, hit_b);
       best_pair = geometry::closest_points_triangle_triangle(ta[0], ta[1], ta[2], tb[0], tb[1], tb[2]);
@@ -591,12 +610,12 @@ DistanceResult distance_descent(const TriangleMesh& a, const Transform& pose_a, 
     }
   }
   // Apart meshes in the plain coordinate range take the short triangle distance.
-  const bool plain_range = geometry::detail::rescale_exponent(scale) == 0;
+  const bool plain_range = in_plain_range(scale);
   const auto pair_distance = [&](const std::array<Vec3, 3>& ta, const Vec3& na_unit, const std::array<Vec3, 3>& tb,
                                  const Vec3& nb_unit) {
-    return plain_range ? separated_triangles(ta, na_unit, tb, nb_unit)
-                       : geometry::closest_points_triangle_triangle(ta[0], ta[1], ta[2], tb[0], tb[1], tb[2]);
+    return apart_triangles(ta, na_unit, tb, nb_unit, plain_range);
   };
+
   if (!touching && valid_pair(a, b, hint)) {
     // The remembered pair's distance, computed as the descent would, is the first bound.
     best_ta = a.triangle(hint->a);
@@ -683,6 +702,7 @@ DistanceResult distance_descent(const TriangleMesh& a, const Transform& pose_a, 
   }
   r.status = status_from_distance(d, tol);
   r.method = PairMethod::Analytic;
+  r.tolerance = tol;
   out.sub_a.triangle = best_a;
   out.sub_b.triangle = best_b;
   if (hint != nullptr) *hint = {best_a, best_b};

@@ -54,18 +54,61 @@ inline ContactManifold invalid_manifold() {
   return m;
 }
 
-/// A one-point manifold from a distance result: empty when the gap exceeds
-/// request.contact_distance, else the two witnesses with depth = -signed_distance.
+/// A one-point manifold from a distance result: empty when the pair is not in contact
+/// (in_contact: the gap exceeds max(request.contact_distance, d.tolerance)), else the two
+/// witnesses with depth = -signed_distance.
 inline ContactManifold manifold_from_distance(const DistanceResult& d, const PairRequest& request,
                                               std::uint32_t feature_id = 0) {
   ContactManifold m;
   m.normal = d.normal;
   m.status = d.status;
   m.method = d.method;
-  if (!(d.signed_distance <= request.contact_distance) || request.max_contacts < 1) return m;
+  if (!in_contact(d, request) || request.max_contacts < 1) return m;
   m.count = 1;
   m.points[0] = ContactPoint{d.point_a, d.point_b, d.normal, -d.signed_distance, feature_id};
   return m;
+}
+
+/// The request with its contact distance raised to the pair's reach (contact_reach of the
+/// request and `tolerance`): what clipping and point filters compare gaps with, so that a
+/// touching pair keeps its contacts.
+inline PairRequest request_within_reach(const PairRequest& request, Real tolerance) {
+  PairRequest r = request;
+  r.contact_distance = contact_reach(request.contact_distance, tolerance);
+  return r;
+}
+
+/// The contact reach of a request whose tolerance is set (a composite query sets it once for
+/// all its parts): max(contact_distance, tolerance).
+inline Real request_reach(const PairRequest& request) {
+  return contact_reach(request.contact_distance, request.tolerance);
+}
+
+/// How far a composite query inflates boxes to find the parts that may be in contact: twice
+/// the reach, so that rounding of the boxes never drops a part within the reach.
+inline Real cull_margin(const PairRequest& request) { return Real(2) * request_reach(request); }
+
+/// intersect's decision (the touching rule of contact.hpp) from a cheap estimate: `core_d2`
+/// the squared distance of the cores, `radii` their radii, `reach` the contact reach, and
+/// `error` a bound on how far the estimate's gap may differ from pair_distance's signed
+/// distance (rounding). Conclusive outside that band; inside it `exact()` (the pair's
+/// in_contact of pair_distance) decides, so intersect and distance always agree.
+template <class Exact>
+bool decide_contact_squared(Real core_d2, Real radii, Real reach, Real error, Exact&& exact) {
+  const Real hi = radii + reach + error;
+  if (!(core_d2 <= hi * hi)) return false;
+  const Real lo = radii + reach - error;
+  if (lo > Real(0) && core_d2 < lo * lo) return true;
+  return exact();
+}
+
+/// The same decision from an estimate `gap` of the signed distance (see
+/// decide_contact_squared).
+template <class Exact>
+bool decide_contact(Real gap, Real reach, Real error, Exact&& exact) {
+  if (gap > reach + error) return false;
+  if (gap < reach - error) return true;
+  return exact();
 }
 
 }  // namespace proxima::narrow

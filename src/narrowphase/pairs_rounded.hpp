@@ -5,10 +5,11 @@
 /// pair_distance, pair_collide and the trait kAnalyticPair<A, B> = true.
 ///
 /// Rounded pairs: a sphere (point core) or capsule (segment core) against a sphere, capsule,
-/// box or triangle, and a segment against a segment (a capsule core without radius). Each routine finds the closest
-/// points of the cores with the geometry/closest_points.hpp routines and adds the radii; when the cores touch or
-/// overlap, the penetration direction comes from the pair's closed form (deepest box face, separating-axis test of
-/// segment against box or triangle, common normal of crossing segments). All O(1), no allocation.
+/// box or triangle, a sphere against a cylinder or a cone, and a segment against a segment (a capsule core without
+/// radius). Each routine finds the closest points of the cores with the geometry/closest_points.hpp routines and adds
+/// the radii; when the cores touch or overlap, the penetration direction comes from the pair's closed form (deepest box
+/// face, separating-axis test of segment against box or triangle, common normal of crossing segments). All O(1), no
+/// allocation.
 ///
 /// Degenerate configurations get a deterministic normal, never NaN. Cores closer than the
 /// pair's tolerance (request.tolerance, else linear_tolerance of the pair's scale) count as
@@ -24,8 +25,9 @@
 ///  - a capsule core touching a box or a triangle: the separating-axis test's axis.
 /// Two-point manifolds are used only when their deepest point reproduces the distance query's
 /// depth (within tolerance); otherwise the manifold is the exact single closest pair.
-/// intersect(...) is true iff distance(...).signed_distance <= request.contact_distance; the
-/// sphere, capsule and segment pairs answer it directly from the squared core distance.
+/// intersect(...) is true iff in_contact(distance(...), request) (the touching rule of
+/// contact.hpp); the sphere, capsule and segment pairs answer it from the squared core
+/// distance away from the threshold and from the distance itself near it.
 
 #include <proxima/shapes/shape.hpp>
 
@@ -66,6 +68,12 @@ PROXIMA_ROUNDED_PAIR(Capsule, Capsule)
 // Sphere against box: closest point of the box to the centre; centre inside: the deepest
 // (nearest) face. Manifold: one point.
 PROXIMA_ROUNDED_PAIR(Sphere, Box)
+// Sphere against cylinder: closest point of the cylinder's meridian rectangle to the centre;
+// normals from the axis and the centre's radial direction. Manifold: one point.
+PROXIMA_ROUNDED_PAIR(Sphere, Cylinder)
+// Sphere against cone: closest point of the cone's meridian triangle to the centre; normals
+// from the base and slant lines. Manifold: one point.
+PROXIMA_ROUNDED_PAIR(Sphere, Cone)
 // Capsule against box: exact segment-box closest points (piecewise quadratic minimisation);
 // segment-box SAT (3 face axes, 3 edge axes) when the core touches the box. Manifold: two
 // points (the core clipped to the face) when the contact normal is a face normal and both

@@ -63,6 +63,7 @@ DistanceResult sat_distance_result(const SmallSat& s, const Transform& pose_a, R
         r, [&](const Vec3& shift, Vec3& on_a, Vec3& on_b) { static_cast<void>(closest(&shift, on_a, on_b)); });
   }
   r.status = status_from_distance(r.signed_distance, tol);
+  r.tolerance = tol;
   return r;
 }
 
@@ -78,7 +79,8 @@ ContactManifold sat_collide_result(const A& a, const Transform& pose_a, const B&
     const SupportingFace fa = supporting_face(a, pose_a, s.normal);
     const SupportingFace fb = supporting_face(b, pose_b, -s.normal);
     ContactManifold m;
-    if (fa.count >= 2 && fb.count >= 2 && deep_clipped_manifold(fa, fb, s.normal, request, -s.separation, m)) {
+    if (fa.count >= 2 && fb.count >= 2 &&
+        deep_clipped_manifold(fa, fb, s.normal, request_within_reach(request, tol), -s.separation, m)) {
       m.normal = s.normal;
       m.status = status_from_distance(s.separation, tol);
       m.method = PairMethod::Sat;
@@ -94,14 +96,13 @@ ContactManifold sat_collide_result(const A& a, const Transform& pose_a, const B&
   return m;
 }
 
-/// pair_intersect of a SAT pair (contract in pair_support.hpp): its pair_distance within
-/// max(request.contact_distance, 0).
+/// pair_intersect of a SAT pair (contract in pair_support.hpp): the touching rule
+/// (in_contact) on its pair_distance.
 template <class A, class B>
 bool sat_pair_intersect(const A& a, const Transform& pose_a, const B& b, const Transform& pose_b,
                         const PairRequest& request, PairCache* cache) {
   if (!finite_poses(pose_a, pose_b)) return false;
-  return pair_distance(a, pose_a, b, pose_b, request, cache).signed_distance <=
-         std::max(request.contact_distance, Real(0));
+  return in_contact(pair_distance(a, pose_a, b, pose_b, request, cache), request);
 }
 
 /// pair_collide of a SAT pair (contract in pair_support.hpp): manifold_of its pair_distance,

@@ -43,6 +43,7 @@ inline DistanceResult rounded_result(const Vec3& core_a, const Vec3& core_b, con
   r.point_b = core_b - rb * normal;
   r.status = status_from_distance(r.signed_distance, tolerance);
   r.method = PairMethod::Analytic;
+  r.tolerance = tolerance;
   return r;
 }
 

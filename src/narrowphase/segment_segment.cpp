@@ -44,9 +44,10 @@ DistanceResult pair_distance(const Segment& a, const Transform& pose_a, const Se
 bool pair_intersect(const Segment& a, const Transform& pose_a, const Segment& b, const Transform& pose_b,
                     const PairRequest& request, PairCache* /*cache*/) {
   if (!finite_poses(pose_a, pose_b)) return false;
-  return detail::core_segments_within(pose_a.apply(a.a()), pose_a.apply(a.b()), pose_b.apply(b.a()),
-                                      pose_b.apply(b.b()), Real(0), Real(0), request.contact_distance,
-                                      segment_pair_tolerance(a, pose_a, b, pose_b, request));
+  return detail::core_segments_within(
+      pose_a.apply(a.a()), pose_a.apply(a.b()), pose_b.apply(b.a()), pose_b.apply(b.b()), Real(0), Real(0),
+      request.contact_distance, segment_pair_tolerance(a, pose_a, b, pose_b, request),
+      [&] { return in_contact(pair_distance(a, pose_a, b, pose_b, request, nullptr), request); });
 }
 
 ContactManifold pair_collide(const Segment& a, const Transform& pose_a, const Segment& b, const Transform& pose_b,

@@ -9,7 +9,8 @@
 //     distance -(h_i - |c_i|) - r, box witness c projected on that face;
 //  4. sphere witness c + r normal.
 // Manifold: that single point; feature id: the box vertex, edge or face holding q. intersect
-// compares the squared distance of the centre to the box with (contact distance + r)^2.
+// compares the squared distance of the centre to the box with (contact reach + r)^2, and asks
+// pair_distance when rounding could decide (decide_contact_squared).
 #include "narrowphase/pairs_rounded.hpp"
 #include "narrowphase/rounded_common.hpp"
 
@@ -68,16 +69,17 @@ DistanceResult pair_distance(const Sphere& a, const Transform& pose_a, const Box
 bool pair_intersect(const Sphere& a, const Transform& pose_a, const Box& b, const Transform& pose_b,
                     const PairRequest& request, PairCache* /*cache*/) {
   if (!finite_poses(pose_a, pose_b)) return false;
-  // Squared distance of the centre to the solid box (box frame) against (contact distance +
-  // r)^2; a centre inside is at depth r + (distance to the nearest face) <= r.
-  const Real reach = request.contact_distance + a.radius();
+  // Squared distance of the centre to the solid box (box frame) against (contact reach +
+  // r)^2; a centre inside is at depth r + (distance to the nearest face) >= r: a hit.
   const Vec3& h = b.half_extents();
   const Vec3 c = pose_b.inverse_apply(pose_a.position);
   const Vec3 e = c - glm::clamp(c, -h, h);
   const Real d2 = length_squared(e);
-  if (d2 > Real(0)) return reach >= Real(0) && d2 <= reach * reach;
-  const Real inside = std::min({h.x - std::abs(c.x), h.y - std::abs(c.y), h.z - std::abs(c.z)});
-  return -inside - a.radius() <= request.contact_distance;
+  if (!(d2 > Real(0))) return true;
+  const Real tol = resolve_tolerance(request, detail::pair_scale(pose_a, pose_b, a.radius() + max_abs_component(h)));
+  return decide_contact_squared(d2, a.radius(), contact_reach(request.contact_distance, tol), Real(0.25) * tol, [&] {
+    return in_contact(pair_distance(a, pose_a, b, pose_b, request, nullptr), request);
+  });
 }
 
 ContactManifold pair_collide(const Sphere& a, const Transform& pose_a, const Box& b, const Transform& pose_b,

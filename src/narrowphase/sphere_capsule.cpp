@@ -8,7 +8,8 @@
 //  3. witnesses: c and q pushed out along the normal by their radii.
 // Manifold: that single point; feature id: sphere surface against the capsule's bottom end
 // (vertex 0), top end (vertex 1) or side (edge 0). intersect compares the squared distance of
-// the centre to the core (capsule frame) with (contact distance + radii)^2.
+// the centre to the core (capsule frame) with (contact reach + radii)^2, and asks
+// pair_distance when rounding could decide (decide_contact_squared).
 #include <proxima/geometry/closest_points.hpp>
 
 #include "narrowphase/pairs_rounded.hpp"
@@ -53,18 +54,16 @@ bool pair_intersect(const Sphere& a, const Transform& pose_a, const Capsule& b, 
                     const PairRequest& request, PairCache* /*cache*/) {
   if (!finite_poses(pose_a, pose_b)) return false;
   // Squared distance of the centre to the core (in the capsule's frame, where the core is
-  // the z axis from -half_length to half_length) against (contact distance + radii)^2.
-  const Real reach = request.contact_distance + a.radius() + b.radius();
-  if (!(reach >= Real(0))) return false;
+  // the z axis from -half_length to half_length) against (contact reach + radii)^2.
   const Vec3 c = pose_b.inverse_apply(pose_a.position);
   const Real hl = b.half_length();
   const Real dz = c.z - std::clamp(c.z, -hl, hl);
   const Real d2 = c.x * c.x + c.y * c.y + dz * dz;
-  if (d2 <= reach * reach) return true;
-  // A centre within the tolerance of the core counts as on it (as in pair_distance).
   const Real tol =
       resolve_tolerance(request, detail::pair_scale(pose_a, pose_b, a.radius() + b.radius() + b.half_length()));
-  return d2 <= tol * tol;
+  return decide_contact_squared(
+      d2, a.radius() + b.radius(), contact_reach(request.contact_distance, tol), Real(0.25) * tol,
+      [&] { return in_contact(pair_distance(a, pose_a, b, pose_b, request, nullptr), request); });
 }
 
 ContactManifold pair_collide(const Sphere& a, const Transform& pose_a, const Capsule& b, const Transform& pose_b,

@@ -5,7 +5,8 @@
 //  2. the normal is v / |v|; coincident centres take A's local +x axis (world frame);
 //  3. witnesses: each centre pushed out along the normal by its radius.
 // Manifold: that single point (feature ids: the surfaces of both spheres). intersect compares
-// the squared centre distance with (contact distance + radii)^2.
+// the squared centre distance with (contact reach + radii)^2, and asks pair_distance when
+// rounding could decide (decide_contact_squared).
 #include "narrowphase/pairs_rounded.hpp"
 #include "narrowphase/rounded_common.hpp"
 
@@ -25,9 +26,12 @@ DistanceResult pair_distance(const Sphere& a, const Transform& pose_a, const Sph
 bool pair_intersect(const Sphere& a, const Transform& pose_a, const Sphere& b, const Transform& pose_b,
                     const PairRequest& request, PairCache* /*cache*/) {
   if (!finite_poses(pose_a, pose_b)) return false;
-  // |cb - ca| - ra - rb <= contact distance, without the square root.
-  const Real reach = request.contact_distance + a.radius() + b.radius();
-  return reach >= Real(0) && length_squared(pose_b.position - pose_a.position) <= reach * reach;
+  // |cb - ca| - ra - rb <= contact reach, without the square root away from the threshold.
+  const Real tol = resolve_tolerance(request, detail::pair_scale(pose_a, pose_b, a.radius() + b.radius()));
+  return decide_contact_squared(length_squared(pose_b.position - pose_a.position), a.radius() + b.radius(),
+                                contact_reach(request.contact_distance, tol), Real(0.25) * tol, [&] {
+                                  return in_contact(pair_distance(a, pose_a, b, pose_b, request, nullptr), request);
+                                });
 }
 
 ContactManifold pair_collide(const Sphere& a, const Transform& pose_a, const Sphere& b, const Transform& pose_b,

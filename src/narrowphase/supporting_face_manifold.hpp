@@ -23,7 +23,9 @@ ContactManifold manifold_of(const A& a, const Transform& pose_a, const B& b, con
   if (fa.count < 2 || fb.count < 2) return m;
   ContactManifold clipped = m;
   const ContactPoint witness = m.points[0];
-  if (clipped_manifold(fa, fb, d.normal, request, clipped, &witness)) return clipped;
+  if (clipped_manifold(fa, fb, d.normal, request_within_reach(request, d.tolerance), clipped, &witness)) {
+    return clipped;
+  }
   return m;
 }
 

@@ -136,21 +136,17 @@ bool pair_intersect(const Triangle& a, const Transform& pose_a, const Box& b, co
                     const PairRequest& request, PairCache* cache) {
   if (!finite_poses(pose_a, pose_b)) return false;
   // The separation along the best axis is a lower bound of the distance: beyond the
-  // contact distance the answer is no without the exact closest features (the same answer
+  // contact reach the answer is no without the exact closest features (the same answer
   // and cache as the full distance).
-  SmallPolytope pa;
-  SmallPolytope pb;
-  triangle_polytope(a, pose_a, pa);
-  box_polytope(b, pose_b, pb);
-  const SmallSat s = small_polytope_sat(pa, pb, nullptr, 0, kParallelSine);
-  if (s.separation > std::max(request.contact_distance, Real(0))) {
+  const TriangleBoxSat sat(a, pose_a, b, pose_b, request);
+  if (sat.s.separation > contact_reach(request.contact_distance, sat.tol)) {
     if (cache != nullptr) {
-      cache->axis = pose_a.inverse_apply_vector(s.normal);
+      cache->axis = pose_a.inverse_apply_vector(sat.s.normal);
       cache->valid = true;
     }
     return false;
   }
-  return sat_pair_intersect(a, pose_a, b, pose_b, request, cache);
+  return in_contact(sat_distance_result(sat.s, pose_a, sat.tol, cache, sat.closest(b, pose_b)), request);
 }
 
 ContactManifold pair_collide(const Triangle& a, const Transform& pose_a, const Box& b, const Transform& pose_b,

@@ -118,7 +118,7 @@ DistanceResult pair_distance(const Triangle& a, const Transform& pose_a, const C
 bool pair_intersect(const Triangle& a, const Transform& pose_a, const Capsule& b, const Transform& pose_b,
                     const PairRequest& request, PairCache* cache) {
   if (!finite_poses(pose_a, pose_b)) return false;
-  return pair_distance(a, pose_a, b, pose_b, request, cache).signed_distance <= request.contact_distance;
+  return in_contact(pair_distance(a, pose_a, b, pose_b, request, cache), request);
 }
 
 ContactManifold pair_collide(const Triangle& a, const Transform& pose_a, const Capsule& b, const Transform& pose_b,

@@ -4,7 +4,10 @@
 // Steps (in the triangle's frame):
 //  1. the sphere centre c; the closest point q of the triangle to it (Voronoi regions);
 //  2. normal = (c - q) / |c - q| (A to B), signed distance |c - q| - r (exact also when the
-//     sphere overlaps: the triangle is convex, so the depth is r - |c - q|);
+//     sphere overlaps: the triangle is convex, so the depth is r - |c - q|); c - q comes
+//     from the closest feature's geometry (feature_offset: height over the plane along the
+//     unit normal, plus the offset beyond an edge along its in-plane normal), not from the
+//     difference of the nearby points c and q, whose rounding tilts a short offset;
 //  3. a centre on the triangle (within the pair's tolerance, where the direction of c - q is
 //     rounding noise) takes the triangle's normal (b - a) x (c - a) turned to the centre's side
 //     (+normal when exactly in the plane), depth r.
@@ -19,6 +22,33 @@ namespace proxima::narrow {
 
 namespace {
 
+/// c minus its closest point on the triangle, from the closest feature's own geometry rather
+/// than from the difference of the nearby points c and q (whose rounding would tilt a short
+/// offset): over the face, the height over the plane times the unit normal; beyond an edge,
+/// that plus the distance beyond the edge's line in the plane times the edge's outward
+/// in-plane normal; at a vertex, c minus the vertex (exact input points).
+Vec3 feature_offset(const Triangle& t, geometry::TriangleFeature f, const Vec3& c, const Vec3& q) {
+  const Vec3& n = t.normal();
+  int edge = -1;
+  switch (f) {
+    case geometry::TriangleFeature::VertexA: return c - t.a();
+    case geometry::TriangleFeature::VertexB: return c - t.b();
+    case geometry::TriangleFeature::VertexC: return c - t.c();
+    case geometry::TriangleFeature::Face: return glm::dot(c - t.a(), n) * n;
+    case geometry::TriangleFeature::EdgeAB: edge = 0; break;
+    case geometry::TriangleFeature::EdgeBC: edge = 1; break;
+    case geometry::TriangleFeature::EdgeCA: edge = 2; break;
+  }
+  if (edge < 0) return c - q;
+  const Vec3& p0 = t.vertex(edge);
+  const Vec3& p1 = t.vertex((edge + 1) % 3);
+  Vec3 m;
+  Real lm = Real(0);
+  if (!unit_and_length(glm::cross(p1 - p0, n), m, lm)) return c - q;
+  const Vec3 w = c - p0;
+  return glm::dot(w, n) * n + std::max(glm::dot(w, m), Real(0)) * m;
+}
+
 struct TriangleSphere {
   DistanceResult result;
   std::uint32_t feature = 0;
@@ -31,15 +61,17 @@ TriangleSphere triangle_sphere(const Triangle& a, const Transform& pose_a, const
   const Real size = geometry::detail::magnitude({a.a(), a.b(), a.c()});
   const Real tol = resolve_tolerance(request, detail::pair_scale(pose_a, pose_b, size + b.radius()));
   Real length = Real(0);
-  Vec3 n = detail::unit_or(c - q.point, a.normal(), length);
+  const Vec3 offset = feature_offset(a, q.feature, c, q.point);
+  Vec3 n = detail::unit_or(offset, a.normal(), length);
+  const Vec3 on_triangle = c - offset;
   if (!(length > tol)) {
     // Centre on the triangle (within tolerance): the normal, turned to the centre's side.
     n = glm::dot(c - a.a(), a.normal()) < Real(0) ? -a.normal() : a.normal();
     length = Real(0);
   }
   TriangleSphere ts;
-  ts.result = detail::rounded_result(pose_a.apply(q.point), pose_b.position, pose_a.apply_vector(n), length, Real(0),
-                                     b.radius(), tol);
+  ts.result = detail::rounded_result(pose_a.apply(on_triangle), pose_b.position, pose_a.apply_vector(n), length,
+                                     Real(0), b.radius(), tol);
   FeatureKind kind{};
   std::uint32_t index = 0;
   detail::triangle_feature(q.feature, kind, index);
@@ -58,7 +90,7 @@ DistanceResult pair_distance(const Triangle& a, const Transform& pose_a, const S
 bool pair_intersect(const Triangle& a, const Transform& pose_a, const Sphere& b, const Transform& pose_b,
                     const PairRequest& request, PairCache* cache) {
   if (!finite_poses(pose_a, pose_b)) return false;
-  return pair_distance(a, pose_a, b, pose_b, request, cache).signed_distance <= request.contact_distance;
+  return in_contact(pair_distance(a, pose_a, b, pose_b, request, cache), request);
 }
 
 ContactManifold pair_collide(const Triangle& a, const Transform& pose_a, const Sphere& b, const Transform& pose_b,

@@ -78,6 +78,16 @@ Aabb proxy_box(const Aabb& box, Real pad) {
   return out;
 }
 
+Real touching_pad(const Aabb& box) {
+  Real m = Real(0);
+  for (int i = 0; i < 3; ++i) {
+    for (const Real c : {box.min[i], box.max[i]}) {
+      if (std::abs(c) < kMaxCoordinate) m = std::max(m, std::abs(c));
+    }
+  }
+  return Real(2) * linear_tolerance(m);
+}
+
 std::string_view to_string(ObjectKind kind) { return kind == ObjectKind::Static ? "static" : "moving"; }
 
 std::string_view to_string(CcdMode mode) {

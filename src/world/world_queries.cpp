@@ -133,7 +133,8 @@ Result<std::vector<WorldOverlap>> CollisionWorld::overlap(ShapeRef geometry, con
   const detail::ReadScope reading(impl_->access);
   if (auto e = check_pose(pose, "pose")) return *e;
   const Impl& w = *impl_;
-  const Aabb box = proxy_box(world_aabb(geometry, pose), Real(0));
+  const Aabb shape_box = world_aabb(geometry, pose);
+  const Aabb box = proxy_box(shape_box, touching_pad(shape_box));  // touching counts (narrow phase)
   return overlaps(w, box, filter, mode,
                   [&](std::uint32_t j) { return intersect(geometry, pose, w.slots[j].geometry, w.slots[j].pose); });
 }
@@ -149,7 +150,7 @@ Result<std::vector<WorldOverlap>> CollisionWorld::overlap_box(const Aabb& box, c
   // A flat box (zero extent on an axis) is a box of the smallest positive half extent.
   const Box shape = *Box::create(glm::max((box.max - box.min) * Real(0.5), Vec3(std::numeric_limits<Real>::min())));
   const Transform pose{(box.max + box.min) * Real(0.5), kIdentityQuat};
-  return overlaps(w, box, filter, mode,
+  return overlaps(w, proxy_box(box, touching_pad(box)), filter, mode,
                   [&](std::uint32_t j) { return intersect(shape, pose, w.slots[j].geometry, w.slots[j].pose); });
 }
 
@@ -160,7 +161,7 @@ Result<std::vector<WorldOverlap>> CollisionWorld::overlap_point(const Vec3& poin
   const Impl& w = *impl_;
   const Point shape = *Point::create();
   const Transform pose{point, kIdentityQuat};
-  return overlaps(w, Aabb{point, point}, filter, mode,
+  return overlaps(w, proxy_box(Aabb{point, point}, touching_pad(Aabb{point, point})), filter, mode,
                   [&](std::uint32_t j) { return intersect(shape, pose, w.slots[j].geometry, w.slots[j].pose); });
 }
 

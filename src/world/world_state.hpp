@@ -194,4 +194,10 @@ void measure_geometry(ObjectSlot& s);
 /// unbounded sides), as the broad phase accepts it.
 Aabb proxy_box(const Aabb& box, Real pad);
 
+/// How far a query box grows so that the broad phase (closed boxes) does not drop an object
+/// that the narrow phase's touching rule counts (gap within the pair's tolerance): twice
+/// linear_tolerance of the box's largest bounded coordinate (length units). Object boxes are
+/// not grown (they are the public bounds).
+Real touching_pad(const Aabb& box);
+
 }  // namespace proxima

@@ -6,6 +6,7 @@
 #include <proxima/broadphase/uniform_grid.hpp>
 #include <proxima/geometry/raycast.hpp>
 
+#include <limits>
 #include <map>
 
 #include "broadphase/broadphase_scenes.hpp"
@@ -133,6 +134,22 @@ TYPED_TEST(CellStructureTest, StaticStaticNeverPairs) {
   ASSERT_EQ(s.insert(0, {Vec3(1), Vec3(2)}, ProxyKind::Moving, {}), BroadPhaseStatus::Ok);
   s.find_pairs(pairs);
   EXPECT_EQ(pairs, (std::vector<ProxyPair>{{0, 1}, {0, 2}}));
+}
+
+TYPED_TEST(CellStructureTest, SubnormalBoxesGiveAFiniteCell) {
+  // Boxes whose extents are subnormal numbers chose a cell whose inverse was infinite, and
+  // an offset of 0 times it raised the invalid flag (the broadphase_ops fuzz finding
+  // double-8888db6b). The cell stays at least the smallest normal number.
+  const Real d = std::numeric_limits<Real>::denorm_min();
+  TypeParam s;
+  ASSERT_EQ(s.insert(0, {Vec3(0), Vec3(d)}, ProxyKind::Moving, {}), BroadPhaseStatus::Ok);
+  ASSERT_EQ(s.insert(1, {Vec3(0), Vec3(d)}, ProxyKind::Moving, {}), BroadPhaseStatus::Ok);
+  ASSERT_EQ(s.insert(2, {Vec3(2 * d), Vec3(3 * d)}, ProxyKind::Moving, {}), BroadPhaseStatus::Ok);
+  ASSERT_EQ(s.insert(3, {Vec3(0), Vec3(3 * d)}, ProxyKind::Moving, {}), BroadPhaseStatus::Ok);
+  std::vector<ProxyPair> pairs;
+  s.find_pairs(pairs);
+  EXPECT_EQ(pairs, (std::vector<ProxyPair>{{0, 1}, {0, 3}, {1, 3}, {2, 3}}));
+  EXPECT_TRUE(s.validate());
 }
 
 TEST(HierarchicalGrid, HugeAmongSmall) {

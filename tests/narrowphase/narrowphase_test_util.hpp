@@ -156,7 +156,7 @@ inline Real surface_distance(const Shape& shape, const Transform& pose, const Ve
 /// Describes a shape and a pose for failure messages (enough to rebuild a reproducer).
 inline std::string describe(const Shape& shape, const Transform& pose) {
   std::ostringstream o;
-  o.precision(9);
+  o.precision(17);
   o << to_string(shape_type(shape)) << "{";
   std::visit(
       [&](const auto& s) {

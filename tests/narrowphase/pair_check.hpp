@@ -58,7 +58,8 @@ void check_pair(const A& a, const Transform& pa, const B& b, const Transform& pb
     EXPECT_LE(std::abs(b.closest_point(pb.inverse_apply(d.point_b)).signed_distance), tol) << ctx;
   }
   // intersect agrees with the distance; moving B across the contact flips it.
-  EXPECT_EQ(narrow::pair_intersect(a, pa, b, pb, request, nullptr), d.signed_distance <= contact_distance) << ctx;
+  // (the touching rule of contact.hpp: within max(contact distance, the pair's tolerance))
+  EXPECT_EQ(narrow::pair_intersect(a, pa, b, pb, request, nullptr), in_contact(d, request)) << ctx;
   const Real eps = Real(8) * tol;
   PairRequest plain;
   Transform apart = pb;
@@ -69,7 +70,7 @@ void check_pair(const A& a, const Transform& pa, const B& b, const Transform& pb
   EXPECT_TRUE(narrow::pair_intersect(a, pa, b, into, plain, nullptr)) << ctx << " moved into";
   // The manifold.
   const ContactManifold m = narrow::pair_collide(a, pa, b, pb, request, nullptr);
-  EXPECT_EQ(m.count > 0, d.signed_distance <= contact_distance) << ctx;
+  EXPECT_EQ(m.count > 0, in_contact(d, request)) << ctx;
   EXPECT_LE(m.count, request.max_contacts) << ctx;
   if (m.count > 0) {
     EXPECT_LE(glm::length(m.normal - d.normal), Real(0.05)) << ctx;

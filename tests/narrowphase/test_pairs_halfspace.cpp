@@ -58,7 +58,8 @@ ContactManifold check_halfspace(const A& a, const Transform& pa, const HalfSpace
   EXPECT_LE(glm::length(d.point_b - (d.point_a + d.signed_distance * d.normal)), tol) << ctx;
   EXPECT_LE(std::abs(a.closest_point(pa.inverse_apply(d.point_a)).signed_distance), tol) << ctx;
   EXPECT_LE(std::abs(b.closest_point(pb.inverse_apply(d.point_b)).signed_distance), tol) << ctx;
-  EXPECT_EQ(pair_intersect(a, pa, b, pb, request, nullptr), d.signed_distance <= request.contact_distance) << ctx;
+  // The touching rule (contact.hpp): within max(contact distance, the pair's tolerance).
+  EXPECT_EQ(pair_intersect(a, pa, b, pb, request, nullptr), in_contact(d, request)) << ctx;
   const Real eps = Real(8) * tol;
   Transform apart = pb;
   apart.position += (-d.signed_distance + eps) * d.normal;
@@ -67,7 +68,7 @@ ContactManifold check_halfspace(const A& a, const Transform& pa, const HalfSpace
   EXPECT_FALSE(pair_intersect(a, pa, b, apart, {}, nullptr)) << ctx;
   EXPECT_TRUE(pair_intersect(a, pa, b, into, {}, nullptr)) << ctx;
   const ContactManifold m = pair_collide(a, pa, b, pb, request, nullptr);
-  EXPECT_EQ(m.count > 0, d.signed_distance <= request.contact_distance) << ctx;
+  EXPECT_EQ(m.count > 0, in_contact(d, request)) << ctx;
   EXPECT_LE(m.count, request.max_contacts) << ctx;
   for (int i = 0; i < m.count; ++i) {
     const ContactPoint& c = m.points[static_cast<std::size_t>(i)];

@@ -6,8 +6,10 @@
 #include <gtest/gtest.h>
 
 #include <proxima/narrowphase/contact.hpp>
+#include <proxima/narrowphase/narrowphase.hpp>
 
 #include <string>
+#include <utility>
 
 #include "narrowphase/pair_check.hpp"
 #include "narrowphase/pairs_rounded.hpp"
@@ -510,6 +512,32 @@ TEST(PairsRounded, CapsuleBoxTwoPointsNoDeeperThanThePair) {
           << "case " << k << " point " << i;
     }
     ++k;
+  }
+}
+
+// The exactness issue's case (defect 2): a sphere of radius 10 at the origin against the
+// triangle (30, 0, 0), (-20, 0, 0), (0, 0, 20) shifted by y = 0.001 (the centre projects onto
+// its edge on z = 0). The closest point came one ulp off and normalising the 0.001-long
+// difference tilted the normal by 1.9e-3; from the triangle's geometry it is (0, 1, 0)
+// exactly (A = the sphere, B = the triangle: the normal points from the centre up to it),
+// with the triangle placed by its vertices or by its pose, and in both orders.
+TEST(PairsRounded, TriangleSphereNormalFromGeometryNotFromNearbyPoints) {
+  const Real y = Real(0.001);
+  const Sphere s = sphere(Real(10));
+  const Triangle placed = *Triangle::create({30, y, 0}, {-20, y, 0}, {0, y, 20});
+  const Triangle local = *Triangle::create({30, 0, 0}, {-20, 0, 0}, {0, 0, 20});
+  for (const auto& [tri, pose] : {std::pair{placed, at({})}, std::pair{local, at({0, y, 0})}}) {
+    const DistanceResult d = distance(s, at({}), tri, pose);
+    EXPECT_EQ(d.normal, Vec3(0, 1, 0));
+    EXPECT_NEAR(d.signed_distance, y - Real(10), Real(64) * kEpsilon * Real(10));
+    const DistanceResult m = pair_distance(tri, pose, s, at({}), {}, nullptr);
+    EXPECT_EQ(m.normal, Vec3(0, -1, 0));
+    // Over the face too, and beyond the edge (centre at z = -1: the normal leans by the
+    // exact angle atan(1 / 0.001) from the plane).
+    EXPECT_EQ(distance(s, at({Real(1), 0, Real(5)}), tri, pose).normal, Vec3(0, 1, 0));
+    const DistanceResult e = distance(s, at({Real(1), 0, Real(-1)}), tri, pose);
+    const Vec3 exact = Vec3(glm::normalize(glm::dvec3(0, 0.001, 1)));
+    EXPECT_LE(glm::length(e.normal - exact), Real(8) * kEpsilon);
   }
 }
 

@@ -8,6 +8,12 @@
 /// `point_a` lies on A's surface, `point_b` on B's, and
 ///     point_b == point_a + signed_distance * normal      (within tolerance).
 /// Moving B by `t * normal` changes the signed distance by `t` (for small t).
+///
+/// One touching rule for every query (intersect, distance, collide, collide_all; convex,
+/// mesh and compound pairs alike): a pair is *in contact* when its signed distance is at
+/// most max(request.contact_distance, tolerance), where `tolerance` is the pair's absolute
+/// tolerance (DistanceResult::tolerance). Touching (|signed_distance| <= tolerance) is thus
+/// a hit: intersect answers true and collide gives a contact of depth about 0 (in_contact).
 
 #include <proxima/core/math.hpp>
 #include <proxima/core/sub_shape_id.hpp>
@@ -83,6 +89,10 @@ struct DistanceResult {
   int iterations = 0;  ///< GJK + EPA iterations (0 for analytic routines)
   SubShapeId sub_a{};  ///< part of A holding point_a (kNoIndex fields for a convex A)
   SubShapeId sub_b{};  ///< part of B holding point_b
+  /// Absolute tolerance (length units) the answer was decided with: the request's, else
+  /// linear_tolerance of the pair's scale (sizes and coordinates). |signed_distance| <=
+  /// tolerance is Touching; see in_contact.
+  Real tolerance = Real(0);
 };
 
 /// One contact point of a manifold.
@@ -133,6 +143,20 @@ constexpr PairStatus status_from_distance(Real signed_distance, Real tolerance) 
   return signed_distance > tolerance    ? PairStatus::Separated
          : signed_distance < -tolerance ? PairStatus::Penetrating
                                         : PairStatus::Touching;
+}
+
+/// The gap (length units) up to which a pair counts as in contact: the request's contact
+/// distance, or the pair's tolerance when that is larger (touching is a hit).
+constexpr Real contact_reach(Real contact_distance, Real tolerance) {
+  return contact_distance > tolerance ? contact_distance : tolerance;
+}
+
+/// The touching rule shared by every query: true when the distance answer `d` is within
+/// contact_reach(request.contact_distance, d.tolerance). intersect(...) answers exactly this
+/// for the same request, and collide(...) gives at least one contact exactly when it holds
+/// (request.max_contacts >= 1).
+constexpr bool in_contact(const DistanceResult& d, const PairRequest& request) {
+  return d.signed_distance <= contact_reach(request.contact_distance, d.tolerance);
 }
 
 /// The result with A and B swapped: witnesses and parts exchanged, normal negated.

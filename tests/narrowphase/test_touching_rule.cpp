@@ -1,0 +1,185 @@
+// The one touching rule of contact.hpp on every ordered pair of shape types (the 11 convex
+// kinds, meshes and compounds, mirrored cells included): at near-touching poses, gaps of
+// +-1e-7 ... +-1e-3 of the pair's size and +-0.5 / +-2 times the pair's own tolerance (so
+// that both precisions see touching and just-apart pairs), intersect answers exactly
+// in_contact(distance), and collide gives contacts exactly then; for convex pairs collide's
+// status is distance's. The poses come from seeded random pairs, B moved along the distance
+// normal to the target gap. Named cases: the sphere and box 9.5e-7 apart (touching in float:
+// a hit with one contact of depth about 0 in every query).
+#include <gtest/gtest.h>
+
+#include <proxima/narrowphase/narrowphase.hpp>
+#include <proxima/shapes/shape.hpp>
+
+#include <array>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "narrowphase/narrowphase_test_util.hpp"
+#include "support/solid_test_meshes.hpp"
+#include "sweep_size.hpp"
+
+namespace proxima {
+namespace test_touching_rule {
+
+struct TypePair {
+  ShapeType a;
+  ShapeType b;
+};
+
+std::string type_pair_name(const testing::TestParamInfo<TypePair>& info) {
+  return std::string(to_string(info.param.a)) + "_" + to_string(info.param.b);
+}
+
+// Every ordered pair of shape types except two half-spaces (only their boolean answer means
+// anything).
+std::vector<TypePair> every_pair() {
+  std::vector<TypePair> pairs;
+  for (int i = 0; i < kShapeTypeCount; ++i) {
+    for (int j = 0; j < kShapeTypeCount; ++j) {
+      const auto a = static_cast<ShapeType>(i);
+      const auto b = static_cast<ShapeType>(j);
+      if (a == ShapeType::HalfSpace && b == ShapeType::HalfSpace) continue;
+      pairs.push_back({a, b});
+    }
+  }
+  return pairs;
+}
+
+// A random shape of any type: test::random_shape for the convex kinds, an icosphere or torus
+// mesh, or a compound of a sphere, a box and a capsule at random local poses.
+Shape any_shape(test::Random& rng, ShapeType t) {
+  if (t == ShapeType::TriangleMesh) {
+    const Real r = rng.uniform(Real(0.4), Real(1.2));
+    if (rng.integer(0, 1) == 0) return TriangleMesh::create(test::icosphere_mesh(1, r)).value();
+    return TriangleMesh::create(test::torus_mesh(r, Real(0.3) * r, 12, 8)).value();
+  }
+  if (t == ShapeType::Compound) {
+    std::vector<CompoundChild> kids;
+    kids.push_back({Sphere::create(rng.uniform(Real(0.2), Real(0.5))).value(), rng.pose(Real(0.6))});
+    kids.push_back({Box::create(test::random_extents(rng, Real(0.4))).value(), rng.pose(Real(0.6))});
+    kids.push_back({Capsule::create(Real(0.2), Real(0.3)).value(), rng.pose(Real(0.6))});
+    return Compound::create(std::move(kids)).value();
+  }
+  return test::random_shape(rng, t);
+}
+
+// Counts of what the sweep saw, for the check that it saw every outcome.
+struct Seen {
+  int cases = 0;
+  int touching = 0;
+  int hits = 0;
+  int misses = 0;
+};
+
+// One pose: intersect, collide and in_contact(distance) agree (and collide's status is
+// distance's for a convex pair). Returns a description of the disagreement, or "".
+std::string disagreement(const Shape& a, const Transform& pa, const Shape& b, const Transform& pb,
+                         const PairRequest& request, Seen& seen) {
+  const DistanceResult d = distance(a, pa, b, pb, request);
+  const bool hit = intersect(a, pa, b, pb, request);
+  const ContactManifold m = collide(a, pa, b, pb, request);
+  if (!std::isfinite(d.signed_distance)) return "";
+  const bool contact = in_contact(d, request);
+  ++seen.cases;
+  if (d.status == PairStatus::Touching) ++seen.touching;
+  if (contact) {
+    ++seen.hits;
+  } else {
+    ++seen.misses;
+  }
+  const bool convex = is_convex(shape_type(a)) && is_convex(shape_type(b));
+  std::string why;
+  if (hit != contact) why += " intersect!=in_contact(distance)";
+  if ((m.count > 0) != contact) why += " collide!=in_contact(distance)";
+  if (d.status == PairStatus::Touching && !hit) why += " touching_but_no_hit";
+  if (convex && m.status != d.status) why += " collide_status!=distance_status";
+  if (why.empty()) return "";
+  std::ostringstream o;
+  o.precision(9);
+  o << why << ": sd=" << d.signed_distance << " tol=" << d.tolerance << " status=" << test::status_name(d.status)
+    << " collide_status=" << test::status_name(m.status) << " hit=" << hit << " count=" << m.count
+    << " cd=" << request.contact_distance << " A=" << test::describe(a, pa) << " B=" << test::describe(b, pb);
+  return o.str();
+}
+
+class TouchingRule : public testing::TestWithParam<TypePair> {};
+
+TEST_P(TouchingRule, IntersectDistanceCollideAgreeNearContact) {
+  const TypePair p = GetParam();
+  const std::uint64_t seed = 0x5eed7a11ull ^ (std::uint64_t(p.a) * 257u + std::uint64_t(p.b));
+  test::Random rng(seed);
+  const bool composite = !is_convex(p.a) || !is_convex(p.b);
+  const int cases = test::sweep_size(composite ? 6 : 24);
+  // Gaps relative to the pair's size, then multiples of the pair's own tolerance.
+  const std::array<Real, 10> relative{Real(1e-7),  Real(-1e-7), Real(1e-6),  Real(-1e-6), Real(1e-5),
+                                      Real(-1e-5), Real(1e-4),  Real(-1e-4), Real(1e-3),  Real(-1e-3)};
+  const std::array<Real, 5> of_tolerance{Real(0), Real(0.5), Real(-0.5), Real(2), Real(-2)};
+  Seen seen;
+  std::vector<std::string> failures;
+  int failed = 0;
+  for (int i = 0; i < cases; ++i) {
+    const Shape a = any_shape(rng, p.a);
+    const Shape b = any_shape(rng, p.b);
+    const Transform pa = rng.pose(Real(0.5));
+    const Transform pb = rng.pose(Real(1.5));
+    const DistanceResult d0 = distance(a, pa, b, pb);
+    if (!std::isfinite(d0.signed_distance)) continue;
+    const Real size = std::max({test::shape_scale(a), test::shape_scale(b), Real(1)});
+    std::vector<Real> gaps;
+    for (Real g : relative) gaps.push_back(g * size);
+    for (Real k : of_tolerance) gaps.push_back(k * d0.tolerance);
+    for (Real gap : gaps) {
+      Transform moved = pb;
+      moved.position += (gap - d0.signed_distance) * d0.normal;
+      for (Real cd : {Real(0), Real(1e-4) * size}) {
+        PairRequest request;
+        request.contact_distance = cd;
+        const std::string why = disagreement(a, pa, b, moved, request, seen);
+        if (why.empty()) continue;
+        ++failed;
+        if (failures.size() < 4) failures.push_back("case " + std::to_string(i) + why);
+      }
+    }
+  }
+  std::string detail;
+  for (const std::string& f : failures) detail += "\n  " + f;
+  EXPECT_EQ(failed, 0) << failed << " of " << seen.cases << " poses disagree (seed " << seed << ")" << detail;
+  // The sweep sees hits, misses and touching pairs (a half-space side, or a point or segment
+  // against a mesh, may leave no miss or no touch in a short sweep: only the hits count).
+  EXPECT_GT(seen.hits, 0);
+  if (p.a != ShapeType::HalfSpace && p.b != ShapeType::HalfSpace) {
+    EXPECT_GT(seen.misses, 0);
+  }
+  if (!composite && p.a != ShapeType::HalfSpace && p.b != ShapeType::HalfSpace) {
+    EXPECT_GT(seen.touching, 0);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(EveryPair, TouchingRule, testing::ValuesIn(every_pair()), type_pair_name);
+
+// The case: a sphere and a box 9.5e-7 apart. In float that is within the pair's
+// tolerance: touching, so every query calls it a hit, and collide gives one contact of depth
+// about 0 with the same status. In double it is a gap: every query says no.
+TEST(TouchingRule, SphereNearBoxIsOneAnswerInEveryQuery) {
+  const Sphere sphere = Sphere::create(Real(0.5)).value();
+  const Box box = Box::create(Vec3(Real(1))).value();
+  const Transform pose_box{Vec3(Real(0)), Quat(Real(1), Real(0), Real(0), Real(0))};
+  const Transform pose_sphere{Vec3(Real(1.5) + Real(9.5e-7), Real(0.2), Real(-0.3)),
+                              Quat(Real(1), Real(0), Real(0), Real(0))};
+  const DistanceResult d = distance(sphere, pose_sphere, box, pose_box);
+  const bool hit = intersect(sphere, pose_sphere, box, pose_box);
+  const ContactManifold m = collide(sphere, pose_sphere, box, pose_box);
+  const bool touching = test::kFloatBuild;
+  EXPECT_EQ(d.status, touching ? PairStatus::Touching : PairStatus::Separated);
+  EXPECT_EQ(hit, touching);
+  EXPECT_EQ(m.count > 0, touching);
+  EXPECT_EQ(m.status, d.status);
+  if (m.count > 0) {
+    EXPECT_NEAR(m.points[0].depth, Real(0), d.tolerance);
+  }
+}
+
+}  // namespace test_touching_rule
+}  // namespace proxima
