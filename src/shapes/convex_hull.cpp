@@ -33,6 +33,7 @@
 #include <cmath>
 #include <limits>
 
+#include "geometry/raycast_detail.hpp"
 #include "shapes/convex_hull_data.hpp"
 
 #if defined(__SSE2__) && !PROXIMA_DOUBLE
@@ -239,12 +240,12 @@ std::optional<RayHit> ConvexHull::raycast(const Ray& ray, Real max_t) const {
     // The origin is inside (or on) the hull.
     hit.t = Real(0);
     hit.point = ray.origin;
-    const Real len2 = glm::dot(ray.direction, ray.direction);
-    if (len2 > Real(0) && std::isfinite(len2)) {
-      hit.normal = -ray.direction / std::sqrt(len2);
-    } else {
-      hit.normal = closest_point(ray.origin).normal;
-    }
+    // -direction / |direction| from the direction scaled by its largest component: the
+    // squared length of a tiny direction (1e-30 in float) underflows to 0.
+    Real length;
+    Vec3 unit;
+    hit.normal =
+        geometry::detail::length_and_direction(ray.direction, length, unit) ? -unit : closest_point(ray.origin).normal;
     return hit;
   }
   hit.t = t_enter;

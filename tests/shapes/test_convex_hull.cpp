@@ -1025,6 +1025,26 @@ TEST(ConvexHull, RaycastMatchesMarchingOnContains) {
   EXPECT_LT(grazes, 20);
 }
 
+TEST(ConvexHull, RayFromInsideKeepsMinusTheDirectionAtAnyLength) {
+  // Issue 18 (defect 4): from inside, the normal is -direction / |direction|, as for every
+  // other shape. The hull squared the direction's length, which underflows to 0 for a
+  // direction of 1e-30 in float (and overflows for 1e30), and then answered the nearest
+  // face's normal, (0.577, -0.577, -0.577) here.
+  const ConvexHull h = build({Vec3(1, 1, 1), Vec3(-1, 1, 1), Vec3(1, -1, 1), Vec3(1, 1, -1), Vec3(-1, -1, -1)});
+  const Vec3 origin(Real(0.1), Real(0), Real(0));
+  const double expected[3] = {-1.0 / std::sqrt(1.09), -0.3 / std::sqrt(1.09), 0.0};
+  for (const Real scale : {Real(1), Real(1e-30), std::numeric_limits<Real>::denorm_min() * Real(10), Real(1e30),
+                           std::numeric_limits<Real>::max() / Real(2)}) {
+    const Vec3 d = Vec3(Real(1), Real(0.3), Real(0)) * scale;
+    const auto hit = h.raycast({origin, d}, Real(1));
+    ASSERT_TRUE(hit.has_value()) << "scale " << scale;
+    EXPECT_EQ(hit->t, Real(0));
+    // A subnormal direction keeps few digits: 10 * denorm_min * 0.3 is 3 * denorm_min.
+    const double tol = scale < std::numeric_limits<Real>::min() ? 0.05 : 1e-6;
+    for (int a = 0; a < 3; ++a) EXPECT_NEAR(double(hit->normal[a]), expected[a], tol) << "scale " << scale;
+  }
+}
+
 TEST(ConvexHull, RaycastAnalyticCube) {
   const ConvexHull h = build(cube_corners(Real(1)));
   // Straight on, along an edge (grazing a face), through a corner, parallel outside.
