@@ -5,7 +5,8 @@
 /// Steps:
 ///  1. Map the convex shape into the mesh frame (relative pose) and take its box there,
 ///     inflated by the contact distance; walk the mesh BVH for the triangles whose node
-///     boxes overlap it. Degenerate triangles (Triangle::create refuses them) are skipped.
+///     boxes overlap it. A zero-area triangle (Triangle::create refuses it) counts as the
+///     set it covers: the segment between its farthest corners, or a point (FlatTriangle).
 ///  2. Per candidate, the narrow phase's Triangle-vs-shape routine (mesh = A), world frame
 ///     (collide_all first drops a triangle whose plane the shape lies wholly beyond, by two
 ///     support calls, and for a box asks the cheap separating-axis intersect).
@@ -37,11 +38,15 @@
 
 #include <proxima/core/tolerance.hpp>
 #include <proxima/narrowphase/narrowphase.hpp>
+#include <proxima/shapes/point.hpp>
+#include <proxima/shapes/segment.hpp>
 #include <proxima/shapes/triangle.hpp>
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
+#include <utility>
 
 #include "pairs_polyhedral.hpp"
 #include "shapes/shape_visit.hpp"
@@ -78,16 +83,46 @@ void walk(const TriangleMesh& mesh, Enter&& enter, Leaf&& leaf) {
   mesh.bvh().traverse(enter, leaf);
 }
 
+/// A zero-area triangle as the convex set it covers (mesh frame): the segment between its
+/// two farthest corners, or a point where the corners coincide (Segment::create refuses
+/// them too). Its queries run on that shape, so a degenerate triangle is never skipped.
+class FlatTriangle {
+ public:
+  explicit FlatTriangle(const std::array<Vec3, 3>& v) {
+    std::size_t i = 0;
+    std::size_t j = 1;
+    for (const auto& [p, q] : {std::pair<std::size_t, std::size_t>{1, 2}, {0, 2}}) {
+      if (glm::dot(v[q] - v[p], v[q] - v[p]) > glm::dot(v[j] - v[i], v[j] - v[i])) {
+        i = p;
+        j = q;
+      }
+    }
+    if (Result<Segment> s = Segment::create(v[i], v[j])) segment_ = *s;
+    at_.position = v[0];
+  }
+  /// Calls f(shape, its world pose) for the mesh at `pose_mesh`.
+  template <class F>
+  decltype(auto) visit(const Transform& pose_mesh, F&& f) const {
+    if (segment_) return f(ShapeRef(*segment_), pose_mesh);
+    return f(ShapeRef(point_), pose_mesh * at_);
+  }
+
+ private:
+  std::optional<Segment> segment_;
+  Point point_ = *Point::create();
+  Transform at_;  ///< the point's place (mesh frame)
+};
+
 /// Calls f(t, corners, triangle) for each triangle t whose BVH leaf box overlaps `box` (mesh
-/// frame), skipping degenerate triangles; f returns false to stop the walk.
-template <class F>
-void for_each_triangle_near(const TriangleMesh& mesh, const Aabb& box, F&& f) {
+/// frame), and flat(t, FlatTriangle) for a zero-area one; either returns false to stop.
+template <class F, class Flat>
+void for_each_triangle_near(const TriangleMesh& mesh, const Aabb& box, F&& f, Flat&& flat) {
   walk(
       mesh, [&](const BvhNode& n) { return n.bounds().overlaps(box); },
       [&](std::uint32_t t) {
         const std::array<Vec3, 3> v = mesh.triangle(t);
         const Result<Triangle> tri = Triangle::create(v[0], v[1], v[2]);
-        return !tri || f(t, v, *tri);
+        return tri ? f(t, v, *tri) : flat(t, FlatTriangle(v));
       });
 }
 
@@ -302,18 +337,29 @@ bool mesh_convex_intersect(const TriangleMesh& mesh, const Transform& pose_mesh,
                            const Transform& pose_convex, const PairRequest& request, PartHint* hint) {
   if (convex.type() == ShapeType::HalfSpace)
     return halfspace_intersect(mesh, pose_mesh, convex.as<HalfSpace>(), pose_convex, request);
+  const auto flat_hit = [&](const FlatTriangle& flat) {
+    return flat.visit(pose_mesh, [&](ShapeRef part, const Transform& pose_part) {
+      return intersect(part, pose_part, convex, pose_convex, request);
+    });
+  };
   if (hint != nullptr && hint->a < mesh.triangle_count()) {
     const std::array<Vec3, 3> v = mesh.triangle(hint->a);
     const Result<Triangle> tri = Triangle::create(v[0], v[1], v[2]);
-    if (tri && intersect(*tri, pose_mesh, convex, pose_convex, request)) return true;
+    if (tri ? intersect(*tri, pose_mesh, convex, pose_convex, request) : flat_hit(FlatTriangle(v))) return true;
   }
   const Aabb box = convex_box_in_mesh(convex, pose_mesh, pose_convex).inflated(cull_margin(request));
   bool hit = false;
-  for_each_triangle_near(mesh, box, [&](std::uint32_t t, const std::array<Vec3, 3>&, const Triangle& tri) {
-    hit = intersect(tri, pose_mesh, convex, pose_convex, request);
+  const auto found = [&](std::uint32_t t, bool touches) {
+    hit = touches;
     if (hit && hint != nullptr) *hint = {t, kNoIndex};
     return !hit;
-  });
+  };
+  for_each_triangle_near(
+      mesh, box,
+      [&](std::uint32_t t, const std::array<Vec3, 3>&, const Triangle& tri) {
+        return found(t, intersect(tri, pose_mesh, convex, pose_convex, request));
+      },
+      [&](std::uint32_t t, const FlatTriangle& flat) { return found(t, flat_hit(flat)); });
   return hit;
 }
 
@@ -327,9 +373,11 @@ DistanceResult mesh_convex_distance(const TriangleMesh& mesh, const Transform& p
   Real bound = cutoff;
   const auto answer = [&](std::uint32_t t) {
     const auto v = mesh.triangle(t);
-    auto tri = Triangle::create(v[0], v[1], v[2]);
-    if (!tri) return;
-    const DistanceResult r = distance(ShapeRef(*tri), pose_mesh, convex, pose_convex, request);
+    const Result<Triangle> tri = Triangle::create(v[0], v[1], v[2]);
+    const DistanceResult r = tri ? distance(ShapeRef(*tri), pose_mesh, convex, pose_convex, request)
+                                 : FlatTriangle(v).visit(pose_mesh, [&](ShapeRef part, const Transform& pose_part) {
+                                     return distance(part, pose_part, convex, pose_convex, request);
+                                   });
     if (r.signed_distance < bound || (r.signed_distance == bound && t < best.sub_a.triangle)) {
       bound = r.signed_distance;
       best = r;
@@ -371,84 +419,99 @@ void mesh_convex_collide_all(const TriangleMesh& mesh, const Transform& pose_mes
   const bool reject_box = convex.type() == ShapeType::Box;
   const Real plane_margin = cd + linear_tolerance(std::max(max_abs_component(box.min), max_abs_component(box.max)) +
                                                   max_abs_component(pose_mesh.position));
-  for_each_triangle_near(mesh, box, [&](std::uint32_t t, const std::array<Vec3, 3>& v, const Triangle& tri) {
-    const Vec3 plane_normal = pose_mesh.apply_vector(tri.normal());
-    const Vec3 plane_point = pose_mesh.apply(v[0]);
-    if (glm::dot(world_support(convex, pose_convex, -plane_normal) - plane_point, plane_normal) > plane_margin ||
-        glm::dot(world_support(convex, pose_convex, plane_normal) - plane_point, plane_normal) < -plane_margin)
-      return true;
-    if (reject_box && triangle_box_separated_beyond(tri, pose_mesh, convex.as<Box>(), pose_convex, cd)) return true;
-    const ContactManifold m = collide(tri, pose_mesh, convex, pose_convex, request);
-    if (m.count == 0) return true;
-    // Face normal turned to the shape's side (the triangle is two-sided).
-    const Vec3 n_local = pose_mesh.inverse_apply_vector(m.normal);
-    Vec3 f = tri.normal();
-    Real side = glm::dot(n_local, f);
-    if (std::abs(side) < Real(0.1)) side = glm::dot(center_local - v[0], f);
-    if (side < Real(0)) f = -f;
-    const bool face = glm::dot(n_local, f) >= face_cos;
-    const std::uint8_t active = mesh.active_edges(t);
-    const TriangleIndices& idx = tris[t];
-    bool corrected = false;  // ghost signed distance along the face normal computed yet
-    Real ghost_sd = Real(0);
-    Vec3 ghost_n(Real(0));
-    for (int i = 0; i < m.count; ++i) {
-      ContactPoint c;
-      c = m.points[i];
-      c.sub_a.triangle = t;
-      if (face) {
-        collector.add(c);
-        sc.voided.insert(sc.voided.end(), idx.begin(), idx.end());
-        continue;
-      }
-      const Feature feat = classify(v, pose_mesh.inverse_apply(c.point_a));
-      bool real = true;
-      std::uint32_t v0 = 0, v1 = 0;
-      if (feat.kind == 1) {
-        real = (active >> feat.index) & 1u;
-        v0 = idx[static_cast<std::size_t>(feat.index)];
-        v1 = idx[static_cast<std::size_t>((feat.index + 1) % 3)];
-      } else if (feat.kind == 2) {
-        v0 = v1 = idx[static_cast<std::size_t>(feat.index)];
-        real = vertex_active(mesh, t, v0);
-      }
-      if (real) {
-        collector.add(c);
-        continue;
-      }
-      // Ghost candidate: normal -> face normal, signed distance along it to the triangle.
-      // The side is the one the shape needs the shorter push to clear the plane towards
-      // (a narrow-phase normal near the plane does not say which side the shape is on).
-      if (!corrected) {
-        corrected = true;
-        ghost_n = pose_mesh.apply_vector(f);
-        const Vec3 p0 = pose_mesh.apply(v[0]);
-        Real plane_sd = glm::dot(world_support(convex, pose_convex, -ghost_n) - p0, ghost_n);
-        const Real other_sd = -glm::dot(world_support(convex, pose_convex, ghost_n) - p0, ghost_n);
-        if (other_sd > plane_sd) {
-          ghost_n = -ghost_n;
-          plane_sd = other_sd;
+  for_each_triangle_near(
+      mesh, box,
+      [&](std::uint32_t t, const std::array<Vec3, 3>& v, const Triangle& tri) {
+        const Vec3 plane_normal = pose_mesh.apply_vector(tri.normal());
+        const Vec3 plane_point = pose_mesh.apply(v[0]);
+        if (glm::dot(world_support(convex, pose_convex, -plane_normal) - plane_point, plane_normal) > plane_margin ||
+            glm::dot(world_support(convex, pose_convex, plane_normal) - plane_point, plane_normal) < -plane_margin)
+          return true;
+        if (reject_box && triangle_box_separated_beyond(tri, pose_mesh, convex.as<Box>(), pose_convex, cd)) return true;
+        const ContactManifold m = collide(tri, pose_mesh, convex, pose_convex, request);
+        if (m.count == 0) return true;
+        // Face normal turned to the shape's side (the triangle is two-sided).
+        const Vec3 n_local = pose_mesh.inverse_apply_vector(m.normal);
+        Vec3 f = tri.normal();
+        Real side = glm::dot(n_local, f);
+        if (std::abs(side) < Real(0.1)) side = glm::dot(center_local - v[0], f);
+        if (side < Real(0)) f = -f;
+        const bool face = glm::dot(n_local, f) >= face_cos;
+        const std::uint8_t active = mesh.active_edges(t);
+        const TriangleIndices& idx = tris[t];
+        bool corrected = false;  // ghost signed distance along the face normal computed yet
+        Real ghost_sd = Real(0);
+        Vec3 ghost_n(Real(0));
+        for (int i = 0; i < m.count; ++i) {
+          ContactPoint c;
+          c = m.points[i];
+          c.sub_a.triangle = t;
+          if (face) {
+            collector.add(c);
+            sc.voided.insert(sc.voided.end(), idx.begin(), idx.end());
+            continue;
+          }
+          const Feature feat = classify(v, pose_mesh.inverse_apply(c.point_a));
+          bool real = true;
+          std::uint32_t v0 = 0, v1 = 0;
+          if (feat.kind == 1) {
+            real = (active >> feat.index) & 1u;
+            v0 = idx[static_cast<std::size_t>(feat.index)];
+            v1 = idx[static_cast<std::size_t>((feat.index + 1) % 3)];
+          } else if (feat.kind == 2) {
+            v0 = v1 = idx[static_cast<std::size_t>(feat.index)];
+            real = vertex_active(mesh, t, v0);
+          }
+          if (real) {
+            collector.add(c);
+            continue;
+          }
+          // Ghost candidate: normal -> face normal, signed distance along it to the triangle.
+          // The side is the one the shape needs the shorter push to clear the plane towards
+          // (a narrow-phase normal near the plane does not say which side the shape is on).
+          if (!corrected) {
+            corrected = true;
+            ghost_n = pose_mesh.apply_vector(f);
+            const Vec3 p0 = pose_mesh.apply(v[0]);
+            Real plane_sd = glm::dot(world_support(convex, pose_convex, -ghost_n) - p0, ghost_n);
+            const Real other_sd = -glm::dot(world_support(convex, pose_convex, ghost_n) - p0, ghost_n);
+            if (other_sd > plane_sd) {
+              ghost_n = -ghost_n;
+              plane_sd = other_sd;
+            }
+            Real sd0 = kInf;
+            for (int j = 0; j < m.count; ++j) sd0 = std::min(sd0, -m.points[j].depth);
+            if (plane_sd > cd)
+              ghost_sd = plane_sd;
+            else if (reject_box)  // exact over the 13 axes
+              ghost_sd =
+                  triangle_box_directional_signed_distance(tri, pose_mesh, convex.as<Box>(), pose_convex, ghost_n);
+            else
+              ghost_sd = directional_signed_distance(tri, pose_mesh, convex, pose_convex, request, ghost_n, sd0,
+                                                     m.normal, plane_sd, cd);
+          }
+          const Vec3 fw = ghost_n;
+          const Real sd = ghost_sd;
+          if (sd > cd) continue;
+          c.normal = fw;
+          c.depth = -sd;
+          c.point_b = c.point_a + sd * fw;
+          sc.pending.push_back({c, v0, v1});
         }
-        Real sd0 = kInf;
-        for (int j = 0; j < m.count; ++j) sd0 = std::min(sd0, -m.points[j].depth);
-        if (plane_sd > cd)
-          ghost_sd = plane_sd;
-        else if (reject_box)  // exact over the 13 axes
-          ghost_sd = triangle_box_directional_signed_distance(tri, pose_mesh, convex.as<Box>(), pose_convex, ghost_n);
-        else
-          ghost_sd = directional_signed_distance(tri, pose_mesh, convex, pose_convex, request, ghost_n, sd0, m.normal,
-                                                 plane_sd, cd);
-      }
-      const Vec3 fw = ghost_n;
-      const Real sd = ghost_sd;
-      if (sd > cd) continue;
-      c.normal = fw;
-      c.depth = -sd;
-      c.point_b = c.point_a + sd * fw;
-      sc.pending.push_back({c, v0, v1});
-    }
-    return !collector.done();
-  });
+        return !collector.done();
+      },
+      [&](std::uint32_t t, const FlatTriangle& flat) {
+        // A zero-area triangle has no face and no internal edges: its contacts as they come.
+        const ContactManifold m = flat.visit(pose_mesh, [&](ShapeRef part, const Transform& pose_part) {
+          return collide(part, pose_part, convex, pose_convex, request);
+        });
+        for (int i = 0; i < m.count && !collector.done(); ++i) {
+          ContactPoint c = m.points[static_cast<std::size_t>(i)];
+          c.sub_a.triangle = t;
+          collector.add(c);
+        }
+        return !collector.done();
+      });
   if (sc.pending.empty() || collector.done()) return;
   std::sort(sc.voided.begin(), sc.voided.end());
   for (const Scratch::Pending& p : sc.pending) {

@@ -276,6 +276,36 @@ TEST(MeshConvex, NoGhostContactsSlidingOverAFlatGrid) {
   RecordProperty("raw_ghost_manifolds", raw_ghosts);
 }
 
+TEST(MeshConvex, ZeroAreaTrianglesCountAsTheSetTheyCover) {
+  // Issue 18 (defect 4): a mesh kept unrepaired whose only triangle has zero area answered
+  // distance +infinity (JSON null), no hit and no contact: degenerate triangles were
+  // skipped. They now count as the segment between their farthest corners, or a point.
+  MeshCreateOptions keep;
+  keep.repair = false;
+  const Sphere ball = Sphere::create(Real(0.1)).value();
+  // Collinear corners: the segment (0,0,0)-(2,0,0). Ball centre 2.0224 from it.
+  const TriangleMesh line = TriangleMesh::create({{Vec3(0), Vec3(1, 0, 0), Vec3(2, 0, 0)}, {{0, 1, 2}}}, keep).value();
+  Transform far;
+  far.position = Vec3(Real(0.3), Real(0.3), Real(2));
+  const DistanceResult d = distance(ShapeRef(line), Transform{}, ShapeRef(ball), far);
+  EXPECT_NEAR(double(d.signed_distance), std::sqrt(4.09) - 0.1, 1e-6);
+  EXPECT_EQ(d.sub_a.triangle, 0u);
+  EXPECT_FALSE(intersect(ShapeRef(line), Transform{}, ShapeRef(ball), far));
+  // The ball's centre 0.05 from the segment: overlapping by 0.05.
+  Transform near;
+  near.position = Vec3(Real(1.5), Real(0), Real(0.05));
+  EXPECT_TRUE(intersect(ShapeRef(line), Transform{}, ShapeRef(ball), near));
+  const ContactManifold m = collide(ShapeRef(line), Transform{}, ShapeRef(ball), near);
+  ASSERT_GE(m.count, 1);
+  EXPECT_NEAR(double(m.points[0].depth), 0.05, 1e-6);
+  EXPECT_NEAR(double(distance(ShapeRef(line), Transform{}, ShapeRef(ball), near).signed_distance), -0.05, 1e-6);
+  // Three equal corners: the point (1,1,1), 0.866 from a box of half-extent 0.5.
+  const TriangleMesh dot = TriangleMesh::create({{Vec3(1), Vec3(1), Vec3(1)}, {{0, 1, 2}}}, keep).value();
+  const Box box = Box::create(Vec3(Real(0.5))).value();
+  EXPECT_NEAR(double(distance(ShapeRef(dot), Transform{}, ShapeRef(box), Transform{}).signed_distance), std::sqrt(0.75),
+              1e-6);
+}
+
 TEST(MeshConvex, HalfSpaceAgainstMeshIsClosedFormOverVertices) {
   test::Random rng(604);
   const TriangleMesh mesh = TriangleMesh::create(test::tessellate_sphere(Real(1), 16, 8)).value();
