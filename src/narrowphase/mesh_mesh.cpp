@@ -399,15 +399,15 @@ inline geometry::ClosestPair apart_triangles(const std::array<Vec3, 3>& ta, cons
                      : geometry::closest_points_triangle_triangle(ta[0], ta[1], ta[2], tb[0], tb[1], tb[2]);
 }
 
-/// The pair test shared by the boolean and all contacts (A's frame). Within a positive
-/// contact distance it compares the same number the distance query does (apart_triangles,
-/// then the square root), so that the two agree to the last bit at the threshold.
-inline bool triangles_within(const std::array<Vec3, 3>& a, const std::array<Vec3, 3>& b, Real contact_distance,
-                             bool plain_range) {
-  if (contact_distance <= Real(0)) return geometry::triangles_intersect(a[0], a[1], a[2], b[0], b[1], b[2]);
+/// The pair test shared by the boolean and all contacts (A's frame); `nb` is B's unit
+/// normal as unit_normal gives it (a leaf holds it). Within a positive contact distance it
+/// compares the same number the distance query does (apart_triangles, then the square
+/// root), so that the two agree to the last bit at the threshold.
+inline bool triangles_within(const std::array<Vec3, 3>& a, const std::array<Vec3, 3>& b, const Vec3& nb,
+                             Real contact_distance, bool plain_range) {
   if (geometry::triangles_intersect(a[0], a[1], a[2], b[0], b[1], b[2])) return true;
-  return std::sqrt(apart_triangles(a, unit_normal(a), b, unit_normal(b), plain_range).distance_squared) <=
-         contact_distance;
+  if (contact_distance <= Real(0)) return false;
+  return std::sqrt(apart_triangles(a, unit_normal(a), b, nb, plain_range).distance_squared) <= contact_distance;
 }
 
 /// True when a pair of meshes at this scale needs no rescaling (apart_triangles).
@@ -449,7 +449,7 @@ bool find_pair_within(const TriangleMesh& a, const TriangleMesh& b, const Relati
           Aabb{glm::min(glm::min(ta[0], ta[1]), ta[2]), glm::max(glm::max(ta[0], ta[1]), ta[2])}.inflated(margin);
       for (std::uint32_t k = 0; k < leaf_b.count; ++k) {
         if (!box_a.overlaps(leaf_b.box[k])) continue;
-        if (triangles_within(ta, leaf_b.v[k], cd, plain_range)) {
+        if (triangles_within(ta, leaf_b.v[k], leaf_b.normal[k], cd, plain_range)) {
           found_a = prims_a[i];
           found_b = leaf_b.index[k];
           return false;
@@ -468,7 +468,10 @@ bool mesh_mesh_intersect(const TriangleMesh& a, const Transform& pose_a, const T
   const Real cd = request_reach(request);  // the touching rule (contact.hpp)
   const Real scale = pair_scale(a, b, f);
   const bool plain = in_plain_range(scale);
-  if (valid_pair(a, b, hint) && triangles_within(a.triangle(hint->a), b_in_a(b, f, hint->b), cd, plain)) return true;
+  if (valid_pair(a, b, hint)) {
+    const std::array<Vec3, 3> tb = b_in_a(b, f, hint->b);
+    if (triangles_within(a.triangle(hint->a), tb, unit_normal(tb), cd, plain)) return true;
+  }
   const Real margin = node_margin(scale, cd);
   std::uint32_t ta = kNoIndex;
   std::uint32_t tb = kNoIndex;
@@ -486,6 +489,7 @@ void mesh_mesh_collide_all(const TriangleMesh& a, const Transform& pose_a, const
   const Real cd = request_reach(request);  // the touching rule (contact.hpp)
   const Real scale = pair_scale(a, b, f);
   const Real margin = node_margin(scale, cd);
+  const bool plain = in_plain_range(scale);
   const auto prims_a = a.bvh().primitives();
   LeafTriangles leaf_b;
   std::uint32_t loaded = kNoIndex;
@@ -503,7 +507,7 @@ void mesh_mesh_collide_all(const TriangleMesh& a, const Transform& pose_a, const
           Aabb{glm::min(glm::min(ta[0], ta[1]), ta[2]), glm::max(glm::max(ta[0], ta[1]), ta[2])}.inflated(margin);
       for (std::uint32_t k = 0; k < leaf_b.count; ++k) {
         if (!box_a.overlaps(leaf_b.box[k])) continue;
-        if (!triangles_within(ta, leaf_b.v[k], cd, in_plain_range(scale))) continue;
+        if (!triangles_within(ta, leaf_b.v[k], leaf_b.normal[k], cd, plain)) continue;
         const std::uint32_t tri_b = leaf_b.index[k];
         const SubShapeId sub_a{kNoIndex, tri_a};
         const SubShapeId sub_b{kNoIndex, tri_b};
@@ -591,8 +595,11 @@ DistanceResult distance_descent(const TriangleMesh& a, const Transform& pose_a, 
   {
     std::uint32_t hit_a = kNoIndex;
     std::uint32_t hit_b = kNoIndex;
-    const bool hinted_touch =
-        valid_pair(a, b, hint) && triangles_within(a.triangle(hint->a), b_in_a(b, f, hint->b), Real(0), false);
+    const bool hinted_touch = valid_pair(a, b, hint) && [&] {
+      const std::array<Vec3, 3> ta = a.triangle(hint->a);
+      const std::array<Vec3, 3> tb = b_in_a(b, f, hint->b);
+      return geometry::triangles_intersect(ta[0], ta[1], ta[2], tb[0], tb[1], tb[2]);
+    }();
     if (hinted_touch) {
       hit_a = hint->a;
       hit_b = hint->b;
