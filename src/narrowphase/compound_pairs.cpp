@@ -194,8 +194,16 @@ void compound_collide_all(const Compound& a, const Transform& pa, ShapeRef b, co
 
 ContactManifold reduced_manifold(ShapeRef a, const Transform& pose_a, ShapeRef b, const Transform& pose_b,
                                  const PairRequest& request) {
+  // Per-thread scratch, reserved on a thread's first use: a step on a pool hands each pair
+  // to whichever thread is free, so growing to each thread's largest manifold so far would
+  // allocate at random steps (seen: WorldAllocations.SteadyStateStepAllocatesNothingOnAPool).
+  constexpr std::size_t kReserved = 512;
   thread_local ContactVector all;
   thread_local std::vector<ContactPoint> candidates;
+  if (all.contacts.capacity() < kReserved) {
+    all.contacts.reserve(kReserved);
+    candidates.reserve(kReserved);
+  }
   all.contacts.clear();
   candidates.clear();
   collide_all(a, pose_a, b, pose_b, request, all);

@@ -228,7 +228,7 @@ Real directional_signed_distance(const Triangle& tri, const Transform& pose_mesh
   return -Real(0.5) * (lo + hi);
 }
 
-/// Per-thread scratch for collide_all (grows to the largest query, then allocation-free).
+/// Per-thread scratch for collide_all (reserved for 512 contacts, grows beyond).
 struct Scratch {
   struct Pending {
     ContactPoint contact;
@@ -240,7 +240,14 @@ struct Scratch {
 };
 
 Scratch& scratch() {
+  // Reserved on a thread's first use, for the same reason as reduced_manifold's scratch: a
+  // pool hands a pair to any thread, so per-thread growth would allocate at random steps.
+  constexpr std::size_t kReserved = 512;
   thread_local Scratch s;
+  if (s.pending.capacity() < kReserved) {
+    s.pending.reserve(kReserved);
+    s.voided.reserve(3 * kReserved);
+  }
   return s;
 }
 
