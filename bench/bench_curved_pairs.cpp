@@ -1,6 +1,7 @@
-// The closed-form curved pairs (sphere-cylinder, sphere-cone) against the generic GJK / EPA
-// path they replaced, on the same seeded poses: 4,096 pairs per shape kind (a sphere of
-// radius 0.2..1 and a cylinder or cone of radius and half length 0.2..1.5, B's centre
+// The closed-form curved pairs (sphere-cylinder, sphere-cone, sphere-ellipsoid) against the
+// generic GJK / EPA path they replaced, on the same seeded poses: 4,096 pairs per shape kind
+// (a sphere of radius 0.2..1 and a cylinder or cone of radius and half length 0.2..1.5, or an
+// ellipsoid of radii 0.2..1.5, B's centre
 // within 1.8 of A's, so that about half overlap), each query kind through the public entry
 // (`intersect`, `distance`, `collide`: the closed form) and through narrow::generic_distance
 // / generic_intersect (GJK, EPA on overlaps, its refinement). Reports ns per query and the
@@ -33,13 +34,27 @@ struct CurvedPair {
   Transform pose_b;
 };
 
+/// A cylinder or cone of radius and half length 0.2..1.5.
+template <class B>
+B random_curved(proxima::test::Random& rng) {
+  return B::create(rng.uniform(Real(0.2), Real(1.5)), rng.uniform(Real(0.2), Real(1.5))).value();
+}
+
+/// An ellipsoid of radii 0.2..1.5.
+template <>
+proxima::Ellipsoid random_curved<proxima::Ellipsoid>(proxima::test::Random& rng) {
+  const proxima::Vec3 radii(rng.uniform(Real(0.2), Real(1.5)), rng.uniform(Real(0.2), Real(1.5)),
+                            rng.uniform(Real(0.2), Real(1.5)));
+  return proxima::Ellipsoid::create(radii).value();
+}
+
 template <class B>
 std::vector<CurvedPair<B>> make_pairs(std::uint64_t seed) {
   proxima::test::Random rng(seed);
   std::vector<CurvedPair<B>> pairs;
   for (int i = 0; i < 4096; ++i) {
     const proxima::Sphere a = proxima::Sphere::create(rng.uniform(Real(0.2), Real(1))).value();
-    const B b = B::create(rng.uniform(Real(0.2), Real(1.5)), rng.uniform(Real(0.2), Real(1.5))).value();
+    const B b = random_curved<B>(rng);
     const Transform pa = rng.pose(Real(0.9));
     const Transform pb = rng.pose(Real(0.9));
     pairs.push_back({a, pa, b, pb});
@@ -95,6 +110,7 @@ void register_kind(const std::string& name, std::uint64_t seed) {
 bool register_curved(const std::string& /*dir*/) {
   register_kind<proxima::Cylinder>("SphereCylinder", 901);
   register_kind<proxima::Cone>("SphereCone", 902);
+  register_kind<proxima::Ellipsoid>("SphereEllipsoid", 903);
   return true;
 }
 

@@ -18,7 +18,7 @@ inline const char* status_name(PairStatus status) {
   return "unknown";
 }
 
-/// "analytic", "gjk", "epa", "sat", "support".
+/// "analytic", "gjk", "epa", "sat", "support", "closest_point".
 inline const char* method_name(PairMethod method) {
   switch (method) {
     case PairMethod::Analytic: return "analytic";
@@ -26,6 +26,7 @@ inline const char* method_name(PairMethod method) {
     case PairMethod::Epa: return "epa";
     case PairMethod::Sat: return "sat";
     case PairMethod::Support: return "support";
+    case PairMethod::ClosestPoint: return "closest_point";
   }
   return "unknown";
 }

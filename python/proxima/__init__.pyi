@@ -378,6 +378,7 @@ class PairMethod:
     Epa: PairMethod
     Sat: PairMethod
     Support: PairMethod
+    ClosestPoint: PairMethod
     def __int__(self) -> int: ...
     @property
     def name(self) -> str: ...

@@ -107,7 +107,8 @@ void bind_enums(py::module_& m) {
       .value("Gjk", PairMethod::Gjk)
       .value("Epa", PairMethod::Epa)
       .value("Sat", PairMethod::Sat)
-      .value("Support", PairMethod::Support);
+      .value("Support", PairMethod::Support)
+      .value("ClosestPoint", PairMethod::ClosestPoint);
   py::enum_<CcdStatus>(m, "CcdStatus", "How a time-of-impact or cast query ended.")
       .value("Hit", CcdStatus::Hit)
       .value("Separated", CcdStatus::Separated)

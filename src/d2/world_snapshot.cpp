@@ -351,7 +351,7 @@ void read_manifold(Reader& r, const detail::WorldState& w, WorldManifold& m) {
   f.part_a = static_cast<PartIndex>(r.u32());
   f.part_b = static_cast<PartIndex>(r.u32());
   f.count = static_cast<int>(r.count(kPointBytes));
-  bool good = method <= std::uint8_t(PairMethod::Support) && f.count >= 1 && f.count <= kMaxManifoldPoints &&
+  bool good = method <= std::uint8_t(PairMethod::ClosestPoint) && f.count >= 1 && f.count <= kMaxManifoldPoints &&
               f.part_a >= -1 && f.part_b >= -1 && finite(f.normal) && known(w, m.pair.a) && known(w, m.pair.b) &&
               m.pair.a < m.pair.b;
   for (int k = 0; k < f.count && k < kMaxManifoldPoints && r.ok(); ++k) {

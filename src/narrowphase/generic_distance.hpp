@@ -8,7 +8,11 @@
 ///      distance = |v| - r_A - r_B, witnesses moved by the radii along the normal;
 ///   3. a ladder of stages, the first that answers wins (GenericStage names it):
 ///      a. SatAtGjkCap: polytopes whose GJK hit its cap: the SAT, when it proves an overlap;
-///      b. GjkDistance: the cores are apart: GJK's answer;
+///      b. CoreClosestPoint: GJK's answer is not certified (its duality gap is open, or the
+///         cores touch, or a point core lies inside the other shape) and one core is a
+///         point, segment or triangle: the exact minimum of the other shape's signed
+///         distance over that core (core_closest_point.hpp), where it is exact;
+///      b'. GjkDistance: the cores are apart: GJK's answer;
 ///      c. Epa / InflatedEpa: the cores overlap: EPA from GJK's simplex (on cores inflated by
 ///         a small ball when they only touch, or when that beats an EPA stopped by rounding),
 ///         refined by epa::refine on curved pairs; it answers when it converged (or, on a
@@ -35,6 +39,7 @@
 #include <limits>
 #include <type_traits>
 
+#include "core_closest_point.hpp"
 #include "pair_support.hpp"
 #include "polytope_sat.hpp"
 #include "support_binding.hpp"
@@ -44,14 +49,16 @@ namespace proxima::narrow {
 /// The stage of the generic ladder that gave an answer (see the file comment). The answer's
 /// PairMethod names the algorithm only; this says which rung of the ladder answered.
 enum class GenericStage : std::uint8_t {
-  NotRun,          ///< no stage ran (a pose was not finite: status InvalidInput)
-  SatAtGjkCap,     ///< polytopes, GJK at its cap: the SAT proved an overlap (method Sat)
-  GjkDistance,     ///< the cores are apart: GJK's distance (method Gjk)
-  Epa,             ///< the cores overlap: EPA on the cores, refined on curved pairs (method Epa)
-  InflatedEpa,     ///< EPA on the cores inflated by a small ball (touching cores, or a better bound) (method Epa)
-  SatFallback,     ///< polytopes, EPA failed or stopped at its cap: the SAT's depth (method Sat)
-  CoreRefinement,  ///< D too thin for EPA: epa::refine from GJK's direction (method Epa)
-  GjkCoreContact,  ///< nothing else answered: GJK's core contact, status Degenerate (method Gjk)
+  NotRun,            ///< no stage ran (a pose was not finite: status InvalidInput)
+  SatAtGjkCap,       ///< polytopes, GJK at its cap: the SAT proved an overlap (method Sat)
+  CoreClosestPoint,  ///< a point, segment or triangle core against the other shape's closest point (method
+                     ///< ClosestPoint)
+  GjkDistance,       ///< the cores are apart: GJK's distance (method Gjk)
+  Epa,               ///< the cores overlap: EPA on the cores, refined on curved pairs (method Epa)
+  InflatedEpa,       ///< EPA on the cores inflated by a small ball (touching cores, or a better bound) (method Epa)
+  SatFallback,       ///< polytopes, EPA failed or stopped at its cap: the SAT's depth (method Sat)
+  CoreRefinement,    ///< D too thin for EPA: epa::refine from GJK's direction (method Epa)
+  GjkCoreContact,    ///< nothing else answered: GJK's core contact, status Degenerate (method Gjk)
 };
 
 /// Name of a stage, for messages.
@@ -59,6 +66,7 @@ constexpr const char* to_string(GenericStage s) {
   switch (s) {
     case GenericStage::NotRun: return "NotRun";
     case GenericStage::SatAtGjkCap: return "SatAtGjkCap";
+    case GenericStage::CoreClosestPoint: return "CoreClosestPoint";
     case GenericStage::GjkDistance: return "GjkDistance";
     case GenericStage::Epa: return "Epa";
     case GenericStage::InflatedEpa: return "InflatedEpa";
@@ -249,7 +257,100 @@ bool sat_at_gjk_cap(Ladder<A, B>& l) {
   }
 }
 
-/// Stage b: the cores are apart (beyond rounding): GJK's distance minus the radii.
+/// True when the pair has a point, segment or triangle core on a side (core_closest_point.hpp).
+template <class A, class B>
+inline constexpr bool kHasSimpleCore = SimpleCore<A>::kCount != 0 || SimpleCore<B>::kCount != 0;
+
+/// The side searched by the core stage: A's core when it is simple and has no more vertices
+/// than B's (a point before a segment before a triangle), else B's.
+template <class A, class B>
+inline constexpr bool kCoreStageOnA = SimpleCore<A>::kCount != 0 &&
+                                      (SimpleCore<B>::kCount == 0 || SimpleCore<A>::kCount <= SimpleCore<B>::kCount);
+
+/// The least signed distance of the other shape X over the searched core (A's frame), and
+/// the core's radius.
+struct CoreSearch {
+  CoreClosest closest;  ///< the core's point nearest X, X's closest point and normal
+  Real radius;          ///< the searched core's radius
+};
+
+/// Runs core_closest_point on the side kCoreStageOnA names, X placed in A's frame.
+template <class A, class B>
+CoreSearch search_simple_core(const Ladder<A, B>& l) {
+  const auto& m = l.setup.support_b;
+  if constexpr (kCoreStageOnA<A, B>) {
+    const PlacedShape<B> x{l.b, m.rotation, m.rotation_t, m.translation};
+    return {core_closest_point(x, SimpleCore<A>::vertices(l.a)), l.setup.radius_a};
+  } else {
+    auto v = SimpleCore<B>::vertices(l.b);
+    for (Vec3& p : v) p = m.rotation * p + m.translation;
+    const PlacedShape<A> x{l.a, Mat3(Real(1)), Mat3(Real(1)), Vec3(Real(0))};
+    return {core_closest_point(x, v), l.setup.radius_b};
+  }
+}
+
+/// The core stage's answer from its search, along normal n (A to B). `exact_witnesses`:
+/// the core's point and X's closest point, else (touching) X's point and the other placed
+/// along n so that point_b = point_a + signed_distance n.
+template <class A, class B>
+void answer_from_core(Ladder<A, B>& l, const CoreSearch& c, const Vec3& n, bool exact_witnesses) {
+  constexpr bool kOnA = kCoreStageOnA<A, B>;
+  l.ans.normal = n;
+  l.ans.signed_distance = c.closest.signed_distance - c.radius;
+  const Vec3 core_surface = c.closest.core_point + (kOnA ? c.radius : -c.radius) * n;
+  l.ans.point_a = kOnA ? core_surface : c.closest.surface_point;
+  l.ans.point_b = kOnA ? c.closest.surface_point : core_surface;
+  if (!exact_witnesses) {
+    if (kOnA)
+      l.ans.point_b = l.ans.point_a + l.ans.signed_distance * n;
+    else
+      l.ans.point_a = l.ans.point_b - l.ans.signed_distance * n;
+  }
+  l.ans.method = PairMethod::ClosestPoint;
+  l.ans.status = status_from_distance(l.ans.signed_distance, l.setup.tolerance);
+  l.ans.stage = GenericStage::CoreClosestPoint;
+}
+
+/// Stage b: GJK's answer is not certified (its gap is open, the cores touch, or it hit its
+/// cap) and a side's core is a point, segment or triangle: the least signed distance of the
+/// other shape X over that core (core_closest_point.hpp). A point core answers always (its
+/// distance or depth is exact). A segment or triangle core answers when apart beyond the
+/// tolerance; within it, where GJK stalled above it, as touching along GJK's direction -v
+/// (X's normal at the contact may be any of its normal cone, a rim's or a segment's, where
+/// the answer needs one across the core too). It leaves to the stages below a core through
+/// X (deeper than its deepest point), cores GJK finds touching or overlapping, and a least
+/// sd above GJK's upper bound |v| (X through the interior of a triangle whose edges stay
+/// outside).
+template <class A, class B>
+bool core_closest(Ladder<A, B>& l) {
+  if constexpr (!kHasSimpleCore<A, B>) {
+    (void)l;
+    return false;
+  } else {
+    constexpr bool kPointCore = (kCoreStageOnA<A, B> ? SimpleCore<A>::kCount : SimpleCore<B>::kCount) == 1;
+    const gjk::Outcome& g = l.core;
+    const Real tolerance = l.setup.tolerance;
+    const bool overlapping = g.status == gjk::Status::Overlapping;
+    const bool apart = !overlapping && g.distance > Real(16) * kEpsilon * l.setup.scale;
+    if (apart && g.status != gjk::Status::MaxIterations && g.distance - g.lower_bound <= Real(0.25) * tolerance)
+      return false;  // certified by GJK's duality gap
+    if (overlapping && !kPointCore) return false;
+    const CoreSearch c = search_simple_core(l);
+    const Real sd = c.closest.signed_distance;
+    if (!std::isfinite(sd)) return false;
+    // X's outward normal points from X to the core: B to A when the core is A's.
+    const Vec3 n = kCoreStageOnA<A, B> ? -c.closest.normal : c.closest.normal;
+    if (kPointCore || (sd > tolerance && sd <= g.distance + tolerance)) {
+      answer_from_core(l, c, n, true);
+      return true;
+    }
+    if (!apart || !(std::abs(sd) <= tolerance)) return false;
+    answer_from_core(l, c, -g.v / g.distance, false);
+    return true;
+  }
+}
+
+/// Stage b': the cores are apart (beyond rounding): GJK's distance minus the radii.
 template <class A, class B>
 bool gjk_distance(Ladder<A, B>& l) {
   const gjk::Outcome& g = l.core;
@@ -441,7 +542,7 @@ void gjk_core_contact(Ladder<A, B>& l, const Vec3& n) {
 template <class A, class B>
 LocalAnswer solve(const A& a, const B& b, PairSetup<A, B>& setup, const PairRequest& request) {
   Ladder<A, B> l(a, b, setup, request);
-  if (sat_at_gjk_cap(l) || gjk_distance(l)) return l.ans;
+  if (sat_at_gjk_cap(l) || core_closest(l) || gjk_distance(l)) return l.ans;
   const EpaRun run = run_epa(l);
   if (epa_answer(l, run) || sat_fallback(l, run.outcome)) return l.ans;
   const Vec3 n = unit_or(-l.core.v, setup.axis);

@@ -5,11 +5,11 @@
 /// pair_distance, pair_collide and the trait kAnalyticPair<A, B> = true.
 ///
 /// Rounded pairs: a sphere (point core) or capsule (segment core) against a sphere, capsule,
-/// box or triangle, a sphere against a cylinder or a cone, and a segment against a segment (a capsule core without
-/// radius). Each routine finds the closest points of the cores with the geometry/closest_points.hpp routines and adds
-/// the radii; when the cores touch or overlap, the penetration direction comes from the pair's closed form (deepest box
-/// face, separating-axis test of segment against box or triangle, common normal of crossing segments). All O(1), no
-/// allocation.
+/// box or triangle, a sphere against a cylinder, a cone or an ellipsoid, and a segment against a segment (a capsule
+/// core without radius). Each routine finds the closest points of the cores with the geometry/closest_points.hpp
+/// routines and adds the radii; when the cores touch or overlap, the penetration direction comes from the pair's closed
+/// form (deepest box face, separating-axis test of segment against box or triangle, common normal of crossing
+/// segments). All O(1), no allocation.
 ///
 /// Degenerate configurations get a deterministic normal, never NaN. Cores closer than the
 /// pair's tolerance (request.tolerance, else linear_tolerance of the pair's scale) count as
@@ -74,6 +74,9 @@ PROXIMA_ROUNDED_PAIR(Sphere, Cylinder)
 // Sphere against cone: closest point of the cone's meridian triangle to the centre; normals
 // from the base and slant lines. Manifold: one point.
 PROXIMA_ROUNDED_PAIR(Sphere, Cone)
+// Sphere against ellipsoid: the ellipsoid's closest point to the centre (Eberly's robust 1-D
+// root finder); the normal is the ellipsoid's gradient there. Manifold: one point.
+PROXIMA_ROUNDED_PAIR(Sphere, Ellipsoid)
 // Capsule against box: exact segment-box closest points (piecewise quadratic minimisation);
 // segment-box SAT (3 face axes, 3 edge axes) when the core touches the box. Manifold: two
 // points (the core clipped to the face) when the contact normal is a face normal and both

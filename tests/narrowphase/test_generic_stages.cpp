@@ -44,6 +44,7 @@ PairMethod method_of(GenericStage s) {
     case GenericStage::Epa:
     case GenericStage::InflatedEpa:
     case GenericStage::CoreRefinement: return PairMethod::Epa;
+    case GenericStage::CoreClosestPoint: return PairMethod::ClosestPoint;
     case GenericStage::GjkDistance:
     case GenericStage::GjkCoreContact:
     case GenericStage::NotRun: return PairMethod::Gjk;
@@ -78,14 +79,39 @@ TEST(GenericStages, OverlappingCoresAnswerByEpa) {
   EXPECT_LT(s.result.signed_distance, Real(-0.5));
 }
 
-TEST(GenericStages, PointCoreInsideCylinderAnswersByInflatedEpa) {
-  // A point inside the cylinder: GJK's simplex never holds the origin in a tetrahedron.
+TEST(GenericStages, PointCoreInsideCylinderAnswersByItsClosestPoint) {
+  // A point inside the cylinder: GJK's simplex never holds the origin in a tetrahedron, and
+  // the depth of a point is the cylinder's own closest-point answer.
   const Cylinder cyl = Cylinder::create(Real(0.4), Real(0.5)).value();
   const Point point = Point::create().value();
   const auto s = generic_distance_staged(cyl, Transform{}, point, at(Vec3(0.1, 0, 0)), {}, nullptr);
-  EXPECT_EQ(s.stage, GenericStage::InflatedEpa);
+  EXPECT_EQ(s.stage, GenericStage::CoreClosestPoint);
+  EXPECT_EQ(s.result.method, PairMethod::ClosestPoint);
+  EXPECT_NEAR(s.result.signed_distance, -0.3, tol_at(1));
+  EXPECT_NEAR(s.result.normal.x, 1, tol_at(1));  // B moves out through the barrel
+}
+
+TEST(GenericStages, SegmentOverACylinderRimGetsTheExactDistance) {
+  // A segment along y over the rim of a cylinder, through (0.4 + c, 0, 0.5 + c): its distance
+  // to the rim circle is sqrt(2) c at y = 0. GJK's simplex between the segment's ends turns
+  // into a sliver near contact; the minimum of the cylinder's distance along the segment is
+  // exact to rounding.
+  const Cylinder cyl = Cylinder::create(Real(0.4), Real(0.5)).value();
+  const Segment seg = Segment::create(Vec3(0, -0.7, 0), Vec3(0, 0.3, 0)).value();
+  for (const Real g : {Real(1e-3), Real(1e-5), Real(1e-7)}) {
+    const Real c = g / std::sqrt(Real(2));
+    const auto s =
+        generic_distance_staged(cyl, Transform{}, seg, at(Vec3(Real(0.4) + c, 0, Real(0.5) + c)), {}, nullptr);
+    EXPECT_NEAR(s.result.signed_distance, g, Real(64) * kEpsilon) << "gap " << g << " stage " << to_string(s.stage);
+  }
+}
+
+TEST(GenericStages, TouchingPolytopeCoresAnswerByInflatedEpa) {
+  // Two cubes face to face: the cores touch exactly, GJK cannot enclose the origin.
+  const auto s = generic_distance_staged(cube(), Transform{}, cube(), at(Vec3(1, 0.2, 0.1)), {}, nullptr);
+  EXPECT_EQ(s.stage, GenericStage::InflatedEpa) << to_string(s.stage);
   EXPECT_EQ(s.result.method, PairMethod::Epa);
-  EXPECT_NEAR(s.result.signed_distance, -0.3, Real(2e-3));
+  EXPECT_NEAR(s.result.signed_distance, 0, tol_at(1));
 }
 
 TEST(GenericStages, PolytopesUnderStarvedGjkOrEpaAnswerBySat) {

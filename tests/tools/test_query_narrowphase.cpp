@@ -159,7 +159,7 @@ TEST(QueryNarrowphase, EveryPairOfTypesAnswers) {
   };
   const std::set<std::string> statuses = {"separated",      "touching",   "penetrating",
                                           "max_iterations", "degenerate", "invalid_input"};
-  const std::set<std::string> methods = {"analytic", "gjk", "epa", "sat", "support"};
+  const std::set<std::string> methods = {"analytic", "gjk", "epa", "sat", "support", "closest_point"};
   for (const Json& sa : shapes) {
     for (const Json& sb : shapes) {
       for (const D3& offset : {D3{0.3, 0.2, 0.1}, D3{3, 0, 0}}) {

@@ -14,7 +14,8 @@
 ///      "Improving the GJK algorithm for faster and more reliable distance queries between
 ///      convex objects", ACM TOG 2017): barycentric coordinates are ratios of signed
 ///      volumes / areas / lengths over the largest projection, so no tiny determinant is
-///      ever divided by; a degenerate simplex falls back to its faces;
+///      ever divided by; a degenerate simplex falls back to its faces; the weights are the
+///      signed measures over their own sum, so they sum to 1 to rounding on slivers too;
 ///   4. a full tetrahedron holding the origin means the sets overlap (EPA takes over).
 /// The Nesterov variant (Montaut, Le Lidec, Petrik, Sivic, Carpentier, "Collision detection
 /// accelerated: an optimization perspective", RSS 2022) queries the support at a momentum
@@ -152,10 +153,13 @@ T solve_1d(const BasicVertex<T>& s0, const BasicVertex<T>& s1, BasicSimplex<T>& 
   const T c0 = p0[axis] - s1.w[axis];  // weight of s0 times mu
   const T c1 = s0.w[axis] - p0[axis];  // weight of s1 times mu
   if (same_sign(mu, c0) && same_sign(mu, c1)) {
+    // Divided by their own sum (mu in exact arithmetic), so that the weights sum to 1 to
+    // rounding: v is then a convex combination of the vertices, |v| a true upper bound.
+    const T sum = c0 + c1;
     out.v[0] = s0;
     out.v[1] = s1;
-    out.lambda[0] = c0 / mu;
-    out.lambda[1] = c1 / mu;
+    out.lambda[0] = c0 / sum;
+    out.lambda[1] = c1 / sum;
     out.size = 2;
     const V3 v = out.lambda[0] * s0.w + out.lambda[1] * s1.w;
     return glm::dot(v, v);
@@ -201,12 +205,16 @@ T solve_2d(const BasicVertex<T>& s0, const BasicVertex<T>& s1, const BasicVertex
     const bool in1 = same_sign(mu, c1);
     const bool in2 = same_sign(mu, c2);
     if (in0 && in1 && in2) {
+      // Divided by their own sum, not by mu: on a sliver (two vertices close together) the
+      // areas about p0 and the cross product round differently, and weights over mu were
+      // seen to sum to 1 - 7e-10, putting v off the simplex and |v| below the distance.
+      const T sum = c0 + c1 + c2;
       out.v[0] = s0;
       out.v[1] = s1;
       out.v[2] = s2;
-      out.lambda[0] = c0 / mu;
-      out.lambda[1] = c1 / mu;
-      out.lambda[2] = c2 / mu;
+      out.lambda[0] = c0 / sum;
+      out.lambda[1] = c1 / sum;
+      out.lambda[2] = c2 / sum;
       out.size = 3;
       const V3 v = out.lambda[0] * s0.w + out.lambda[1] * s1.w + out.lambda[2] * s2.w;
       return glm::dot(v, v);

@@ -38,11 +38,12 @@ enum class PairStatus : std::uint8_t {
 
 /// Which algorithm produced the answer (for diagnostics, tests and benchmarks).
 enum class PairMethod : std::uint8_t {
-  Analytic,  ///< a closed-form routine written for this pair
-  Gjk,       ///< GJK (plain or accelerated) on the cores, radii added
-  Epa,       ///< GJK, then EPA for the penetration
-  Sat,       ///< separating-axis test over face normals and edge pairs
-  Support,   ///< half-space against a support mapping
+  Analytic,      ///< a closed-form routine written for this pair
+  Gjk,           ///< GJK (plain or accelerated) on the cores, radii added
+  Epa,           ///< GJK, then EPA for the penetration
+  Sat,           ///< separating-axis test over face normals and edge pairs
+  Support,       ///< half-space against a support mapping
+  ClosestPoint,  ///< a point, segment or triangle core against the other shape's closest-point query
 };
 
 /// Options for every narrow-phase query. Defaults suit a real-time world in metres.

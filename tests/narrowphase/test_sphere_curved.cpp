@@ -1,12 +1,14 @@
-// Tests of the closed-form sphere-cylinder and sphere-cone routines: seeded sweeps at random
-// poses (near the origin and far from it) against a long double reference written
-// independently of the routines (the distance of the centre to the shape's meridian polygon
-// as the minimum over its edges, in long double, and the depth inside as the nearest
-// surface face), both the signed distance and the normal; the common convention checks
-// (pair_check.hpp: witnesses, sampled minimum overlap, flip of intersect, manifold);
-// self-consistency (the overlap along the reported normal equals the depth); and the named
-// regressions of the exactness issue: a sphere inside a cylinder near its barrel, and a small
-// sphere over a wide thin disc (the normal is the disc's axis however far from the centre).
+// Tests of the closed-form sphere-cylinder, sphere-cone and sphere-ellipsoid routines: seeded
+// sweeps at random poses (near the origin and far from it) against long double references
+// written independently of the routines (cylinder and cone: the distance of the centre to
+// the shape's meridian polygon as the minimum over its edges, and the depth inside as the
+// nearest surface face; ellipsoid: the Lagrange condition x_i = e_i^2 y_i / (t + e_i^2) with
+// its one root t > -min e_i^2 by plain bisection in long double), both the signed distance
+// and the normal; the common convention checks (pair_check.hpp: witnesses, sampled minimum
+// overlap, flip of intersect, manifold); self-consistency (the overlap along the reported
+// normal equals the depth); and the named regressions of the exactness issue: a sphere
+// inside a cylinder near its barrel, and a small sphere over a wide thin disc (the normal is
+// the disc's axis however far from the centre).
 #include <gtest/gtest.h>
 
 #include <proxima/narrowphase/contact.hpp>
@@ -21,7 +23,7 @@
 #include "sweep_size.hpp"
 
 namespace proxima {
-namespace test_sphere_cylinder_cone {
+namespace test_sphere_curved {
 
 using test::LD;
 using test::LVec;
@@ -111,6 +113,59 @@ RefAnswer reference(const Cone& b, const LVec& c) {
   return meridian_reference(c, edges, outward, inside);
 }
 
+// The ellipsoid's reference: the nearest point x of the surface sum (x_i / e_i)^2 = 1 to y
+// satisfies x_i = e_i^2 y_i / (t + e_i^2) for the one root t > -min e_i^2 of
+// F(t) = sum (e_i y_i / (t + e_i^2))^2 - 1 (F falls from +inf to -1 there), found by
+// bisection in long double. Ambiguous where the centre lies within 1e-4 of the plane of the
+// two larger axes inside (the nearest point is then not unique or F has no root there) or
+// within 1e-4 of the surface (the direction y - x is ill-conditioned).
+RefAnswer reference(const Ellipsoid& b, const LVec& y) {
+  const LVec e(b.radii().x, b.radii().y, b.radii().z);
+  const LD e_min = std::min({e.x, e.y, e.z});
+  const auto F = [&](LD t) {
+    LD f = -1;
+    for (int i = 0; i < 3; ++i) {
+      const LD q = e[i] * y[i] / (t + e[i] * e[i]);
+      f += q * q;
+    }
+    return f;
+  };
+  LD lo = -e_min * e_min;
+  LD hi = std::max(LD(1), test::lnorm(y)) * std::max({e.x, e.y, e.z}) * 4;
+  while (F(hi) > 0) hi *= 2;
+  for (int k = 0; k < 400 && hi - lo > 0; ++k) {
+    const LD mid = lo + (hi - lo) / 2;
+    if (mid <= lo || mid >= hi) break;
+    (F(mid) > 0 ? lo : hi) = mid;
+  }
+  const LD t = (lo + hi) / 2;
+  LVec x;
+  for (int i = 0; i < 3; ++i) x[i] = e[i] * e[i] * y[i] / (t + e[i] * e[i]);
+  const bool inside = (y.x / e.x) * (y.x / e.x) + (y.y / e.y) * (y.y / e.y) + (y.z / e.z) * (y.z / e.z) < 1;
+  RefAnswer a;
+  const LD dist = test::lnorm(y - x);
+  a.core = inside ? -dist : dist;
+  LVec grad(x.x / (e.x * e.x), x.y / (e.y * e.y), x.z / (e.z * e.z));
+  a.normal = -grad / test::lnorm(grad);  // from the sphere towards the ellipsoid
+  int minor = 0;
+  for (int i = 1; i < 3; ++i)
+    if (e[i] < e[minor]) minor = i;
+  a.ambiguous = dist < 1e-4L || (inside && std::abs(y[minor]) < 1e-4L);
+  return a;
+}
+
+// The largest extent of the shape, for the pair's size.
+Real extent(const Cylinder& b) { return std::max(b.radius(), b.half_length()); }
+Real extent(const Cone& b) { return std::max(b.radius(), b.half_length()); }
+Real extent(const Ellipsoid& b) { return max_abs_component(b.radii()); }
+
+// The smallest distance from the shape's axis that keeps the reference's radial direction
+// well conditioned: the centre's distance from the axis (cylinder, cone), 1 for the
+// ellipsoid (no axis).
+LD axis_lever(const Cylinder& /*b*/, const LVec& c) { return std::sqrt(c.x * c.x + c.y * c.y); }
+LD axis_lever(const Cone& /*b*/, const LVec& c) { return std::sqrt(c.x * c.x + c.y * c.y); }
+LD axis_lever(const Ellipsoid& /*b*/, const LVec& /*c*/) { return 1; }
+
 Transform random_pose(test::Random& rng, const Vec3& centre, Real extent) {
   Transform t = rng.pose(extent);
   t.position += centre;
@@ -122,7 +177,7 @@ Transform random_pose(test::Random& rng, const Vec3& centre, Real extent) {
 template <class B>
 void check_case(const Sphere& a, const Transform& pa, const B& b, const Transform& pb, Real cd,
                 const std::string& ctx) {
-  const Real size = a.radius() + std::max(b.radius(), b.half_length());
+  const Real size = a.radius() + extent(b);
   const Real far = std::max(max_abs_component(pa.position), max_abs_component(pb.position));
   const Real tol = test::pair_tol(far + size);
   const test::LPose lb(pb);
@@ -139,8 +194,7 @@ void check_case(const Sphere& a, const Transform& pa, const B& b, const Transfor
     // the origin, which turns the radial direction by that over rho (over the distance to a
     // rim or apex outside).
     const LVec c = lb.to_local(test::ld(pa.position));
-    const LD rho = std::sqrt(c.x * c.x + c.y * c.y);
-    const LD lever = std::min({LD(1), rho, ref.core > 0 ? ref.core : LD(1)});
+    const LD lever = std::min({LD(1), axis_lever(b, c), ref.core > 0 ? ref.core : LD(1)});
     const LD bound = 64.0L * LD(kEpsilon) * (1 + LD(far)) / lever;
     const LD err = test::lnorm(test::ld(d.normal) - n_world);
     EXPECT_LE(double(err), double(bound)) << ctx << " normal error " << double(err);
@@ -150,30 +204,61 @@ void check_case(const Sphere& a, const Transform& pa, const B& b, const Transfor
 constexpr int kSweep = 2000;
 const Vec3 kCentres[2] = {Vec3(Real(0)), Vec3(Real(300), Real(-200), Real(100))};
 
-TEST(SphereCylinderCone, SphereCylinderSweep) {
-  test::Random rng(301);
+// kSweep random spheres against shapes from make_b, half near the origin, half far from it.
+template <class MakeB>
+void sweep(std::uint64_t seed, const std::string& name, MakeB make_b) {
+  test::Random rng(seed);
   const int n = test::sweep_size(kSweep);
   for (int i = 0; i < n; ++i) {
     const Vec3 c = kCentres[i % 2];
     const Sphere a = Sphere::create(rng.uniform(Real(0.05), Real(1.2))).value();
-    const Cylinder b = Cylinder::create(rng.uniform(Real(0.1), Real(1.5)), rng.uniform(Real(0.02), Real(1.5))).value();
+    const auto b = make_b(rng);
     const Transform pa = random_pose(rng, c, Real(1.5));
     const Transform pb = random_pose(rng, c, Real(1.5));
-    check_case(a, pa, b, pb, rng.uniform(Real(0), Real(0.2)), "sphere-cylinder " + std::to_string(i));
+    check_case(a, pa, b, pb, rng.uniform(Real(0), Real(0.2)), name + " " + std::to_string(i));
   }
 }
 
+TEST(SphereCylinderCone, SphereCylinderSweep) {
+  sweep(301, "sphere-cylinder", [](test::Random& rng) {
+    return Cylinder::create(rng.uniform(Real(0.1), Real(1.5)), rng.uniform(Real(0.02), Real(1.5))).value();
+  });
+}
+
 TEST(SphereCylinderCone, SphereConeSweep) {
-  test::Random rng(302);
-  const int n = test::sweep_size(kSweep);
-  for (int i = 0; i < n; ++i) {
-    const Vec3 c = kCentres[i % 2];
-    const Sphere a = Sphere::create(rng.uniform(Real(0.05), Real(1.2))).value();
-    const Cone b = Cone::create(rng.uniform(Real(0.1), Real(1.5)), rng.uniform(Real(0.05), Real(1.5))).value();
-    const Transform pa = random_pose(rng, c, Real(1.5));
-    const Transform pb = random_pose(rng, c, Real(1.5));
-    check_case(a, pa, b, pb, rng.uniform(Real(0), Real(0.2)), "sphere-cone " + std::to_string(i));
-  }
+  sweep(302, "sphere-cone", [](test::Random& rng) {
+    return Cone::create(rng.uniform(Real(0.1), Real(1.5)), rng.uniform(Real(0.05), Real(1.5))).value();
+  });
+}
+
+TEST(SphereCylinderCone, SphereEllipsoidSweep) {
+  sweep(304, "sphere-ellipsoid", [](test::Random& rng) {
+    const Real x = rng.uniform(Real(0.05), Real(1.5));  // one draw per statement: the same
+    const Real y = rng.uniform(Real(0.05), Real(1.5));  // case under GCC and clang
+    const Real z = rng.uniform(Real(0.05), Real(1.5));
+    return Ellipsoid::create(Vec3(x, y, z)).value();
+  });
+}
+
+// Analytic ellipsoid cases: beyond each pole, and inside on an axis (the nearer pole wins).
+TEST(SphereCylinderCone, SphereEllipsoidAnalytic) {
+  const Sphere a = Sphere::create(Real(0.25)).value();
+  const Ellipsoid b = Ellipsoid::create(Vec3(Real(2), Real(1), Real(0.5))).value();
+  const Transform pb{Vec3(Real(0)), kIdentityQuat};
+  const auto at = [](Real x, Real y, Real z) { return Transform{Vec3(x, y, z), kIdentityQuat}; };
+  DistanceResult d = distance(a, at(3, 0, 0), b, pb);
+  EXPECT_EQ(d.method, PairMethod::Analytic);
+  EXPECT_NEAR(d.signed_distance, Real(0.75), Real(8) * kEpsilon);
+  EXPECT_LE(glm::length(d.normal - Vec3(-1, 0, 0)), Real(8) * kEpsilon);
+  d = distance(a, at(0, -1.5, 0), b, pb);
+  EXPECT_NEAR(d.signed_distance, Real(0.25), Real(8) * kEpsilon);
+  EXPECT_LE(glm::length(d.normal - Vec3(0, 1, 0)), Real(8) * kEpsilon);
+  d = distance(a, at(0, 0, Real(0.3)), b, pb);  // inside, 0.2 under the top pole
+  EXPECT_NEAR(d.signed_distance, Real(-0.45), Real(8) * kEpsilon);
+  EXPECT_LE(glm::length(d.normal - Vec3(0, 0, -1)), Real(8) * kEpsilon);
+  EXPECT_TRUE(intersect(a, at(0, 0, Real(0.3)), b, pb));
+  EXPECT_FALSE(intersect(a, at(3, 0, 0), b, pb));
+  EXPECT_TRUE(intersect(a, at(Real(2.2), 0, 0), b, pb));
 }
 
 // The issue's case (defect 1): a sphere of radius 0.5 whose centre is inside a cylinder
@@ -251,5 +336,5 @@ TEST(SphereCylinderCone, SphereConeAnalytic) {
   EXPECT_EQ(d.normal, Vec3(Real(0), Real(0), Real(1)));
 }
 
-}  // namespace test_sphere_cylinder_cone
+}  // namespace test_sphere_curved
 }  // namespace proxima
