@@ -21,17 +21,24 @@
 ///   3. triangle core: the least of its three edges (step 2) and of its face: X's support m
 ///      along +-n (n the triangle's unit normal) when it lies on that side of the plane and
 ///      projects inside the triangle (the only place where sd's gradient can be +-n inside
-///      the triangle, so the only interior minimum).
+///      the triangle, so the only interior minimum);
+///   4. box core: the same over its faces (one-sided: X's support against the outward
+///      normal) and its twelve edges, keeping the faces whose corners all lie within a
+///      window below the box's support plane along a direction towards X (the caller's:
+///      GJK's normal) and the edges with a corner there (a corner is searched through its
+///      edges), so that a box near X costs a few features, not eighteen.
 /// Steps 2 and 3 give the distance where S and X are apart (min sd > 0): a segment through X
 /// is deeper than its deepest point, and where they touch X's normal at the contact (a rim,
 /// or X without interior) need not be orthogonal to the core, so the caller sends those
 /// pairs on to EPA.
 /// Normals come from X's closest-point geometry, never from differences of nearby points.
 /// Header-only, no allocation; O(1) closest-point queries for a point, O(log(1/eps)) for a
-/// segment (typically under 20), three segments and two supports for a triangle.
+/// segment (typically under 20), three segments and two supports for a triangle, at most
+/// twelve segments and six supports for a box.
 
 #include <proxima/core/math.hpp>
 #include <proxima/core/tolerance.hpp>
+#include <proxima/shapes/box.hpp>
 #include <proxima/shapes/capsule.hpp>
 #include <proxima/shapes/point.hpp>
 #include <proxima/shapes/segment.hpp>
@@ -76,6 +83,18 @@ template <>
 struct SimpleCore<Triangle> {
   static constexpr int kCount = 3;  ///< the triangle itself
   static std::array<Vec3, 3> vertices(const Triangle& s) { return {s.a(), s.b(), s.c()}; }
+};
+
+template <>
+struct SimpleCore<Box> {
+  static constexpr int kCount = 8;  ///< the corners; corner i has x, y, z at +h where bit 0, 1, 2 is set
+  static std::array<Vec3, 8> vertices(const Box& s) {
+    std::array<Vec3, 8> v{};
+    const Vec3& h = s.half_extents();
+    for (std::size_t i = 0; i < 8; ++i)
+      v[i] = Vec3((i & 1u) ? h.x : -h.x, (i & 2u) ? h.y : -h.y, (i & 4u) ? h.z : -h.z);
+    return v;
+  }
 };
 
 /// A point of the core and X's closest point to it, in the common frame.
@@ -144,24 +163,62 @@ CoreClosest segment_minimum(const PlacedShape<X>& x, const Vec3& v0, const Vec3&
   return best;
 }
 
-/// Step 3, the face: X's support along +-n when it projects inside the triangle from the
-/// side it lies on; infinite signed distance when neither does.
-template <class X>
-CoreClosest face_minimum(const PlacedShape<X>& x, const std::array<Vec3, 3>& v) {
+/// Steps 3 and 4, a face: the convex polygon p (in order) with unit normal n. For m = n (and
+/// m = -n too when `two_sided`; a box face passes its outward normal negated), X's support q
+/// along m, when the face's plane lies beyond q along m (X is on one side of it) and q
+/// projects inside the polygon: there sd's gradient is m (a plane through X by rounding
+/// only, within 64 eps of the coordinates, counts as touching). Infinite signed distance
+/// when no m gives such a point.
+template <class X, std::size_t K>
+CoreClosest face_minimum(const PlacedShape<X>& x, const std::array<Vec3, K>& p, const Vec3& n, bool two_sided) {
   CoreClosest best;
-  Vec3 n = glm::cross(v[1] - v[0], v[2] - v[0]);
-  const Real len = std::sqrt(glm::dot(n, n));
-  if (!(len > Real(0)) || !std::isfinite(len)) return best;
-  n /= len;
+  const Real orient = glm::dot(glm::cross(p[1] - p[0], p[2] - p[0]), n) >= Real(0) ? Real(1) : Real(-1);
   for (const Real sign : {Real(1), Real(-1)}) {
-    const Vec3 m = sign * n;  // from X towards the triangle's plane
+    if (sign < Real(0) && !two_sided) break;
+    const Vec3 m = sign * n;  // from X towards the face's plane
     const Vec3 q = x.support(m);
-    const Real gap = glm::dot(m, v[0] - q);
-    if (!(gap >= Real(0))) continue;  // the plane cuts X, or X lies on the other side
-    const Vec3 p = q + gap * m;
+    const Real gap = glm::dot(m, p[0] - q);
+    // The plane cuts X, or X lies on the other side; a touching face may round either way.
+    const Real slack = Real(64) * kEpsilon * (glm::length(q) + glm::length(p[0]));
+    if (!(gap >= -slack)) continue;
+    const Vec3 proj = q + gap * m;
     bool inside = true;
-    for (int i = 0; i < 3; ++i) inside = inside && glm::dot(glm::cross(v[(i + 1) % 3] - v[i], p - v[i]), n) >= Real(0);
-    if (inside && gap < best.signed_distance) best = {gap, p, q, m};
+    for (std::size_t i = 0; i < K; ++i)
+      inside = inside && orient * glm::dot(glm::cross(p[(i + 1) % K] - p[i], proj - p[i]), n) >= Real(0);
+    if (inside && gap < best.signed_distance) best = {gap, proj, q, m};
+  }
+  return best;
+}
+
+/// Step 4: the box core with corners v (SimpleCore<Box> order, common frame): its faces with
+/// every corner, and its edges with a corner, within `window` of the box's support plane
+/// along `toward`.
+template <class X>
+CoreClosest box_minimum(const PlacedShape<X>& x, const std::array<Vec3, 8>& v, const Vec3& toward, Real window) {
+  std::array<bool, 8> near{};
+  Real top = -std::numeric_limits<Real>::infinity();
+  for (const Vec3& p : v) top = std::max(top, glm::dot(toward, p));
+  for (std::size_t i = 0; i < 8; ++i) near[i] = !(glm::dot(toward, v[i]) < top - window);  // NaN keeps it
+  CoreClosest best;
+  for (std::size_t k = 0; k < 3; ++k) {
+    const std::size_t bk = std::size_t(1) << k;
+    const std::size_t bi = std::size_t(1) << ((k + 1) % 3);
+    const std::size_t bj = std::size_t(1) << ((k + 2) % 3);
+    const Vec3 axis = v[bk] - v[0];
+    const Real len = glm::length(axis);
+    if (!(len > Real(0))) continue;
+    for (const std::size_t side : {std::size_t(0), bk}) {
+      const Vec3 out = (side != 0 ? Real(1) : Real(-1)) / len * axis;
+      const std::array<Vec3, 4> face{v[side], v[side | bi], v[side | bi | bj], v[side | bj]};
+      if (!(near[side] && near[side | bi] && near[side | bi | bj] && near[side | bj])) continue;
+      const CoreClosest c = face_minimum(x, face, -out, false);
+      if (c.signed_distance < best.signed_distance) best = c;
+    }
+    for (std::size_t a = 0; a < 8; ++a) {
+      if ((a & bk) != 0 || !(near[a] || near[a | bk])) continue;  // a near corner's edges hold it
+      const CoreClosest c = segment_minimum(x, v[a], v[a | bk]);
+      if (c.signed_distance < best.signed_distance) best = c;
+    }
   }
   return best;
 }
@@ -169,17 +226,25 @@ CoreClosest face_minimum(const PlacedShape<X>& x, const std::array<Vec3, 3>& v) 
 }  // namespace core_closest_detail
 
 /// The point of the core with vertices `v` (common frame) nearest to X, with X's closest point
-/// to it (steps 1-3). Exact where the core is a point, or lies apart from X or touches it;
-/// a segment or triangle through X gets a negative distance that is not its depth.
+/// to it (steps 1-4; a box searches only its features within `window` of its support plane
+/// along `toward`). Exact where the core is a point, or lies apart from X or touches it; a
+/// segment, triangle or box through X gets a negative distance that is not its depth.
 template <class X, std::size_t N>
-CoreClosest core_closest_point(const PlacedShape<X>& x, const std::array<Vec3, N>& v) {
+CoreClosest core_closest_point(const PlacedShape<X>& x, const std::array<Vec3, N>& v,
+                               const Vec3& toward = Vec3(Real(0)),
+                               Real window = std::numeric_limits<Real>::infinity()) {
   namespace cd = core_closest_detail;
   if constexpr (N == 1) {
     return x.closest(v[0]);
   } else if constexpr (N == 2) {
     return cd::segment_minimum(x, v[0], v[1]);
+  } else if constexpr (N == 8) {
+    return cd::box_minimum(x, v, toward, window);
   } else {
-    CoreClosest best = cd::face_minimum(x, v);
+    const Vec3 n = glm::cross(v[1] - v[0], v[2] - v[0]);
+    const Real len = glm::length(n);
+    CoreClosest best;
+    if (len > Real(0) && std::isfinite(len)) best = cd::face_minimum(x, v, n / len, true);
     for (int i = 0; i < 3; ++i) {
       const CoreClosest c =
           cd::segment_minimum(x, v[static_cast<std::size_t>(i)], v[static_cast<std::size_t>((i + 1) % 3)]);

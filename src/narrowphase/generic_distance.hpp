@@ -10,8 +10,9 @@
 ///      a. SatAtGjkCap: polytopes whose GJK hit its cap: the SAT, when it proves an overlap;
 ///      b. CoreClosestPoint: GJK's answer is not certified (its duality gap is open, or the
 ///         cores touch, or a point core lies inside the other shape) and one core is a
-///         point, segment or triangle: the exact minimum of the other shape's signed
-///         distance over that core (core_closest_point.hpp), where it is exact;
+///         point, segment or triangle, or a box against a curved shape: the exact minimum
+///         of the other shape's signed distance over that core (core_closest_point.hpp),
+///         where it is exact;
 ///      b'. GjkDistance: the cores are apart: GJK's answer;
 ///      c. Epa / InflatedEpa: the cores overlap: EPA from GJK's simplex (on cores inflated by
 ///         a small ball when they only touch, or when that beats an EPA stopped by rounding),
@@ -257,9 +258,12 @@ bool sat_at_gjk_cap(Ladder<A, B>& l) {
   }
 }
 
-/// True when the pair has a point, segment or triangle core on a side (core_closest_point.hpp).
+/// True when the pair has a point, segment or triangle core on a side, or a box against a
+/// shape that is not a polytope (core_closest_point.hpp; between polytopes GJK ends on a
+/// repeated vertex and the SAT backs it).
 template <class A, class B>
-inline constexpr bool kHasSimpleCore = SimpleCore<A>::kCount != 0 || SimpleCore<B>::kCount != 0;
+inline constexpr bool kHasSimpleCore = (SimpleCore<A>::kCount != 0 && (SimpleCore<A>::kCount < 8 || !kIsPolytope<B>)) ||
+                                       (SimpleCore<B>::kCount != 0 && (SimpleCore<B>::kCount < 8 || !kIsPolytope<A>));
 
 /// The side searched by the core stage: A's core when it is simple and has no more vertices
 /// than B's (a point before a segment before a triangle), else B's.
@@ -274,18 +278,26 @@ struct CoreSearch {
   Real radius;          ///< the searched core's radius
 };
 
-/// Runs core_closest_point on the side kCoreStageOnA names, X placed in A's frame.
+/// Runs core_closest_point on the side kCoreStageOnA names, X placed in A's frame. A box
+/// searches the features facing X: corners within 5 % of the pair's scale of its support
+/// plane along GJK's direction towards X; all of them where that direction is not known to
+/// be good: GJK's lower bound under half its distance (stalled on a sliver, v's direction is
+/// the sliver's normal), or no distance.
 template <class A, class B>
 CoreSearch search_simple_core(const Ladder<A, B>& l) {
   const auto& m = l.setup.support_b;
+  const bool has_direction =
+      l.core.distance > Real(0) && std::isfinite(l.core.distance) && l.core.lower_bound >= Real(0.5) * l.core.distance;
+  const Vec3 a_to_b = has_direction ? -l.core.v / l.core.distance : Vec3(Real(0));
+  const Real window = has_direction ? Real(0.05) * l.setup.scale : std::numeric_limits<Real>::infinity();
   if constexpr (kCoreStageOnA<A, B>) {
     const PlacedShape<B> x{l.b, m.rotation, m.rotation_t, m.translation};
-    return {core_closest_point(x, SimpleCore<A>::vertices(l.a)), l.setup.radius_a};
+    return {core_closest_point(x, SimpleCore<A>::vertices(l.a), a_to_b, window), l.setup.radius_a};
   } else {
     auto v = SimpleCore<B>::vertices(l.b);
     for (Vec3& p : v) p = m.rotation * p + m.translation;
     const PlacedShape<A> x{l.a, Mat3(Real(1)), Mat3(Real(1)), Vec3(Real(0))};
-    return {core_closest_point(x, v), l.setup.radius_b};
+    return {core_closest_point(x, v, -a_to_b, window), l.setup.radius_b};
   }
 }
 
@@ -312,9 +324,10 @@ void answer_from_core(Ladder<A, B>& l, const CoreSearch& c, const Vec3& n, bool 
 }
 
 /// Stage b: GJK's answer is not certified (its gap is open, the cores touch, or it hit its
-/// cap) and a side's core is a point, segment or triangle: the least signed distance of the
+/// cap) and a side's core is a point, segment or triangle (or a box, the other shape curved):
+/// the least signed distance of the
 /// other shape X over that core (core_closest_point.hpp). A point core answers always (its
-/// distance or depth is exact). A segment or triangle core answers when apart beyond the
+/// distance or depth is exact). A segment, triangle or box core answers when apart beyond the
 /// tolerance; within it, where GJK stalled above it, as touching along GJK's direction -v
 /// (X's normal at the contact may be any of its normal cone, a rim's or a segment's, where
 /// the answer needs one across the core too). It leaves to the stages below a core through
