@@ -27,7 +27,7 @@
 ///      window below the box's support plane along a direction towards X (the caller's:
 ///      GJK's normal) and the edges with a corner there (a corner is searched through its
 ///      edges), so that a box near X costs a few features, not eighteen.
-/// Steps 2 and 3 give the distance where S and X are apart (min sd > 0): a segment through X
+/// Steps 2 to 4 give the distance where S and X are apart (min sd > 0): a segment through X
 /// is deeper than its deepest point, and where they touch X's normal at the contact (a rim,
 /// or X without interior) need not be orthogonal to the core, so the caller sends those
 /// pairs on to EPA.
@@ -53,11 +53,11 @@
 
 namespace proxima::narrow {
 
-/// The vertices of a shape's core when it is a point, a segment or a triangle (count 0 for
-/// every other shape), in the shape's frame.
+/// The vertices of a shape's core when it is a point, a segment, a triangle or a box (count 0
+/// for every other shape), in the shape's frame.
 template <class S>
 struct SimpleCore {
-  static constexpr int kCount = 0;  ///< not a point, segment or triangle core
+  static constexpr int kCount = 0;  ///< not a point, segment, triangle or box core
 };
 template <>
 struct SimpleCore<Point> {
@@ -84,7 +84,6 @@ struct SimpleCore<Triangle> {
   static constexpr int kCount = 3;  ///< the triangle itself
   static std::array<Vec3, 3> vertices(const Triangle& s) { return {s.a(), s.b(), s.c()}; }
 };
-
 template <>
 struct SimpleCore<Box> {
   static constexpr int kCount = 8;  ///< the corners; corner i has x, y, z at +h where bit 0, 1, 2 is set

@@ -52,8 +52,8 @@ namespace proxima::narrow {
 enum class GenericStage : std::uint8_t {
   NotRun,            ///< no stage ran (a pose was not finite: status InvalidInput)
   SatAtGjkCap,       ///< polytopes, GJK at its cap: the SAT proved an overlap (method Sat)
-  CoreClosestPoint,  ///< a point, segment or triangle core against the other shape's closest point (method
-                     ///< ClosestPoint)
+  CoreClosestPoint,  ///< a point, segment, triangle or box core against the other shape's closest point
+                     ///< (method ClosestPoint)
   GjkDistance,       ///< the cores are apart: GJK's distance (method Gjk)
   Epa,               ///< the cores overlap: EPA on the cores, refined on curved pairs (method Epa)
   InflatedEpa,       ///< EPA on the cores inflated by a small ball (touching cores, or a better bound) (method Epa)
@@ -258,12 +258,15 @@ bool sat_at_gjk_cap(Ladder<A, B>& l) {
   }
 }
 
-/// True when the pair has a point, segment or triangle core on a side, or a box against a
-/// shape that is not a polytope (core_closest_point.hpp; between polytopes GJK ends on a
-/// repeated vertex and the SAT backs it).
+/// True when side S's core serves the core stage against the other side O: a point, segment
+/// or triangle core always, a box only against a shape that is not a polytope (between
+/// polytopes GJK ends on a repeated vertex and the SAT backs it).
+template <class S, class O>
+inline constexpr bool kCoreServes = SimpleCore<S>::kCount != 0 && (!std::is_same_v<S, Box> || !kIsPolytope<O>);
+
+/// True when the pair has a side whose core serves the core stage (core_closest_point.hpp).
 template <class A, class B>
-inline constexpr bool kHasSimpleCore = (SimpleCore<A>::kCount != 0 && (SimpleCore<A>::kCount < 8 || !kIsPolytope<B>)) ||
-                                       (SimpleCore<B>::kCount != 0 && (SimpleCore<B>::kCount < 8 || !kIsPolytope<A>));
+inline constexpr bool kHasSimpleCore = kCoreServes<A, B> || kCoreServes<B, A>;
 
 /// The side searched by the core stage: A's core when it is simple and has no more vertices
 /// than B's (a point before a segment before a triangle), else B's.
@@ -325,8 +328,8 @@ void answer_from_core(Ladder<A, B>& l, const CoreSearch& c, const Vec3& n, bool 
 
 /// Stage b: GJK's answer is not certified (its gap is open, the cores touch, or it hit its
 /// cap) and a side's core is a point, segment or triangle (or a box, the other shape curved):
-/// the least signed distance of the
-/// other shape X over that core (core_closest_point.hpp). A point core answers always (its
+/// the least signed distance of the other shape X over that core (core_closest_point.hpp).
+/// A point core answers always (its
 /// distance or depth is exact). A segment, triangle or box core answers when apart beyond the
 /// tolerance; within it, where GJK stalled above it, as touching along GJK's direction -v
 /// (X's normal at the contact may be any of its normal cone, a rim's or a segment's, where

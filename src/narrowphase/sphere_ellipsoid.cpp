@@ -23,17 +23,17 @@ namespace {
 
 Real ellipsoid_tolerance(const Sphere& a, const Transform& pose_a, const Ellipsoid& b, const Transform& pose_b,
                          const PairRequest& request) {
-  const Vec3 e = b.radii();
-  return resolve_tolerance(request, detail::pair_scale(pose_a, pose_b, a.radius() + std::max({e.x, e.y, e.z})));
+  return resolve_tolerance(request, detail::pair_scale(pose_a, pose_b, a.radius() + max_abs_component(b.radii())));
 }
 
+/// Steps 1-3, decided with tolerance `tol`.
 DistanceResult sphere_ellipsoid(const Sphere& a, const Transform& pose_a, const Ellipsoid& b, const Transform& pose_b,
-                                const PairRequest& request) {
+                                Real tol) {
   const Vec3 c = pose_b.inverse_apply(pose_a.position);
   const SurfacePoint q = b.closest_point(c);
   const Vec3 n_local = -q.normal;
   return detail::rounded_result(pose_a.position, pose_b.apply(q.point), pose_b.apply_vector(n_local), q.signed_distance,
-                                a.radius(), Real(0), ellipsoid_tolerance(a, pose_a, b, pose_b, request));
+                                a.radius(), Real(0), tol);
 }
 
 }  // namespace
@@ -41,7 +41,7 @@ DistanceResult sphere_ellipsoid(const Sphere& a, const Transform& pose_a, const 
 DistanceResult pair_distance(const Sphere& a, const Transform& pose_a, const Ellipsoid& b, const Transform& pose_b,
                              const PairRequest& request, PairCache* /*cache*/) {
   if (!finite_poses(pose_a, pose_b)) return invalid_distance();
-  return sphere_ellipsoid(a, pose_a, b, pose_b, request);
+  return sphere_ellipsoid(a, pose_a, b, pose_b, ellipsoid_tolerance(a, pose_a, b, pose_b, request));
 }
 
 bool pair_intersect(const Sphere& a, const Transform& pose_a, const Ellipsoid& b, const Transform& pose_b,
@@ -51,16 +51,17 @@ bool pair_intersect(const Sphere& a, const Transform& pose_a, const Ellipsoid& b
   const Real reach = std::max(request.contact_distance, tol);
   const Vec3 e = b.radii();
   const Real centres = glm::length(pose_a.position - pose_b.position);
-  if (centres > a.radius() + std::max({e.x, e.y, e.z}) + reach + tol) return false;
+  if (centres > a.radius() + max_abs_component(e) + reach + tol) return false;
   if (centres < a.radius() + std::min({e.x, e.y, e.z}) - tol) return true;
-  return in_contact(sphere_ellipsoid(a, pose_a, b, pose_b, request), request);
+  return in_contact(sphere_ellipsoid(a, pose_a, b, pose_b, tol), request);
 }
 
 ContactManifold pair_collide(const Sphere& a, const Transform& pose_a, const Ellipsoid& b, const Transform& pose_b,
                              const PairRequest& request, PairCache* /*cache*/) {
   if (!finite_poses(pose_a, pose_b)) return invalid_manifold();
-  return manifold_from_distance(sphere_ellipsoid(a, pose_a, b, pose_b, request), request,
-                                make_feature_id(FeatureKind::Surface, 0, FeatureKind::Surface, 0));
+  return manifold_from_distance(
+      sphere_ellipsoid(a, pose_a, b, pose_b, ellipsoid_tolerance(a, pose_a, b, pose_b, request)), request,
+      make_feature_id(FeatureKind::Surface, 0, FeatureKind::Surface, 0));
 }
 
 }  // namespace proxima::narrow

@@ -43,7 +43,7 @@ enum class PairMethod : std::uint8_t {
   Epa,           ///< GJK, then EPA for the penetration
   Sat,           ///< separating-axis test over face normals and edge pairs
   Support,       ///< half-space against a support mapping
-  ClosestPoint,  ///< a point, segment or triangle core against the other shape's closest-point query
+  ClosestPoint,  ///< a point, segment, triangle or box core against the other shape's closest-point query
 };
 
 /// Options for every narrow-phase query. Defaults suit a real-time world in metres.
