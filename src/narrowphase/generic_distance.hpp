@@ -13,7 +13,13 @@
 ///         point, segment or triangle, or a box against a curved shape: the exact minimum
 ///         of the other shape's signed distance over that core (core_closest_point.hpp),
 ///         where it is exact;
-///      b'. GjkDistance: the cores are apart: GJK's answer;
+///      b'. SurfaceProjection: GJK's gap is open on cores apart and neither side has such a
+///         core (two curved shapes, or a hull and a curved shape): the shapes' own closest
+///         points by alternating projections, along the normal that separates them most
+///         (surface_projection.hpp); where that gap is within sqrt(eps) of the size and its
+///         bounds do not meet, EPA on cores inflated beyond it decides (c), this answer the
+///         fall-back;
+///      b''. GjkDistance: the cores are apart: GJK's answer;
 ///      c. Epa / InflatedEpa: the cores overlap: EPA from GJK's simplex (on cores inflated by
 ///         a small ball when they only touch, or when that beats an EPA stopped by rounding),
 ///         refined by epa::refine on curved pairs; it answers when it converged (or, on a
@@ -44,22 +50,25 @@
 #include "pair_support.hpp"
 #include "polytope_sat.hpp"
 #include "support_binding.hpp"
+#include "surface_projection.hpp"
 
 namespace proxima::narrow {
 
 /// The stage of the generic ladder that gave an answer (see the file comment). The answer's
 /// PairMethod names the algorithm only; this says which rung of the ladder answered.
 enum class GenericStage : std::uint8_t {
-  NotRun,            ///< no stage ran (a pose was not finite: status InvalidInput)
-  SatAtGjkCap,       ///< polytopes, GJK at its cap: the SAT proved an overlap (method Sat)
-  CoreClosestPoint,  ///< a point, segment, triangle or box core against the other shape's closest point
-                     ///< (method ClosestPoint)
-  GjkDistance,       ///< the cores are apart: GJK's distance (method Gjk)
-  Epa,               ///< the cores overlap: EPA on the cores, refined on curved pairs (method Epa)
-  InflatedEpa,       ///< EPA on the cores inflated by a small ball (touching cores, or a better bound) (method Epa)
-  SatFallback,       ///< polytopes, EPA failed or stopped at its cap: the SAT's depth (method Sat)
-  CoreRefinement,    ///< D too thin for EPA: epa::refine from GJK's direction (method Epa)
-  GjkCoreContact,    ///< nothing else answered: GJK's core contact, status Degenerate (method Gjk)
+  NotRun,             ///< no stage ran (a pose was not finite: status InvalidInput)
+  SatAtGjkCap,        ///< polytopes, GJK at its cap: the SAT proved an overlap (method Sat)
+  CoreClosestPoint,   ///< a point, segment, triangle or box core against the other shape's closest point
+                      ///< (method ClosestPoint)
+  SurfaceProjection,  ///< two curved shapes (or a hull and one), GJK's gap open: their closest points
+                      ///< by alternating projections (method ClosestPoint)
+  GjkDistance,        ///< the cores are apart: GJK's distance (method Gjk)
+  Epa,                ///< the cores overlap: EPA on the cores, refined on curved pairs (method Epa)
+  InflatedEpa,        ///< EPA on the cores inflated by a small ball (touching cores, or a better bound) (method Epa)
+  SatFallback,        ///< polytopes, EPA failed or stopped at its cap: the SAT's depth (method Sat)
+  CoreRefinement,     ///< D too thin for EPA: epa::refine from GJK's direction (method Epa)
+  GjkCoreContact,     ///< nothing else answered: GJK's core contact, status Degenerate (method Gjk)
 };
 
 /// Name of a stage, for messages.
@@ -68,6 +77,7 @@ constexpr const char* to_string(GenericStage s) {
     case GenericStage::NotRun: return "NotRun";
     case GenericStage::SatAtGjkCap: return "SatAtGjkCap";
     case GenericStage::CoreClosestPoint: return "CoreClosestPoint";
+    case GenericStage::SurfaceProjection: return "SurfaceProjection";
     case GenericStage::GjkDistance: return "GjkDistance";
     case GenericStage::Epa: return "Epa";
     case GenericStage::InflatedEpa: return "InflatedEpa";
@@ -214,6 +224,10 @@ struct Ladder {
   Real radii;                  ///< r_A + r_B
   bool touching;               ///< GJK did not enclose the origin in a tetrahedron (the cores only touch)
   LocalAnswer ans;             ///< the answer
+  /// Least inflation of the cores for EPA (length): set where the cores are apart by a
+  /// gap no stage could certify and EPA is to decide (projected_distance).
+  Real inflation = Real(0);
+  LocalAnswer fallback;  ///< the answer where EPA fails to decide (when inflation > 0)
 };
 
 /// True when both shapes are polytopes (the SAT applies).
@@ -366,6 +380,54 @@ bool core_closest(Ladder<A, B>& l) {
   }
 }
 
+/// True when GJK's answer on the cores is not certified: the cores apart beyond rounding
+/// but the duality gap open beyond a quarter of the tolerance, or the cap reached.
+template <class A, class B>
+bool gjk_gap_open(const Ladder<A, B>& l) {
+  const gjk::Outcome& g = l.core;
+  if (g.status == gjk::Status::Overlapping || !(g.distance > Real(16) * kEpsilon * l.setup.scale)) return false;
+  return g.status == gjk::Status::MaxIterations || g.distance - g.lower_bound > Real(0.25) * l.setup.tolerance;
+}
+
+/// Stage b'': GJK's gap is open on cores apart, no side has a simple core and the pair is
+/// not two polytopes (two curved shapes, or a hull and a curved shape; radii 0): the
+/// shapes' own closest points by alternating projections (surface_projection.hpp). Answers
+/// when its distance is below GJK's, along the normal that separates the shapes most; the
+/// witness on B is placed on that normal (point_b = point_a + distance n).
+template <class A, class B>
+bool projected_distance(Ladder<A, B>& l) {
+  if constexpr (kPolytopePair<A, B> || kHasSimpleCore<A, B>) {
+    (void)l;
+    return false;
+  } else {
+    // A run stopped by the request's cap answers as capped (stage b'').
+    if (!gjk_gap_open(l) || l.core.status == gjk::Status::MaxIterations || l.radii != Real(0)) return false;
+    const gjk::Outcome& g = l.core;
+    PairSetup<A, B>& setup = l.setup;
+    const auto& m = setup.support_b;
+    const PlacedShape<A> xa{l.a, Mat3(Real(1)), Mat3(Real(1)), Vec3(Real(0))};
+    const PlacedShape<B> xb{l.b, m.rotation, m.rotation_t, m.translation};
+    const SurfaceProjection p =
+        surface_projection(xa, xb, setup.support_a, setup.support_b, g.point_a, -g.v / g.distance);
+    l.ans.iterations += p.rounds;
+    if (!(p.upper < g.distance) || !(p.upper > Real(0))) return false;
+    const Real lower = std::max(p.lower, g.lower_bound);
+    l.ans.normal = p.normal;
+    l.ans.signed_distance = p.upper;
+    l.ans.point_a = p.point_a;
+    l.ans.point_b = p.point_a + p.upper * p.normal;
+    l.ans.method = PairMethod::ClosestPoint;
+    l.ans.status = status_from_distance(p.upper, setup.tolerance);
+    l.ans.stage = GenericStage::SurfaceProjection;
+    if (p.upper - lower > setup.tolerance && p.upper <= kSqrtEpsilon * setup.scale) {
+      l.inflation = p.upper;  // touching within rounding: EPA on cores inflated beyond the gap decides
+      l.fallback = l.ans;
+      return false;
+    }
+    return true;
+  }
+}
+
 /// Stage b': the cores are apart (beyond rounding): GJK's distance minus the radii.
 template <class A, class B>
 bool gjk_distance(Ladder<A, B>& l) {
@@ -429,7 +491,7 @@ void polish(const Ladder<A, B>& l, epa::Outcome& ep, SupportA& sa, SupportB& sb,
 template <class A, class B>
 epa::Outcome inflated_epa(Ladder<A, B>& l, const epa::Settings& es) {
   PairSetup<A, B>& setup = l.setup;
-  const Real delta = std::max(Real(1024) * kEpsilon * setup.scale, setup.tolerance);
+  const Real delta = std::max({Real(1024) * kEpsilon * setup.scale, setup.tolerance, l.inflation});
   InflatedSupport<decltype(setup.support_a)> ia{setup.support_a, delta};
   InflatedSupport<decltype(setup.support_b)> ib{setup.support_b, delta};
   const gjk::Outcome gi = gjk::distance(ia, ib, setup.axis, setup.gjk_settings(l.request));
@@ -558,9 +620,11 @@ void gjk_core_contact(Ladder<A, B>& l, const Vec3& n) {
 template <class A, class B>
 LocalAnswer solve(const A& a, const B& b, PairSetup<A, B>& setup, const PairRequest& request) {
   Ladder<A, B> l(a, b, setup, request);
-  if (sat_at_gjk_cap(l) || core_closest(l) || gjk_distance(l)) return l.ans;
+  if (sat_at_gjk_cap(l) || core_closest(l) || projected_distance(l)) return l.ans;
+  if (l.inflation == Real(0) && gjk_distance(l)) return l.ans;
   const EpaRun run = run_epa(l);
   if (epa_answer(l, run) || sat_fallback(l, run.outcome)) return l.ans;
+  if (l.inflation > Real(0)) return l.fallback;  // EPA failed where it was to decide
   const Vec3 n = unit_or(-l.core.v, setup.axis);
   if (!core_refinement(l, n)) gjk_core_contact(l, n);
   return l.ans;

@@ -4,6 +4,7 @@
 // reaches only when EPA fails on curved cores, answer by their contract when called directly.
 #include <gtest/gtest.h>
 
+#include <proxima/shapes/placed.hpp>
 #include <proxima/shapes/shape.hpp>
 
 #include <cmath>
@@ -44,7 +45,8 @@ PairMethod method_of(GenericStage s) {
     case GenericStage::Epa:
     case GenericStage::InflatedEpa:
     case GenericStage::CoreRefinement: return PairMethod::Epa;
-    case GenericStage::CoreClosestPoint: return PairMethod::ClosestPoint;
+    case GenericStage::CoreClosestPoint:
+    case GenericStage::SurfaceProjection: return PairMethod::ClosestPoint;
     case GenericStage::GjkDistance:
     case GenericStage::GjkCoreContact:
     case GenericStage::NotRun: return PairMethod::Gjk;
@@ -103,6 +105,52 @@ TEST(GenericStages, SegmentOverACylinderRimGetsTheExactDistance) {
     const auto s =
         generic_distance_staged(cyl, Transform{}, seg, at(Vec3(Real(0.4) + c, 0, Real(0.5) + c)), {}, nullptr);
     EXPECT_NEAR(s.result.signed_distance, g, Real(64) * kEpsilon) << "gap " << g << " stage " << to_string(s.stage);
+  }
+}
+
+// Signed distance of world point p from the surface of ellipsoid e at `pose`, to first order
+// (the implicit function over its gradient's length), in long double.
+long double ellipsoid_surface_offset(const Ellipsoid& e, const Transform& pose, const Vec3& p) {
+  const Vec3 q = pose.inverse_apply(p);
+  const Vec3& r = e.radii();
+  long double f = -1;
+  long double g2 = 0;
+  for (int i = 0; i < 3; ++i) {
+    const long double x = q[i];
+    const long double a = r[i];
+    f += (x / a) * (x / a);
+    g2 += (2 * x / (a * a)) * (2 * x / (a * a));
+  }
+  return f / std::sqrt(g2);
+}
+
+TEST(GenericStages, CurvedPairWhereGjkStallsGetsACertifiedDistanceBySurfaceProjection) {
+  // The query corpus's request 4321: two ellipsoids 0.8 apart, where GJK's simplex stalls
+  // with its duality gap open and its distance was 2e-10 above the truth in double. The
+  // answer is bracketed by a certificate that shares nothing with the stage: below by the
+  // plane along its normal that separates the supports, above by the distance of its
+  // witnesses, each on its ellipsoid's surface by the implicit equation.
+  const Ellipsoid a = Ellipsoid::create(Vec3(0.759, 0.698, 0.84)).value();
+  const Ellipsoid b = Ellipsoid::create(Vec3(0.841, 0.344, 1.054)).value();
+  const Transform pa = at(Vec3(-0.399, -0.293, -0.282));
+  Transform pb = at(Vec3(-1.456, 1.065, 0.623));
+  pb.rotation = glm::normalize(Quat(-0.1245, 0.9471, 0.2211, 0.1963));  // (w, x, y, z); the corpus writes x, y, z, w
+  const auto s = generic_distance_staged(a, pa, b, pb, {}, nullptr);
+  const DistanceResult& d = s.result;
+  ASSERT_EQ(d.status, PairStatus::Separated);
+  const Vec3& n = d.normal;
+  const Real below = glm::dot(n, support(b, pb, -n)) - glm::dot(n, support(a, pa, n));
+  const long double off_a = ellipsoid_surface_offset(a, pa, d.point_a);
+  const long double off_b = ellipsoid_surface_offset(b, pb, d.point_b);
+  const Real slack = 4 * d.tolerance;
+  EXPECT_LE(std::abs(off_a), slack);
+  EXPECT_LE(std::abs(off_b), slack);
+  EXPECT_GE(d.signed_distance, below - slack);
+  EXPECT_LE(d.signed_distance, glm::length(d.point_b - d.point_a) + slack);
+  EXPECT_LE(d.signed_distance - below, slack) << "the bounds meet within the tolerance";
+  if constexpr (sizeof(Real) == sizeof(double)) {
+    EXPECT_EQ(s.stage, GenericStage::SurfaceProjection) << to_string(s.stage);
+    EXPECT_EQ(d.method, PairMethod::ClosestPoint);
   }
 }
 
