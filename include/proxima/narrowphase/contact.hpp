@@ -43,7 +43,8 @@ enum class PairMethod : std::uint8_t {
   Epa,           ///< GJK, then EPA for the penetration
   Sat,           ///< separating-axis test over face normals and edge pairs
   Support,       ///< half-space against a support mapping
-  ClosestPoint,  ///< a point, segment, triangle or box core against the other shape's closest-point query
+  ClosestPoint,  ///< the shapes' closest-point queries: a point, segment, triangle or box core against the
+                 ///< other shape's, or both shapes' alternately (two curved shapes, GJK's gap open)
 };
 
 /// Options for every narrow-phase query. Defaults suit a real-time world in metres.
