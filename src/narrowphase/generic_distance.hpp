@@ -20,8 +20,12 @@
 ///         bounds do not meet, EPA on cores inflated beyond it decides (c), this answer the
 ///         fall-back;
 ///      b''. GjkDistance: the cores are apart: GJK's answer;
+///      c'. SatAtContact: polytopes whose cores touch (GJK's distance within rounding, its
+///         simplex not a tetrahedron round the origin): the SAT's signed distance, exact to
+///         rounding there, where EPA on inflated cores is accurate to about 1e-13 of the size;
 ///      c. Epa / InflatedEpa: the cores overlap: EPA from GJK's simplex (on cores inflated by
-///         a small ball when they only touch, or when that beats an EPA stopped by rounding),
+///         a small ball when they only touch, or when that beats an EPA stopped by rounding;
+///         touching cores whose core search found the distance keep that distance),
 ///         refined by epa::refine on curved pairs; it answers when it converged (or, on a
 ///         curved pair, stopped at its cap);
 ///      d. SatFallback: polytopes whose EPA failed or stopped: the SAT's depth (status
@@ -66,6 +70,7 @@ enum class GenericStage : std::uint8_t {
   GjkDistance,        ///< the cores are apart: GJK's distance (method Gjk)
   Epa,                ///< the cores overlap: EPA on the cores, refined on curved pairs (method Epa)
   InflatedEpa,        ///< EPA on the cores inflated by a small ball (touching cores, or a better bound) (method Epa)
+  SatAtContact,       ///< polytopes whose cores touch: the SAT's signed distance (method Sat)
   SatFallback,        ///< polytopes, EPA failed or stopped at its cap: the SAT's depth (method Sat)
   CoreRefinement,     ///< D too thin for EPA: epa::refine from GJK's direction (method Epa)
   GjkCoreContact,     ///< nothing else answered: GJK's core contact, status Degenerate (method Gjk)
@@ -81,6 +86,7 @@ constexpr const char* to_string(GenericStage s) {
     case GenericStage::GjkDistance: return "GjkDistance";
     case GenericStage::Epa: return "Epa";
     case GenericStage::InflatedEpa: return "InflatedEpa";
+    case GenericStage::SatAtContact: return "SatAtContact";
     case GenericStage::SatFallback: return "SatFallback";
     case GenericStage::CoreRefinement: return "CoreRefinement";
     case GenericStage::GjkCoreContact: return "GjkCoreContact";
@@ -228,6 +234,11 @@ struct Ladder {
   /// gap no stage could certify and EPA is to decide (projected_distance).
   Real inflation = Real(0);
   LocalAnswer fallback;  ///< the answer where EPA fails to decide (when inflation > 0)
+  /// The core stage's least signed distance (radii included) where GJK finds the cores
+  /// touching and that distance is within the tolerance: exact to rounding, where EPA on
+  /// inflated cores, which gives the touching pair its normal, errs by about 1e-13 of the
+  /// size. NaN when not set.
+  Real core_touch = std::numeric_limits<Real>::quiet_NaN();
 };
 
 /// True when both shapes are polytopes (the SAT applies).
@@ -350,7 +361,8 @@ void answer_from_core(Ladder<A, B>& l, const CoreSearch& c, const Vec3& n, bool 
 /// the answer needs one across the core too). It leaves to the stages below a core through
 /// X (deeper than its deepest point), cores GJK finds touching or overlapping, and a least
 /// sd above GJK's upper bound |v| (X through the interior of a triangle whose edges stay
-/// outside).
+/// outside). Where GJK finds the cores touching and sd is within the tolerance, it keeps sd
+/// (Ladder::core_touch) for EPA's answer, which gives the normal.
 template <class A, class B>
 bool core_closest(Ladder<A, B>& l) {
   if constexpr (!kHasSimpleCore<A, B>) {
@@ -364,7 +376,8 @@ bool core_closest(Ladder<A, B>& l) {
     const bool apart = !overlapping && g.distance > Real(16) * kEpsilon * l.setup.scale;
     if (apart && g.status != gjk::Status::MaxIterations && g.distance - g.lower_bound <= Real(0.25) * tolerance)
       return false;  // certified by GJK's duality gap
-    if (overlapping && !kPointCore) return false;
+    // An overlap deeper than the tolerance inside GJK's tetrahedron is EPA's to measure.
+    if (overlapping && !kPointCore && !(enclosed_depth(g.simplex) <= tolerance)) return false;
     const CoreSearch c = search_simple_core(l);
     const Real sd = c.closest.signed_distance;
     if (!std::isfinite(sd)) return false;
@@ -374,7 +387,8 @@ bool core_closest(Ladder<A, B>& l) {
       answer_from_core(l, c, n, true);
       return true;
     }
-    if (!apart || !(std::abs(sd) <= tolerance)) return false;
+    if (!apart && std::abs(sd) <= tolerance) l.core_touch = sd - c.radius;  // for EPA's answer
+    if (!apart || overlapping || !(std::abs(sd) <= tolerance)) return false;
     answer_from_core(l, c, -g.v / g.distance, false);
     return true;
   }
@@ -445,6 +459,32 @@ bool gjk_distance(Ladder<A, B>& l) {
                      : status_from_distance(l.ans.signed_distance, l.setup.tolerance);
   l.ans.stage = GenericStage::GjkDistance;
   return true;
+}
+
+/// Stage c': polytopes whose cores touch: GJK's distance is within rounding (not apart) and
+/// its simplex does not enclose the origin in a tetrahedron. The SAT's largest separation is
+/// 0 to rounding at contact and minus the depth on an overlap (exact for polytopes), where
+/// EPA on inflated cores errs by about 1e-13 of the size; pairs whose Minkowski difference
+/// has no volume (a point on a segment) answer 0. GJK's witness (a point of both cores) is
+/// kept, the other placed along the SAT's normal. Pairs without an axis (points and
+/// segments only) go on to EPA.
+template <class A, class B>
+bool sat_at_contact(Ladder<A, B>& l) {
+  if constexpr (kPolytopePair<A, B>) {
+    if (!l.touching || l.core.distance > Real(16) * kEpsilon * l.setup.scale) return false;
+    const SatResult s = run_sat(l);
+    // A degenerate simplex may also stop GJK on a deep overlap (the origin on a segment of D,
+    // as for identical shapes): that depth and its witnesses are EPA's.
+    if (!s.valid || !(std::abs(s.signed_distance) <= l.setup.tolerance)) return false;
+    answer_from_sat(l, s, GenericStage::SatAtContact);
+    l.ans.point_a = l.core.point_a + l.setup.radius_a * s.normal;
+    l.ans.point_b = l.ans.point_a + l.ans.signed_distance * s.normal;
+    l.ans.status = status_from_distance(l.ans.signed_distance, l.setup.tolerance);
+    return true;
+  } else {
+    (void)l;
+    return false;
+  }
 }
 
 /// EPA's options for the request. Curved shapes converge slowly: a relative 1e-9 of the
@@ -556,6 +596,14 @@ bool epa_answer(Ladder<A, B>& l, const EpaRun& run) {
                      ? PairStatus::MaxIterations
                      : status_from_distance(l.ans.signed_distance, l.setup.tolerance);
   l.ans.stage = run.stage;
+  // Touching cores whose core search found the distance exactly: that distance, EPA's normal
+  // (EPA's own within sqrt(eps) of the size: its error on inflated cores, not another contact).
+  if (std::isfinite(l.core_touch) && std::abs(l.core_touch - l.ans.signed_distance) <= kSqrtEpsilon * l.setup.scale) {
+    l.ans.signed_distance = l.core_touch;
+    l.ans.point_b = l.ans.point_a + l.core_touch * e.normal;
+    if (l.ans.status != PairStatus::MaxIterations)
+      l.ans.status = status_from_distance(l.ans.signed_distance, l.setup.tolerance);
+  }
   return true;
 }
 
@@ -621,7 +669,7 @@ template <class A, class B>
 LocalAnswer solve(const A& a, const B& b, PairSetup<A, B>& setup, const PairRequest& request) {
   Ladder<A, B> l(a, b, setup, request);
   if (sat_at_gjk_cap(l) || core_closest(l) || projected_distance(l)) return l.ans;
-  if (l.inflation == Real(0) && gjk_distance(l)) return l.ans;
+  if ((l.inflation == Real(0) && gjk_distance(l)) || sat_at_contact(l)) return l.ans;
   const EpaRun run = run_epa(l);
   if (epa_answer(l, run) || sat_fallback(l, run.outcome)) return l.ans;
   if (l.inflation > Real(0)) return l.fallback;  // EPA failed where it was to decide

@@ -41,6 +41,7 @@ Transform tilted(const Vec3& position) {
 PairMethod method_of(GenericStage s) {
   switch (s) {
     case GenericStage::SatAtGjkCap:
+    case GenericStage::SatAtContact:
     case GenericStage::SatFallback: return PairMethod::Sat;
     case GenericStage::Epa:
     case GenericStage::InflatedEpa:
@@ -154,9 +155,21 @@ TEST(GenericStages, CurvedPairWhereGjkStallsGetsACertifiedDistanceBySurfaceProje
   }
 }
 
-TEST(GenericStages, TouchingPolytopeCoresAnswerByInflatedEpa) {
-  // Two cubes face to face: the cores touch exactly, GJK cannot enclose the origin.
+TEST(GenericStages, TouchingPolytopeCoresAnswerBySatAtContact) {
+  // Two cubes face to face: the cores touch exactly, GJK cannot enclose the origin; the
+  // SAT's largest separation is 0 to rounding (EPA on inflated cores errs by ~1e-13).
   const auto s = generic_distance_staged(cube(), Transform{}, cube(), at(Vec3(1, 0.2, 0.1)), {}, nullptr);
+  EXPECT_EQ(s.stage, GenericStage::SatAtContact) << to_string(s.stage);
+  EXPECT_EQ(s.result.method, PairMethod::Sat);
+  EXPECT_NEAR(s.result.signed_distance, 0, Real(16) * kEpsilon);
+  EXPECT_EQ(s.result.status, PairStatus::Touching);
+  EXPECT_NEAR(s.result.normal.x, 1, tol_at(1));
+}
+
+TEST(GenericStages, TouchingCurvedCoresAnswerByInflatedEpa) {
+  // A cylinder standing on a cube, cap on face: the cores touch exactly and one is curved.
+  const Cylinder cyl = Cylinder::create(Real(0.3), Real(0.5)).value();
+  const auto s = generic_distance_staged(cube(), Transform{}, cyl, at(Vec3(0.1, 0.05, 1)), {}, nullptr);
   EXPECT_EQ(s.stage, GenericStage::InflatedEpa) << to_string(s.stage);
   EXPECT_EQ(s.result.method, PairMethod::Epa);
   EXPECT_NEAR(s.result.signed_distance, 0, tol_at(1));
