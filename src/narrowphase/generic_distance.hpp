@@ -6,7 +6,9 @@
 ///      PairCache (axis in A's frame, hull support hints), its simplex arithmetic in double
 ///      unless both shapes are polytopes (gjk::Settings::wide); the radii are added after:
 ///      distance = |v| - r_A - r_B, witnesses moved by the radii along the normal;
-///   3. a ladder of stages, the first that answers wins (GenericStage names it):
+///   3. a polytope pair whose GJK (simplex in Real) stopped with its duality gap open runs
+///      GJK again with the simplex in double (widen_open_polytope_gjk);
+///   4. a ladder of stages, the first that answers wins (GenericStage names it):
 ///      a. SatAtGjkCap: polytopes whose GJK hit its cap: the SAT, when it proves an overlap;
 ///      b. CoreClosestPoint: GJK's answer is not certified (its duality gap is open, or the
 ///         cores touch, or a point core lies inside the other shape) and one core is a
@@ -34,7 +36,7 @@
 ///         direction finds a normal along which D's support distance is within reach of 0;
 ///      f. GjkCoreContact: GJK's core contact (depth r_A + r_B along the best axis known),
 ///         status Degenerate;
-///   4. tolerance from resolve_tolerance (size of the pair), outputs in the world frame,
+///   5. tolerance from resolve_tolerance (size of the pair), outputs in the world frame,
 ///      cache written back.
 /// pair_intersect runs GJK in boolean mode with early exit on a separating axis.
 
@@ -403,6 +405,27 @@ bool gjk_gap_open(const Ladder<A, B>& l) {
   return g.status == gjk::Status::MaxIterations || g.distance - g.lower_bound > Real(0.25) * l.setup.tolerance;
 }
 
+/// Before the stages: a polytope pair runs GJK's simplex in Real (float in the float build,
+/// for speed); where that run stops with its duality gap open (a sliver of nearby vertices
+/// on a large polytope near contact: seen 2.5 tolerances above the distance on a box and a
+/// hull of size 7 in float), GJK runs again from its direction with the simplex in double,
+/// and its answer replaces the first when it is no farther.
+template <class A, class B>
+void widen_open_polytope_gjk(Ladder<A, B>& l) {
+  if constexpr (kPolytopePair<A, B> && !std::is_same_v<Real, gjk::Wide>) {  // nothing wider in double
+    gjk::Settings s = l.setup.gjk_settings(l.request);
+    if (s.wide || !gjk_gap_open(l) || l.core.status == gjk::Status::MaxIterations) return;
+    s.wide = true;
+    const gjk::Outcome again = gjk::distance(l.setup.support_a, l.setup.support_b, -l.core.v, s);
+    l.ans.iterations += again.iterations;
+    if (again.status == gjk::Status::MaxIterations || !(again.distance <= l.core.distance)) return;
+    l.core = again;
+    l.touching = again.simplex.size < 4;
+  } else {
+    (void)l;
+  }
+}
+
 /// Stage b'': GJK's gap is open on cores apart, no side has a simple core and the pair is
 /// not two polytopes (two curved shapes, or a hull and a curved shape; radii 0): the
 /// shapes' own closest points by alternating projections (surface_projection.hpp). Answers
@@ -668,6 +691,7 @@ void gjk_core_contact(Ladder<A, B>& l, const Vec3& n) {
 template <class A, class B>
 LocalAnswer solve(const A& a, const B& b, PairSetup<A, B>& setup, const PairRequest& request) {
   Ladder<A, B> l(a, b, setup, request);
+  widen_open_polytope_gjk(l);
   if (sat_at_gjk_cap(l) || core_closest(l) || projected_distance(l)) return l.ans;
   if ((l.inflation == Real(0) && gjk_distance(l)) || sat_at_contact(l)) return l.ans;
   const EpaRun run = run_epa(l);

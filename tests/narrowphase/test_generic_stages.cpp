@@ -11,9 +11,11 @@
 #include <cstring>
 #include <limits>
 #include <string>
+#include <vector>
 
 #include "gjk_reference.hpp"
 #include "narrowphase/generic_distance.hpp"
+#include "narrowphase/reference_distance.hpp"
 #include "support/random.hpp"
 
 namespace proxima {
@@ -153,6 +155,44 @@ TEST(GenericStages, CurvedPairWhereGjkStallsGetsACertifiedDistanceBySurfaceProje
     EXPECT_EQ(s.stage, GenericStage::SurfaceProjection) << to_string(s.stage);
     EXPECT_EQ(d.method, PairMethod::ClosestPoint);
   }
+}
+
+TEST(GenericStages, PolytopeGjkStoppedWithItsGapOpenRunsAgainInDouble) {
+  // A box and a flat hull of size 1.4 placed 7.8e-7 apart (the shift sweep's box-convex case
+  // 3 at gap 1e-7, under PROXIMA_TEST_SWEEP=0.25). In float, GJK's simplex in float stopped
+  // on a sliver with its gap open and answered 1.35e-4, 2.5 tolerances above the distance;
+  // run again with the simplex in double it agrees with the brute-force distance over every
+  // vertex-triangle and edge-edge pair.
+  const Box box = Box::create(Vec3(2.2920408248901367, 0.70576953887939453, 0.46797916293144226)).value();
+  const std::vector<Vec3> points{{0.369771808385849, 0.20062929391860962, 0.0029723767656832933},
+                                 {0.11486858129501343, 1.1306266784667969, 0.0034448043443262577},
+                                 {0.10708331316709518, -0.353007972240448, 0.0067596379667520523},
+                                 {0.057466905564069748, 1.1210868358612061, -0.003470664843916893},
+                                 {-0.12943993508815765, -0.027760140597820282, 0.0060783443041145802},
+                                 {-0.079856552183628082, -1.3985577821731567, 0.0011116665555164218},
+                                 {-0.36440098285675049, 0.24270570278167725, 0.0029309345409274101},
+                                 {-0.34524571895599365, 0.21800690889358521, -0.0034988345578312874},
+                                 {-0.29173785448074341, -0.90967828035354614, -3.7828001950401813e-05},
+                                 {0.10511816293001175, 0.70686525106430054, -0.0055151470005512238},
+                                 {0.026966281235218048, 0.71456611156463623, -0.0055294274352490902},
+                                 {0.1020207554101944, -1.1866679191589355, 0.0010076011531054974},
+                                 {0.070897914469242096, -1.174396276473999, 0.00013042452337685972},
+                                 {-0.13892638683319092, -0.44443640112876892, -0.0053163366392254829},
+                                 {-0.22303523123264313, 1.0794570446014404, -0.0028167976997792721},
+                                 {-0.072175838053226471, 0.92803692817687988, 0.0038671274669468403},
+                                 {-0.22067245841026306, 0.45337784290313721, -0.0046997801400721073},
+                                 {0.069254383444786072, -0.26637768745422363, -0.0047479807399213314}};
+  const ConvexHull hull = ConvexHull::create(points).value();
+  Transform pa = at(Vec3(0.44341403245925903, 0.038710169494152069, 0.18649554252624512));
+  pa.rotation = Quat(-0.50986200571060181, -0.80098360776901245, -0.2634829580783844, -0.17041940987110138);
+  Transform pb = at(Vec3(0.53851133584976196, -0.89490807056427002, -1.090761661529541));
+  pb.rotation = Quat(-0.67006510496139526, -0.24804368615150452, -0.69166499376296997, -0.10529303550720215);
+  const DistanceResult d = narrow::generic_distance(box, pa, hull, pb, {}, nullptr);
+  const auto wa = test::world_polytope(Shape(box), pa);
+  const auto wb = test::world_polytope(Shape(hull), pb);
+  ASSERT_TRUE(wa && wb);
+  const double reference = test::polytope_distance_brute(*wa, *wb);
+  EXPECT_NEAR(double(d.signed_distance), reference, 2.0 * double(d.tolerance));
 }
 
 TEST(GenericStages, TouchingPolytopeCoresAnswerBySatAtContact) {
