@@ -235,7 +235,8 @@ struct Ladder {
   /// Least inflation of the cores for EPA (length): set where the cores are apart by a
   /// gap no stage could certify and EPA is to decide (projected_distance).
   Real inflation = Real(0);
-  LocalAnswer fallback;  ///< the answer where EPA fails to decide (when inflation > 0)
+  LocalAnswer fallback;           ///< the answer where EPA fails to decide (when inflation > 0)
+  Real fallback_lower = Real(0);  ///< a proven lower bound of the distance then (length)
   /// The core stage's least signed distance (radii included) where GJK finds the cores
   /// touching and that distance is within the tolerance: exact to rounding, where EPA on
   /// inflated cores, which gives the touching pair its normal, errs by about 1e-13 of the
@@ -459,6 +460,7 @@ bool projected_distance(Ladder<A, B>& l) {
     if (p.upper - lower > setup.tolerance && p.upper <= kSqrtEpsilon * setup.scale) {
       l.inflation = p.upper;  // touching within rounding: EPA on cores inflated beyond the gap decides
       l.fallback = l.ans;
+      l.fallback_lower = lower;
       return false;
     }
     return true;
@@ -695,8 +697,14 @@ LocalAnswer solve(const A& a, const B& b, PairSetup<A, B>& setup, const PairRequ
   if (sat_at_gjk_cap(l) || core_closest(l) || projected_distance(l)) return l.ans;
   if ((l.inflation == Real(0) && gjk_distance(l)) || sat_at_contact(l)) return l.ans;
   const EpaRun run = run_epa(l);
+  if (l.inflation > Real(0)) {
+    // EPA decides within the projection's bounds: an answer below the proven lower bound
+    // (EPA's error on the inflated cores) or above the projection's distance is not taken.
+    const bool decided = epa_answer(l, run) && l.ans.signed_distance >= l.fallback_lower - l.setup.tolerance &&
+                         l.ans.signed_distance <= l.fallback.signed_distance + l.setup.tolerance;
+    return decided ? l.ans : l.fallback;
+  }
   if (epa_answer(l, run) || sat_fallback(l, run.outcome)) return l.ans;
-  if (l.inflation > Real(0)) return l.fallback;  // EPA failed where it was to decide
   const Vec3 n = unit_or(-l.core.v, setup.axis);
   if (!core_refinement(l, n)) gjk_core_contact(l, n);
   return l.ans;

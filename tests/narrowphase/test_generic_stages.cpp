@@ -187,12 +187,43 @@ TEST(GenericStages, PolytopeGjkStoppedWithItsGapOpenRunsAgainInDouble) {
   pa.rotation = Quat(-0.50986200571060181, -0.80098360776901245, -0.2634829580783844, -0.17041940987110138);
   Transform pb = at(Vec3(0.53851133584976196, -0.89490807056427002, -1.090761661529541));
   pb.rotation = Quat(-0.67006510496139526, -0.24804368615150452, -0.69166499376296997, -0.10529303550720215);
+  if constexpr (sizeof(Real) == sizeof(double)) {  // drawn in float: unit to float's rounding only
+    pa.rotation = glm::normalize(pa.rotation);
+    pb.rotation = glm::normalize(pb.rotation);
+  }
   const DistanceResult d = narrow::generic_distance(box, pa, hull, pb, {}, nullptr);
   const auto wa = test::world_polytope(Shape(box), pa);
   const auto wb = test::world_polytope(Shape(hull), pb);
   ASSERT_TRUE(wa && wb);
   const double reference = test::polytope_distance_brute(*wa, *wb);
   EXPECT_NEAR(double(d.signed_distance), reference, 2.0 * double(d.tolerance));
+}
+
+TEST(GenericStages, EpaOnCoresInflatedBeyondAnOpenGapStaysWithinTheProjectionsBounds) {
+  // A cylinder and a cone 2.1e-10 apart (the touching-rule sweep's cylinder-cone case 1667
+  // at gap 0, under PROXIMA_TEST_SWEEP=139, double). GJK stalls with its gap open, the
+  // projection's bounds do not meet, and EPA on the cores inflated beyond the gap answered
+  // -2.07e-10: penetrating, where the boolean query found them apart. EPA's answer is now
+  // kept only within the proven bounds; the support functions' pattern search (a lower
+  // bound by a separating plane) places the distance at 2.09e-10.
+  const Cylinder cyl = Cylinder::create(Real(1.1938090386803402), Real(0.5693425910141422)).value();
+  const Cone cone = Cone::create(Real(0.20914254883369937), Real(1.4361541078285973)).value();
+  Transform pa = at(Vec3(0.026204003896067918, -0.16938891796773298, 0.35003708414705637));
+  pa.rotation =
+      glm::normalize(Quat(0.69237242327480597, -0.34710820790658847, 0.63247062206559856, -0.01082735962293232));
+  Transform pb = at(Vec3(-0.70299261272855662, -0.65683262957800692, -1.0157128625194112));
+  pb.rotation =
+      glm::normalize(Quat(0.76244884958387793, -0.52352786395783868, 0.3770004342705145, -0.049608466896361079));
+  const DistanceResult d = narrow::generic_distance(cyl, pa, cone, pb, {}, nullptr);
+  const bool hit = narrow::generic_intersect(cyl, pa, cone, pb, {}, nullptr);
+  EXPECT_EQ(hit, in_contact(d, {}));
+  const double reference = test::reference_signed_distance(Shape(cyl), pa, Shape(cone), pb).signed_distance;
+  EXPECT_GE(double(d.signed_distance), reference - 4.0 * double(d.tolerance));
+  if constexpr (sizeof(Real) == sizeof(double)) {
+    EXPECT_GT(d.signed_distance, Real(0));
+    EXPECT_FALSE(hit);
+    EXPECT_LE(double(d.signed_distance), reference + 1e-10);
+  }
 }
 
 TEST(GenericStages, TouchingPolytopeCoresAnswerBySatAtContact) {
