@@ -1003,7 +1003,7 @@ ContactManifold pair_collide(const Box& a, const Transform& pose_a, const Box& b
       Real smallest_gap = fp.p[0].gap;
       for (int q = 1; q < fp.count; ++q) smallest_gap = std::min(smallest_gap, fp.p[q].gap);
       if (k == s.max_axis || -smallest_gap <= -s.max_sep + p.tol) {
-        m.status = status_from_distance(sep, p.tol);
+        m.status = status_from_distance(s.max_sep, p.tol);  // the pair's depth, as distance answers it
         m.normal = ref.is_a ? ref.dir_world : -ref.dir_world;
         write_points(fp, ref, ref.is_a ? pose_a.position : pose_b.position, ref.is_a ? p.ma : p.mb, m.normal,
                      request.max_contacts, m);
@@ -1018,7 +1018,7 @@ ContactManifold pair_collide(const Box& a, const Transform& pose_a, const Box& b
     return overlap_on_axis(p, pose_a, pose_b, s.max_axis, s.max_sep, request, m);
   }
   const Vec3 n_local = axis_normal(p, k);
-  m.status = status_from_distance(sep, p.tol);
+  m.status = status_from_distance(s.max_sep, p.tol);  // the pair's depth, as distance answers it
   m.normal = to_world(p.ma, n_local);
   edge_manifold(p, pose_a, k, sep, n_local, m);
   return m;
