@@ -50,6 +50,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <type_traits>
 
 #include "core_closest_point.hpp"
@@ -173,6 +174,14 @@ struct LocalAnswer {
   GenericStage stage = GenericStage::NotRun;  ///< the stage that answered
 };
 
+/// A gap between the cores that its stage could not certify: its answer (an upper bound,
+/// the fall-back) and a proven lower bound; EPA on cores inflated beyond the gap decides
+/// within them.
+struct UndecidedGap {
+  LocalAnswer answer;  ///< the stage's answer; its signed distance is the upper bound (length)
+  Real lower;          ///< a proven lower bound of the distance (length)
+};
+
 /// Half-width of the band around the contact threshold inside which generic_intersect asks
 /// the distance query instead of trusting boolean GJK: one length tolerance in float; 64 in
 /// double, where boolean GJK (its simplex in Real) on curved sides was seen 3 tolerances off
@@ -232,11 +241,9 @@ struct Ladder {
   Real radii;                  ///< r_A + r_B
   bool touching;               ///< GJK did not enclose the origin in a tetrahedron (the cores only touch)
   LocalAnswer ans;             ///< the answer
-  /// Least inflation of the cores for EPA (length): set where the cores are apart by a
-  /// gap no stage could certify and EPA is to decide (projected_distance).
-  Real inflation = Real(0);
-  LocalAnswer fallback;           ///< the answer where EPA fails to decide (when inflation > 0)
-  Real fallback_lower = Real(0);  ///< a proven lower bound of the distance then (length)
+  /// Set where the cores are apart by a gap no stage could certify and EPA, on cores
+  /// inflated beyond it, is to decide within its bounds (projected_distance).
+  std::optional<UndecidedGap> undecided;
   /// The core stage's least signed distance (radii included) where GJK finds the cores
   /// touching and that distance is within the tolerance: exact to rounding, where EPA on
   /// inflated cores, which gives the touching pair its normal, errs by about 1e-13 of the
@@ -286,6 +293,21 @@ bool sat_at_gjk_cap(Ladder<A, B>& l) {
   }
 }
 
+/// True when GJK found the cores apart beyond rounding (16 eps of the pair's size).
+template <class A, class B>
+bool cores_apart(const Ladder<A, B>& l) {
+  return l.core.status != gjk::Status::Overlapping && l.core.distance > Real(16) * kEpsilon * l.setup.scale;
+}
+
+/// True when GJK's answer on cores apart is not certified: its duality gap open beyond a
+/// quarter of the tolerance, or its cap reached.
+template <class A, class B>
+bool gjk_gap_open(const Ladder<A, B>& l) {
+  const gjk::Outcome& g = l.core;
+  return cores_apart(l) &&
+         (g.status == gjk::Status::MaxIterations || g.distance - g.lower_bound > Real(0.25) * l.setup.tolerance);
+}
+
 /// True when side S's core serves the core stage against the other side O: a point, segment
 /// or triangle core always, a box only against a shape that is not a polytope (between
 /// polytopes GJK ends on a repeated vertex and the SAT backs it).
@@ -309,6 +331,18 @@ struct CoreSearch {
   Real radius;          ///< the searched core's radius
 };
 
+/// A and B as placed shapes in A's frame (closest points and supports of the full shapes).
+template <class A, class B>
+PlacedShape<A> placed_a(const Ladder<A, B>& l) {
+  return {l.a, Mat3(Real(1)), Mat3(Real(1)), Vec3(Real(0))};
+}
+/// See placed_a.
+template <class A, class B>
+PlacedShape<B> placed_b(const Ladder<A, B>& l) {
+  const auto& m = l.setup.support_b;
+  return {l.b, m.rotation, m.rotation_t, m.translation};
+}
+
 /// Runs core_closest_point on the side kCoreStageOnA names, X placed in A's frame. A box
 /// searches the features facing X: corners within 5 % of the pair's scale of its support
 /// plane along GJK's direction towards X; all of them where that direction is not known to
@@ -316,19 +350,17 @@ struct CoreSearch {
 /// the sliver's normal), or no distance.
 template <class A, class B>
 CoreSearch search_simple_core(const Ladder<A, B>& l) {
-  const auto& m = l.setup.support_b;
   const bool has_direction =
       l.core.distance > Real(0) && std::isfinite(l.core.distance) && l.core.lower_bound >= Real(0.5) * l.core.distance;
   const Vec3 a_to_b = has_direction ? -l.core.v / l.core.distance : Vec3(Real(0));
   const Real window = has_direction ? Real(0.05) * l.setup.scale : std::numeric_limits<Real>::infinity();
   if constexpr (kCoreStageOnA<A, B>) {
-    const PlacedShape<B> x{l.b, m.rotation, m.rotation_t, m.translation};
-    return {core_closest_point(x, SimpleCore<A>::vertices(l.a), a_to_b, window), l.setup.radius_a};
+    return {core_closest_point(placed_b(l), SimpleCore<A>::vertices(l.a), a_to_b, window), l.setup.radius_a};
   } else {
+    const auto& m = l.setup.support_b;
     auto v = SimpleCore<B>::vertices(l.b);
     for (Vec3& p : v) p = m.rotation * p + m.translation;
-    const PlacedShape<A> x{l.a, Mat3(Real(1)), Mat3(Real(1)), Vec3(Real(0))};
-    return {core_closest_point(x, v, -a_to_b, window), l.setup.radius_b};
+    return {core_closest_point(placed_a(l), v, -a_to_b, window), l.setup.radius_b};
   }
 }
 
@@ -376,9 +408,8 @@ bool core_closest(Ladder<A, B>& l) {
     const gjk::Outcome& g = l.core;
     const Real tolerance = l.setup.tolerance;
     const bool overlapping = g.status == gjk::Status::Overlapping;
-    const bool apart = !overlapping && g.distance > Real(16) * kEpsilon * l.setup.scale;
-    if (apart && g.status != gjk::Status::MaxIterations && g.distance - g.lower_bound <= Real(0.25) * tolerance)
-      return false;  // certified by GJK's duality gap
+    const bool apart = cores_apart(l);
+    if (apart && !gjk_gap_open(l)) return false;  // certified by GJK's duality gap
     // An overlap deeper than the tolerance inside GJK's tetrahedron is EPA's to measure.
     if (overlapping && !kPointCore && !(enclosed_depth(g.simplex) <= tolerance)) return false;
     const CoreSearch c = search_simple_core(l);
@@ -397,15 +428,6 @@ bool core_closest(Ladder<A, B>& l) {
   }
 }
 
-/// True when GJK's answer on the cores is not certified: the cores apart beyond rounding
-/// but the duality gap open beyond a quarter of the tolerance, or the cap reached.
-template <class A, class B>
-bool gjk_gap_open(const Ladder<A, B>& l) {
-  const gjk::Outcome& g = l.core;
-  if (g.status == gjk::Status::Overlapping || !(g.distance > Real(16) * kEpsilon * l.setup.scale)) return false;
-  return g.status == gjk::Status::MaxIterations || g.distance - g.lower_bound > Real(0.25) * l.setup.tolerance;
-}
-
 /// Before the stages: a polytope pair runs GJK's simplex in Real (float in the float build,
 /// for speed); where that run stops with its duality gap open (a sliver of nearby vertices
 /// on a large polytope near contact: seen 2.5 tolerances above the distance on a box and a
@@ -414,8 +436,8 @@ bool gjk_gap_open(const Ladder<A, B>& l) {
 template <class A, class B>
 void widen_open_polytope_gjk(Ladder<A, B>& l) {
   if constexpr (kPolytopePair<A, B> && !std::is_same_v<Real, gjk::Wide>) {  // nothing wider in double
+    if (!gjk_gap_open(l) || l.core.status == gjk::Status::MaxIterations) return;
     gjk::Settings s = l.setup.gjk_settings(l.request);
-    if (s.wide || !gjk_gap_open(l) || l.core.status == gjk::Status::MaxIterations) return;
     s.wide = true;
     const gjk::Outcome again = gjk::distance(l.setup.support_a, l.setup.support_b, -l.core.v, s);
     l.ans.iterations += again.iterations;
@@ -442,11 +464,8 @@ bool projected_distance(Ladder<A, B>& l) {
     if (!gjk_gap_open(l) || l.core.status == gjk::Status::MaxIterations || l.radii != Real(0)) return false;
     const gjk::Outcome& g = l.core;
     PairSetup<A, B>& setup = l.setup;
-    const auto& m = setup.support_b;
-    const PlacedShape<A> xa{l.a, Mat3(Real(1)), Mat3(Real(1)), Vec3(Real(0))};
-    const PlacedShape<B> xb{l.b, m.rotation, m.rotation_t, m.translation};
     const SurfaceProjection p =
-        surface_projection(xa, xb, setup.support_a, setup.support_b, g.point_a, -g.v / g.distance);
+        surface_projection(placed_a(l), placed_b(l), setup.support_a, setup.support_b, g.point_a, -g.v / g.distance);
     l.ans.iterations += p.rounds;
     if (!(p.upper < g.distance) || !(p.upper > Real(0))) return false;
     const Real lower = std::max(p.lower, g.lower_bound);
@@ -458,9 +477,7 @@ bool projected_distance(Ladder<A, B>& l) {
     l.ans.status = status_from_distance(p.upper, setup.tolerance);
     l.ans.stage = GenericStage::SurfaceProjection;
     if (p.upper - lower > setup.tolerance && p.upper <= kSqrtEpsilon * setup.scale) {
-      l.inflation = p.upper;  // touching within rounding: EPA on cores inflated beyond the gap decides
-      l.fallback = l.ans;
-      l.fallback_lower = lower;
+      l.undecided = UndecidedGap{l.ans, lower};  // touching within rounding: EPA decides
       return false;
     }
     return true;
@@ -471,8 +488,7 @@ bool projected_distance(Ladder<A, B>& l) {
 template <class A, class B>
 bool gjk_distance(Ladder<A, B>& l) {
   const gjk::Outcome& g = l.core;
-  const Real core_contact = Real(16) * kEpsilon * l.setup.scale;
-  if (g.status == gjk::Status::Overlapping || !(g.distance > core_contact)) return false;
+  if (!cores_apart(l)) return false;
   const Vec3 n = -g.v / g.distance;
   l.ans.normal = n;
   l.ans.signed_distance = g.distance - l.radii;
@@ -496,7 +512,7 @@ bool gjk_distance(Ladder<A, B>& l) {
 template <class A, class B>
 bool sat_at_contact(Ladder<A, B>& l) {
   if constexpr (kPolytopePair<A, B>) {
-    if (!l.touching || l.core.distance > Real(16) * kEpsilon * l.setup.scale) return false;
+    if (!l.touching || cores_apart(l)) return false;
     const SatResult s = run_sat(l);
     // A degenerate simplex may also stop GJK on a deep overlap (the origin on a segment of D,
     // as for identical shapes): that depth and its witnesses are EPA's.
@@ -556,7 +572,8 @@ void polish(const Ladder<A, B>& l, epa::Outcome& ep, SupportA& sa, SupportB& sb,
 template <class A, class B>
 epa::Outcome inflated_epa(Ladder<A, B>& l, const epa::Settings& es) {
   PairSetup<A, B>& setup = l.setup;
-  const Real delta = std::max({Real(1024) * kEpsilon * setup.scale, setup.tolerance, l.inflation});
+  const Real gap = l.undecided ? l.undecided->answer.signed_distance : Real(0);
+  const Real delta = std::max({Real(1024) * kEpsilon * setup.scale, setup.tolerance, gap});
   InflatedSupport<decltype(setup.support_a)> ia{setup.support_a, delta};
   InflatedSupport<decltype(setup.support_b)> ib{setup.support_b, delta};
   const gjk::Outcome gi = gjk::distance(ia, ib, setup.axis, setup.gjk_settings(l.request));
@@ -695,14 +712,16 @@ LocalAnswer solve(const A& a, const B& b, PairSetup<A, B>& setup, const PairRequ
   Ladder<A, B> l(a, b, setup, request);
   widen_open_polytope_gjk(l);
   if (sat_at_gjk_cap(l) || core_closest(l) || projected_distance(l)) return l.ans;
-  if ((l.inflation == Real(0) && gjk_distance(l)) || sat_at_contact(l)) return l.ans;
+  if ((!l.undecided && gjk_distance(l)) || sat_at_contact(l)) return l.ans;
   const EpaRun run = run_epa(l);
-  if (l.inflation > Real(0)) {
-    // EPA decides within the projection's bounds: an answer below the proven lower bound
-    // (EPA's error on the inflated cores) or above the projection's distance is not taken.
-    const bool decided = epa_answer(l, run) && l.ans.signed_distance >= l.fallback_lower - l.setup.tolerance &&
-                         l.ans.signed_distance <= l.fallback.signed_distance + l.setup.tolerance;
-    return decided ? l.ans : l.fallback;
+  if (l.undecided) {
+    // EPA decides within the bounds: an answer below the proven lower bound (EPA's error on
+    // the inflated cores) or above the stage's distance is not taken.
+    const UndecidedGap& u = *l.undecided;
+    const Real tol = l.setup.tolerance;
+    const bool decided = epa_answer(l, run) && l.ans.signed_distance >= u.lower - tol &&
+                         l.ans.signed_distance <= u.answer.signed_distance + tol;
+    return decided ? l.ans : u.answer;
   }
   if (epa_answer(l, run) || sat_fallback(l, run.outcome)) return l.ans;
   const Vec3 n = unit_or(-l.core.v, setup.axis);
