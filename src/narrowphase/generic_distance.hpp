@@ -300,12 +300,14 @@ bool cores_apart(const Ladder<A, B>& l) {
 }
 
 /// True when GJK's answer on cores apart is not certified: its duality gap open beyond a
-/// quarter of the tolerance, or its cap reached.
+/// quarter of the tolerance, its cap reached, or no positive lower bound (nothing proved the
+/// cores apart: a float run on a long thin box ended on a repeated vertex, its v's direction
+/// rounded, 9e-5 from a point 0.05 deep inside).
 template <class A, class B>
 bool gjk_gap_open(const Ladder<A, B>& l) {
   const gjk::Outcome& g = l.core;
-  return cores_apart(l) &&
-         (g.status == gjk::Status::MaxIterations || g.distance - g.lower_bound > Real(0.25) * l.setup.tolerance);
+  return cores_apart(l) && (g.status == gjk::Status::MaxIterations || !(g.lower_bound > Real(0)) ||
+                            g.distance - g.lower_bound > Real(0.25) * l.setup.tolerance);
 }
 
 /// True when side S's core serves the core stage against the other side O: a point, segment

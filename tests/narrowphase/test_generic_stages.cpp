@@ -343,5 +343,25 @@ TEST(GenericStages, LastResortStagesAnswerByTheirContract) {
   }
 }
 
+// Fuzz finding (fuzz/corpus/narrowphase_pairs/regression_box_point_no_lower_bound): a point
+// 0.05 inside a box of half extents (20, 0.05, 0.05). In float, GJK's segment between two
+// opposite corners passes 9e-5 from the point; v's x component rounds to 0, the support along
+// -v ties and returns a corner already in the simplex, and GJK stopped "apart" by 9e-5 with
+// no positive lower bound. An answer that nothing proved apart is not certified: the point
+// core answers its exact depth.
+TEST(GenericStages, GjkWithoutAPositiveLowerBoundDoesNotProveTheCoresApart) {
+  const Box box = Box::create(Vec3(20, Real(0.0506904013), Real(0.0500000007))).value();
+  const Point point = Point::create().value();
+  const Transform pa = at(Vec3(Real(-19.9737549), -20, -20));
+  const Transform pb = at(Vec3(-20, -20, -20));
+  for (const bool swapped : {false, true}) {
+    const auto s = swapped ? generic_distance_staged(point, pb, box, pa, {}, nullptr)
+                           : generic_distance_staged(box, pa, point, pb, {}, nullptr);
+    EXPECT_EQ(s.stage, GenericStage::CoreClosestPoint) << swapped;
+    EXPECT_NEAR(s.result.signed_distance, Real(-0.0500000007), tol_at(20)) << swapped;
+    EXPECT_EQ(s.result.status, PairStatus::Penetrating) << swapped;
+  }
+}
+
 }  // namespace test_generic_stages
 }  // namespace proxima

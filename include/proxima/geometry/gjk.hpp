@@ -18,10 +18,14 @@
 ///      signed measures over their own sum, so they sum to 1 to rounding on slivers too;
 ///   4. a full tetrahedron holding the origin means the sets overlap (EPA takes over).
 /// The Nesterov variant (Montaut, Le Lidec, Petrik, Sivic, Carpentier, "Collision detection
-/// accelerated: an optimization perspective", RSS 2022) queries the support at a momentum
-/// direction y = delta v + (1 - delta) w_last, delta = (k+1)/(k+3); when the gap test passes
-/// or the support repeats under momentum, it drops momentum and continues as plain GJK
-/// (their restart rule), so its answer is the plain one's.
+/// accelerated: an optimization perspective", RSS 2022) queries the support along the
+/// heading d = delta d_last + (1 - delta) y, y = delta v + (1 - delta) w_last,
+/// delta = (k+1)/(k+3); when the gap test passes or the support repeats under momentum, it
+/// drops momentum and continues as plain GJK (their restart rule), so its answer is the
+/// plain one's. It also drops momentum that does not halve the gap |v| - lower within
+/// kMomentumWindow steps: on overlapping sets the gap is |v| itself, and momentum was seen
+/// creeping towards the origin by 1 % a step to the cap (two concentric ellipsoids answered
+/// 0.006 apart at 128 iterations where plain GJK encloses the origin in 4).
 ///
 /// Witnesses: the barycentric coordinates of v over the simplex applied to the support points
 /// of A and of B that made each vertex. Everything is header-only and templated on the two
@@ -125,6 +129,9 @@ struct Outcome {
 };
 
 namespace detail {
+
+/// Iterations over which Nesterov's momentum must halve the duality gap to be kept.
+inline constexpr int kMomentumWindow = 8;
 
 template <class T>
 bool same_sign(T a, T b) {
@@ -394,6 +401,9 @@ Outcome run(SupportA& support_a, SupportB& support_b, const Vec3& initial_direct
   Status status = Status::MaxIterations;
   BasicVertex<T> last = s.v[0];
   bool momentum = settings.variant == Variant::Nesterov;
+  V3 heading = v;       // the momentum's accumulated search direction
+  T checkpoint = T(0);  // the gap |v| - lower when the momentum's window began
+  bool stalled = false;
   V3 separating(T(0));
   int k = 0;
   for (; k < settings.max_iterations; ++k) {
@@ -410,7 +420,8 @@ Outcome run(SupportA& support_a, SupportB& support_b, const Vec3& initial_direct
     if (momentum) {
       const T delta = T(k + 1) / T(k + 3);
       const V3 y = delta * v + (T(1) - delta) * last.w;
-      dir = y;
+      heading = k == 0 ? y : delta * heading + (T(1) - delta) * y;
+      dir = heading;
     }
     if (!(glm::dot(dir, dir) > T(0))) dir = v;
     const BasicVertex<T> w = make_vertex(-dir);
@@ -435,7 +446,13 @@ Outcome run(SupportA& support_a, SupportB& support_b, const Vec3& initial_direct
       if (s.v[i].w == w.w) repeated = true;
     if (momentum) {
       const T gap_m = vn - lower;
-      if (repeated || gap_m <= std::max(gap_tol, noise)) {
+      // Momentum must halve the gap every kMomentumWindow steps: on overlapping sets (lower
+      // stays 0) it can creep towards the origin by a percent a step for ever.
+      if (k % kMomentumWindow == 0) {
+        stalled = k > 0 && gap_m > T(0.5) * checkpoint;
+        checkpoint = gap_m;
+      }
+      if (repeated || stalled || gap_m <= std::max(gap_tol, noise)) {
         momentum = false;  // restart: finish with plain steps and the true duality gap
         continue;
       }
