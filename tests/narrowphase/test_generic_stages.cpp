@@ -363,5 +363,37 @@ TEST(GenericStages, GjkWithoutAPositiveLowerBoundDoesNotProveTheCoresApart) {
   }
 }
 
+// Fuzz finding (fuzz/corpus/narrowphase_pairs/regression_hull_in_sphere_ridge): a small
+// tetrahedron inside a sphere of radius 17 (an ellipsoid of equal radii, so the generic
+// ladder runs) about the same centre. The depth is R - dist(centre, hull); D's support
+// function has a crease wherever the hull's support is an edge, and the refinement's descent
+// settled on one, 0.0056 deeper than the minimum (ellipsoid first; the hull first was right).
+// It now follows the crease (epa_refine.hpp, follow_ridge).
+TEST(GenericStages, DepthDescentSettledOnACreaseFollowsIt) {
+  const std::vector<Vec3> points = {{Real(-0.326948285), Real(-0.282263398), Real(0.442761481)},
+                                    {Real(0.418453038), Real(0.418453038), Real(0.418453038)},
+                                    {Real(0.442761481), Real(0.442761481), Real(0.442761481)},
+                                    {Real(0.442761481), Real(0.442761481), Real(0.41852057)}};
+  const ConvexHull hull = ConvexHull::create(points).value();
+  const Real radius = Real(16.9668388);
+  const Ellipsoid ball = Ellipsoid::create(Vec3(radius)).value();
+  Transform pose = at(Vec3(Real(18.9019623)));
+  pose.rotation = Quat(Real(0.707106829), 0, Real(0.707106829), 0);
+  // dist(centre, hull): the least distance from the origin to the tetrahedron's faces.
+  const test::D3v o{0, 0, 0};
+  double d2 = std::numeric_limits<double>::infinity();
+  for (int skip = 0; skip < 4; ++skip) {
+    std::vector<test::D3v> t;
+    for (int k = 0; k < 4; ++k)
+      if (k != skip) t.push_back(test::d3v(points[std::size_t(k)]));
+    d2 = std::min(d2, test::point_triangle_distance2(o, t[0], t[1], t[2]));
+  }
+  const double expected = -(double(radius) - std::sqrt(d2));
+  const auto ab = generic_distance_staged(hull, pose, ball, pose, {}, nullptr);
+  const auto ba = generic_distance_staged(ball, pose, hull, pose, {}, nullptr);
+  EXPECT_NEAR(ab.result.signed_distance, expected, tol_at(17));
+  EXPECT_NEAR(ba.result.signed_distance, expected, tol_at(17));
+}
+
 }  // namespace test_generic_stages
 }  // namespace proxima
