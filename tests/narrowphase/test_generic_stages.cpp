@@ -21,6 +21,7 @@
 namespace proxima {
 namespace test_generic_stages {
 
+using narrow::generic_distance;
 using narrow::generic_distance_staged;
 using narrow::GenericStage;
 
@@ -393,6 +394,30 @@ TEST(GenericStages, DepthDescentSettledOnACreaseFollowsIt) {
   const auto ba = generic_distance_staged(ball, pose, hull, pose, {}, nullptr);
   EXPECT_NEAR(ab.result.signed_distance, expected, tol_at(17));
   EXPECT_NEAR(ba.result.signed_distance, expected, tol_at(17));
+}
+
+// Fuzz finding (fuzz/corpus/narrowphase_pairs/regression_cones_flat_contact_witness): two
+// cones about the same centre, overlapping 2.5 deep face to face along their axis. EPA's
+// nearest face, one of many coplanar faces of D, did not hold the origin's projection; its
+// nearest point gave witnesses 1.9 apart across the normal (point_b != point_a + d n). The
+// witnesses now come from the cores' support feature along EPA's normal.
+TEST(GenericStages, EpaWitnessesOnAFlatContactLieOnTheNormal) {
+  const Cone a = Cone::create(Real(3.75310636), Real(1.58117938)).value();
+  const Cone b = Cone::create(Real(14.4160662), Real(0.92105478)).value();
+  Transform pose = at(Vec3(Real(-0.54901886)));
+  pose.rotation = Quat(Real(0.707106829), 0, 0, Real(0.707106829));
+  const double expected = test::decide_signed_distance(a, pose, b, pose);
+  const Real tol = (sizeof(Real) == 4 ? Real(1e-3) : Real(1e-6)) * Real(20);
+  for (const bool swapped : {false, true}) {
+    const DistanceResult d =
+        swapped ? generic_distance(b, pose, a, pose, {}, nullptr) : generic_distance(a, pose, b, pose, {}, nullptr);
+    EXPECT_NEAR(d.signed_distance, expected, tol) << swapped;
+    EXPECT_LT(glm::length(d.point_b - (d.point_a + d.signed_distance * d.normal)), tol) << swapped;
+    const Cone& first = swapped ? b : a;
+    const Cone& second = swapped ? a : b;
+    EXPECT_LT(std::abs(first.closest_point(pose.inverse_apply(d.point_a)).signed_distance), tol) << swapped;
+    EXPECT_LT(std::abs(second.closest_point(pose.inverse_apply(d.point_b)).signed_distance), tol) << swapped;
+  }
 }
 
 }  // namespace test_generic_stages

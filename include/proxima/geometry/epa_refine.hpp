@@ -518,4 +518,26 @@ Refinement refine(SupportA& support_a, SupportB& support_b, const Vec3& start_no
   return r;
 }
 
+/// Witnesses on D's support feature along `normal` alone (step 4 of refine, no descent):
+/// points of A and B with support_a - support_b = depth normal, depth the support distance
+/// along the normal, and witness_gap how far the feature's point nearest the line along the
+/// normal was from it. For an answer whose own witnesses do not obey the relation (EPA's
+/// nearest face left its projection outside, on a flat contact of many coplanar faces).
+template <class SupportA, class SupportB>
+Refinement witnesses_along(SupportA& support_a, SupportB& support_b, const Vec3& normal, Real length_scale) {
+  namespace rd = refine_detail;
+  const Real l2 = glm::dot(normal, normal);
+  const Vec3 n = l2 > Real(0) && std::isfinite(l2) ? normal / std::sqrt(l2) : Vec3(Real(0), Real(0), Real(1));
+  const rd::SupportSample at = rd::sample(support_a, support_b, n);
+  Refinement r;
+  r.iterations = 1;
+  r.depth = at.h;
+  r.normal = n;
+  r.tangential = at.p - at.h * n;
+  const rd::TangentPoints feature = rd::feature_points(
+      support_a, support_b, at, std::max(length_scale, std::numeric_limits<Real>::min()), r.iterations);
+  rd::tangent_witnesses(feature, at, r);
+  return r;
+}
+
 }  // namespace proxima::epa
