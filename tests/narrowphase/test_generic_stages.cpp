@@ -420,5 +420,28 @@ TEST(GenericStages, EpaWitnessesOnAFlatContactLieOnTheNormal) {
   }
 }
 
+// Fuzz finding (fuzz/corpus/narrowphase_pairs/regression_nesterov_cones_flat_tetrahedron): a
+// wide flat cone and a small one 0.29 deep. Nesterov GJK, after its momentum steps, enclosed
+// the origin in a tetrahedron EPA could not start from (Degenerate), and the ladder answered
+// GJK's core contact: distance 0, a witness 0.28 inside. EPA now runs again on the inflated
+// cores, as it does when it stops at its cap.
+TEST(GenericStages, EpaThatCannotStartFromGjksTetrahedronRunsOnInflatedCores) {
+  const Cone a = Cone::create(Real(20), Real(0.484173775)).value();
+  const Cone b = Cone::create(Real(0.0500000007), Real(0.0500000007)).value();
+  const Transform pa = at(Vec3(Real(-18.6730747), Real(-15.4509802), Real(-19.9822998)));
+  const Transform pb = at(Vec3(-20, -20, Real(-19.9609375)));
+  PairRequest nesterov;
+  nesterov.gjk = gjk::Variant::Nesterov;
+  const double expected = test::decide_signed_distance(a, pa, b, pb);
+  const Real tol = (sizeof(Real) == 4 ? Real(1e-3) : Real(1e-6)) * Real(40);
+  for (const bool swapped : {false, true}) {
+    const auto s = swapped ? generic_distance_staged(b, pb, a, pa, nesterov, nullptr)
+                           : generic_distance_staged(a, pa, b, pb, nesterov, nullptr);
+    EXPECT_NE(s.stage, GenericStage::GjkCoreContact) << swapped;
+    EXPECT_EQ(s.result.status, PairStatus::Penetrating) << swapped;
+    EXPECT_NEAR(s.result.signed_distance, expected, tol) << swapped;
+  }
+}
+
 }  // namespace test_generic_stages
 }  // namespace proxima
