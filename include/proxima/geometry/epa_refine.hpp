@@ -63,6 +63,12 @@ namespace refine_detail {
 /// v scaled to unit length (v non-zero).
 inline Vec3 unit(const Vec3& v) { return v / std::sqrt(glm::dot(v, v)); }
 
+/// v scaled to unit length, or +z when v is zero or not finite.
+inline Vec3 unit_or_z(const Vec3& v) {
+  const Real l2 = glm::dot(v, v);
+  return l2 > Real(0) && std::isfinite(l2) ? v / std::sqrt(l2) : Vec3(Real(0), Real(0), Real(1));
+}
+
 /// Two unit vectors that complete unit n to an orthonormal basis (Duff et al. 2017).
 struct TangentBasis {
   Vec3 t1;  ///< first tangent
@@ -487,9 +493,7 @@ Refinement refine(SupportA& support_a, SupportB& support_b, const Vec3& start_no
                   int max_steps = 96) {
   namespace rd = refine_detail;
   const rd::RefineTolerances tol = rd::refine_tolerances(length_scale);
-  const Real l2 = glm::dot(start_normal, start_normal);
-  const Vec3 n0 = l2 > Real(0) && std::isfinite(l2) ? start_normal / std::sqrt(l2) : Vec3(Real(0), Real(0), Real(1));
-  const rd::SupportSample start = rd::sample(support_a, support_b, n0);
+  const rd::SupportSample start = rd::sample(support_a, support_b, rd::unit_or_z(start_normal));
   rd::Descent d = rd::descend(support_a, support_b, start, tol, max_steps);
   int queries = d.queries;
   rd::TangentPoints feature = rd::feature_points(support_a, support_b, d.at, tol.scale, queries);
@@ -498,11 +502,9 @@ Refinement refine(SupportA& support_a, SupportB& support_b, const Vec3& start_no
     const Vec3 e = rd::missed_edge(feature, tol.scale);
     if (!(glm::dot(e, e) > Real(0))) break;
     d.queries = 0;
-    if (!rd::follow_ridge(support_a, support_b, d, e, tol, max_steps)) {
-      queries += d.queries;
-      break;
-    }
+    const bool moved = rd::follow_ridge(support_a, support_b, d, e, tol, max_steps);
     queries += d.queries;
+    if (!moved) break;
     d = rd::descend(support_a, support_b, d.at, tol, max_steps);
     queries += d.queries;
     feature = rd::feature_points(support_a, support_b, d.at, tol.scale, queries);
@@ -526,16 +528,15 @@ Refinement refine(SupportA& support_a, SupportB& support_b, const Vec3& start_no
 template <class SupportA, class SupportB>
 Refinement witnesses_along(SupportA& support_a, SupportB& support_b, const Vec3& normal, Real length_scale) {
   namespace rd = refine_detail;
-  const Real l2 = glm::dot(normal, normal);
-  const Vec3 n = l2 > Real(0) && std::isfinite(l2) ? normal / std::sqrt(l2) : Vec3(Real(0), Real(0), Real(1));
+  const Vec3 n = rd::unit_or_z(normal);
   const rd::SupportSample at = rd::sample(support_a, support_b, n);
   Refinement r;
   r.iterations = 1;
   r.depth = at.h;
   r.normal = n;
   r.tangential = at.p - at.h * n;
-  const rd::TangentPoints feature = rd::feature_points(
-      support_a, support_b, at, std::max(length_scale, std::numeric_limits<Real>::min()), r.iterations);
+  const rd::TangentPoints feature =
+      rd::feature_points(support_a, support_b, at, rd::refine_tolerances(length_scale).scale, r.iterations);
   rd::tangent_witnesses(feature, at, r);
   return r;
 }

@@ -403,7 +403,6 @@ Outcome run(SupportA& support_a, SupportB& support_b, const Vec3& initial_direct
   bool momentum = settings.variant == Variant::Nesterov;
   V3 heading = v;       // the momentum's accumulated search direction
   T checkpoint = T(0);  // the gap |v| - lower when the momentum's window began
-  bool stalled = false;
   V3 separating(T(0));
   int k = 0;
   for (; k < settings.max_iterations; ++k) {
@@ -448,6 +447,7 @@ Outcome run(SupportA& support_a, SupportB& support_b, const Vec3& initial_direct
       const T gap_m = vn - lower;
       // Momentum must halve the gap every kMomentumWindow steps: on overlapping sets (lower
       // stays 0) it can creep towards the origin by a percent a step for ever.
+      bool stalled = false;
       if (k % kMomentumWindow == 0) {
         stalled = k > 0 && gap_m > T(0.5) * checkpoint;
         checkpoint = gap_m;
