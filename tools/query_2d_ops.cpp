@@ -4,6 +4,7 @@
 #include <proxima/d2/narrowphase.hpp>
 #include <proxima/d2/time_of_impact.hpp>
 
+#include <cmath>
 #include <initializer_list>
 #include <limits>
 #include <string>
@@ -181,6 +182,11 @@ Json op_mass_2d(const Json& request) {
   if (!target.shape.is_convex()) throw FieldError("target.shape", "unsupported_geometry", "a chain has no area");
   const Real density = read_non_negative(request, "density", Real(1));
   const d2::MassProperties m = d2::mass_properties(target.shape.core(), density);
+  if (!std::isfinite(m.mass) || !std::isfinite(m.inertia)) {
+    throw FieldError("density", "out_of_range",
+                     "the mass properties at this density exceed the number range (the inertia grows as density "
+                     "times size^4; docs/conventions.md, \"Limits\")");
+  }
   return Json{{"area", to_json(m.area)},
               {"mass", to_json(m.mass)},
               {"centroid", to_json(target.pose.apply(m.centroid))},

@@ -128,6 +128,11 @@ Json op_mass(const Json& request) {
           std::string("a ") + to_string(shape_type(target.shape)) + " has infinite volume and no mass properties");
     }
   }
+  if (!is_finite(*props)) {
+    throw FieldError("density", "out_of_range",
+                     "the mass properties at this density exceed the number range (the inertia grows as density "
+                     "times size^5; docs/conventions.md, \"Limits\")");
+  }
   // World frame: the centroid moves with the pose, the inertia turns with it (R I R^T).
   const Mat3 r = target.pose.rotation_matrix();
   const Mat3 inertia = r * props->inertia * glm::transpose(r);

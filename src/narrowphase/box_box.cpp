@@ -882,7 +882,7 @@ ContactManifold& near_manifold(const BoxPair& p, const Transform& pose_a, const 
 
 bool pair_intersect(const Box& a, const Transform& pose_a, const Box& b, const Transform& pose_b,
                     const PairRequest& request, PairCache* cache) {
-  if (!finite_poses(pose_a, pose_b)) return false;
+  if (!poses_in_range(pose_a, pose_b)) return false;
   const BoxPair p = make_pair(a, pose_a, b, pose_b, request);
   const Real limit = contact_reach(request.contact_distance, p.tol);  // the touching rule
   const int cached = cached_separating_axis(p, limit, cache);
@@ -899,7 +899,7 @@ bool pair_intersect(const Box& a, const Transform& pose_a, const Box& b, const T
 
 DistanceResult pair_distance(const Box& a, const Transform& pose_a, const Box& b, const Transform& pose_b,
                              const PairRequest& request, PairCache* cache) {
-  if (!finite_poses(pose_a, pose_b)) return invalid_distance();
+  if (!poses_in_range(pose_a, pose_b)) return invalid_distance();
   const BoxPair p = make_pair(a, pose_a, b, pose_b, request);
   const SatResult s = full_sat(p);
   store_cache(cache, p, s.max_axis, s.max_sep > Real(0));
@@ -950,7 +950,7 @@ DistanceResult pair_distance(const Box& a, const Transform& pose_a, const Box& b
 
 ContactManifold pair_collide(const Box& a, const Transform& pose_a, const Box& b, const Transform& pose_b,
                              const PairRequest& request_in, PairCache* cache) {
-  if (!finite_poses(pose_a, pose_b)) return invalid_manifold();
+  if (!poses_in_range(pose_a, pose_b)) return invalid_manifold();
   const BoxPair p = make_pair(a, pose_a, b, pose_b, request_in);
   // Gaps are compared with the contact reach (the touching rule of contact.hpp).
   const PairRequest request = request_within_reach(request_in, p.tol);

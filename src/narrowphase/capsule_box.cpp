@@ -102,19 +102,19 @@ CapsuleBox capsule_box(const Capsule& a, const Transform& pose_a, const Box& b, 
 
 DistanceResult pair_distance(const Capsule& a, const Transform& pose_a, const Box& b, const Transform& pose_b,
                              const PairRequest& request, PairCache* /*cache*/) {
-  if (!finite_poses(pose_a, pose_b)) return invalid_distance();
+  if (!poses_in_range(pose_a, pose_b)) return invalid_distance();
   return capsule_box(a, pose_a, b, pose_b, request).result;
 }
 
 bool pair_intersect(const Capsule& a, const Transform& pose_a, const Box& b, const Transform& pose_b,
                     const PairRequest& request, PairCache* cache) {
-  if (!finite_poses(pose_a, pose_b)) return false;
+  if (!poses_in_range(pose_a, pose_b)) return false;
   return in_contact(pair_distance(a, pose_a, b, pose_b, request, cache), request);
 }
 
 ContactManifold pair_collide(const Capsule& a, const Transform& pose_a, const Box& b, const Transform& pose_b,
                              const PairRequest& request, PairCache* /*cache*/) {
-  if (!finite_poses(pose_a, pose_b)) return invalid_manifold();
+  if (!poses_in_range(pose_a, pose_b)) return invalid_manifold();
   const CapsuleBox cb = capsule_box(a, pose_a, b, pose_b, request);
   ContactManifold m = manifold_from_distance(cb.result, request, cb.feature);
   if (m.count == 0 || request.max_contacts < 2) return m;

@@ -41,13 +41,13 @@ detail::CoreSegmentPair capsule_capsule(const Capsule& a, const Transform& pose_
 
 DistanceResult pair_distance(const Capsule& a, const Transform& pose_a, const Capsule& b, const Transform& pose_b,
                              const PairRequest& request, PairCache* /*cache*/) {
-  if (!finite_poses(pose_a, pose_b)) return invalid_distance();
+  if (!poses_in_range(pose_a, pose_b)) return invalid_distance();
   return capsule_capsule(a, pose_a, b, pose_b, request).result;
 }
 
 bool pair_intersect(const Capsule& a, const Transform& pose_a, const Capsule& b, const Transform& pose_b,
                     const PairRequest& request, PairCache* /*cache*/) {
-  if (!finite_poses(pose_a, pose_b)) return false;
+  if (!poses_in_range(pose_a, pose_b)) return false;
   return detail::core_segments_within(
       pose_a.apply(a.bottom()), pose_a.apply(a.top()), pose_b.apply(b.bottom()), pose_b.apply(b.top()), a.radius(),
       b.radius(), request.contact_distance, capsule_pair_tolerance(a, pose_a, b, pose_b, request),
@@ -56,7 +56,7 @@ bool pair_intersect(const Capsule& a, const Transform& pose_a, const Capsule& b,
 
 ContactManifold pair_collide(const Capsule& a, const Transform& pose_a, const Capsule& b, const Transform& pose_b,
                              const PairRequest& request, PairCache* /*cache*/) {
-  if (!finite_poses(pose_a, pose_b)) return invalid_manifold();
+  if (!poses_in_range(pose_a, pose_b)) return invalid_manifold();
   return detail::core_segment_manifold(capsule_capsule(a, pose_a, b, pose_b, request), a.radius(), b.radius(), request);
 }
 

@@ -177,7 +177,7 @@ struct CompositeCell {
   }
   static bool intersect(const void* a, const Transform& pa, const void* b, const Transform& pb,
                         const PairRequest& request, PairCache* cache) {
-    if (!finite_poses(pa, pb)) return false;
+    if (!poses_in_range(pa, pb)) return false;
     const PairRequest r = resolved(a, pa, b, pb, request);
     return with_hint(cache, [&](PartHint* hint) {
       if constexpr (kCompositeDirect<A, B>)
@@ -188,7 +188,7 @@ struct CompositeCell {
   }
   static DistanceResult distance(const void* a, const Transform& pa, const void* b, const Transform& pb,
                                  const PairRequest& request, PairCache* cache, Real cutoff) {
-    if (!finite_poses(pa, pb)) return invalid_distance();
+    if (!poses_in_range(pa, pb)) return invalid_distance();
     const PairRequest r = resolved(a, pa, b, pb, request);
     return with_hint(cache, [&](PartHint* hint) {
       if constexpr (kCompositeDirect<A, B>)
@@ -199,12 +199,12 @@ struct CompositeCell {
   }
   static ContactManifold collide(const void* a, const Transform& pa, const void* b, const Transform& pb,
                                  const PairRequest& request, PairCache* /*cache*/) {
-    if (!finite_poses(pa, pb)) return invalid_manifold();
+    if (!poses_in_range(pa, pb)) return invalid_manifold();
     return reduced_manifold(sa(a), pa, sb(b), pb, resolved(a, pa, b, pb, request));
   }
   static void collide_all(const void* a, const Transform& pa, const void* b, const Transform& pb,
                           const PairRequest& request, ContactCollector& collector) {
-    if (!finite_poses(pa, pb)) return;
+    if (!poses_in_range(pa, pb)) return;
     const PairRequest r = resolved(a, pa, b, pb, request);
     if constexpr (kCompositeDirect<A, B>) {
       composite_collide_all(sa(a), pa, sb(b), pb, r, collector);

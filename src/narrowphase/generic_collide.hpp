@@ -27,7 +27,7 @@ namespace proxima::narrow {
 template <class A, class B>
 ContactManifold pair_collide(const A& a, const Transform& pose_a, const B& b, const Transform& pose_b,
                              const PairRequest& request, PairCache* cache) {
-  if (!finite_poses(pose_a, pose_b)) return invalid_manifold();
+  if (!poses_in_range(pose_a, pose_b)) return invalid_manifold();
   return manifold_of(a, pose_a, b, pose_b, pair_distance(a, pose_a, b, pose_b, request, cache), request);
 }
 

@@ -64,7 +64,7 @@ namespace proxima::narrow {
 /// The stage of the generic ladder that gave an answer (see the file comment). The answer's
 /// PairMethod names the algorithm only; this says which rung of the ladder answered.
 enum class GenericStage : std::uint8_t {
-  NotRun,             ///< no stage ran (a pose was not finite: status InvalidInput)
+  NotRun,             ///< no stage ran (a pose was out of range: status InvalidInput)
   SatAtGjkCap,        ///< polytopes, GJK at its cap: the SAT proved an overlap (method Sat)
   CoreClosestPoint,   ///< a point, segment, triangle or box core against the other shape's closest point
                       ///< (method ClosestPoint)
@@ -759,7 +759,7 @@ GenericStage distance_into(const A& a, const Transform& pose_a, const B& b, cons
                            const PairRequest& request, PairCache* cache, DistanceResult& r) {
   static_assert(!std::is_same_v<A, HalfSpace> && !std::is_same_v<B, HalfSpace>,
                 "half-space pairs are served by their closed-form routines");
-  if (!finite_poses(pose_a, pose_b)) {
+  if (!poses_in_range(pose_a, pose_b)) {
     r = invalid_distance();
     return GenericStage::NotRun;
   }
@@ -818,7 +818,7 @@ bool generic_intersect(const A& a, const Transform& pose_a, const B& b, const Tr
                        const PairRequest& request, PairCache* cache) {
   static_assert(!std::is_same_v<A, HalfSpace> && !std::is_same_v<B, HalfSpace>,
                 "half-space pairs are served by their closed-form routines");
-  if (!finite_poses(pose_a, pose_b)) return false;
+  if (!poses_in_range(pose_a, pose_b)) return false;
   generic_detail::PairSetup<A, B> setup(a, pose_a, b, pose_b, request, cache);
   gjk::Settings s = setup.gjk_settings(request);
   const Real reach = setup.radius_a + setup.radius_b + contact_reach(request.contact_distance, setup.tolerance);

@@ -170,28 +170,28 @@ PlaneQuery plane_query(const S& a, const Transform& pose_a, const HalfSpace& b, 
   return {world_plane(b, pose_b), tolerance, support_distance(a, pose_a, b, pose_b, tolerance)};
 }
 
-/// Signed distance of A to the half-space (steps 1, 2); InvalidInput for non-finite poses.
+/// Signed distance of A to the half-space (steps 1, 2); InvalidInput for poses out of range.
 template <class S>
 DistanceResult halfspace_distance(const S& a, const Transform& pose_a, const HalfSpace& b, const Transform& pose_b,
                                   const PairRequest& request) {
-  if (!finite_poses(pose_a, pose_b)) return invalid_distance();
+  if (!poses_in_range(pose_a, pose_b)) return invalid_distance();
   return support_distance(a, pose_a, b, pose_b, halfspace_tolerance(request, pose_a, pose_b, b, halfspace_size(a)));
 }
 
 /// True when A is in contact with the half-space (step 2 and the touching rule of
-/// contact.hpp); false for non-finite poses.
+/// contact.hpp); false for poses out of range.
 template <class S>
 bool halfspace_intersect(const S& a, const Transform& pose_a, const HalfSpace& b, const Transform& pose_b,
                          const PairRequest& request) {
-  if (!finite_poses(pose_a, pose_b)) return false;
+  if (!poses_in_range(pose_a, pose_b)) return false;
   return in_contact(halfspace_distance(a, pose_a, b, pose_b, request), request);
 }
 
-/// Contact manifold of A and the half-space (steps 1 to 3); InvalidInput for non-finite poses.
+/// Contact manifold of A and the half-space (steps 1 to 3); InvalidInput for poses out of range.
 template <class S>
 ContactManifold halfspace_collide(const S& a, const Transform& pose_a, const HalfSpace& b, const Transform& pose_b,
                                   const PairRequest& request) {
-  if (!finite_poses(pose_a, pose_b)) return invalid_manifold();
+  if (!poses_in_range(pose_a, pose_b)) return invalid_manifold();
   const PlaneQuery q = plane_query(a, pose_a, b, pose_b, request);
   if (!in_contact(q.distance, request) || request.max_contacts < 1) {
     return empty_manifold(q.distance);

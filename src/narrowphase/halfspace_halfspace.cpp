@@ -19,7 +19,7 @@ namespace proxima::narrow {
 
 DistanceResult pair_distance(const HalfSpace& a, const Transform& pose_a, const HalfSpace& b, const Transform& pose_b,
                              const PairRequest& request, PairCache* /*cache*/) {
-  if (!finite_poses(pose_a, pose_b)) return invalid_distance();
+  if (!poses_in_range(pose_a, pose_b)) return invalid_distance();
   const detail::WorldPlane pa = detail::world_plane(a, pose_a);
   const detail::WorldPlane pb = detail::world_plane(b, pose_b);
   const Real tol = detail::halfspace_tolerance(request, pose_a, pose_b, b, std::abs(a.offset()));
@@ -43,13 +43,13 @@ DistanceResult pair_distance(const HalfSpace& a, const Transform& pose_a, const 
 
 bool pair_intersect(const HalfSpace& a, const Transform& pose_a, const HalfSpace& b, const Transform& pose_b,
                     const PairRequest& request, PairCache* cache) {
-  if (!finite_poses(pose_a, pose_b)) return false;
+  if (!poses_in_range(pose_a, pose_b)) return false;
   return in_contact(pair_distance(a, pose_a, b, pose_b, request, cache), request);
 }
 
 ContactManifold pair_collide(const HalfSpace& a, const Transform& pose_a, const HalfSpace& b, const Transform& pose_b,
                              const PairRequest& request, PairCache* cache) {
-  if (!finite_poses(pose_a, pose_b)) return invalid_manifold();
+  if (!poses_in_range(pose_a, pose_b)) return invalid_manifold();
   return manifold_from_distance(pair_distance(a, pose_a, b, pose_b, request, cache), request,
                                 make_feature_id(FeatureKind::Face, 0, FeatureKind::Face, 0));
 }

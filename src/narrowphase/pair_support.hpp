@@ -1,7 +1,7 @@
 #pragma once
 /// @file pair_support.hpp
 /// Private helpers shared by every pair routine of the narrow phase: tolerance resolution,
-/// the defined answer for non-finite poses, and the one-point manifold of a distance result.
+/// the defined answer for poses out of range, and the one-point manifold of a distance result.
 ///
 /// Contract of a pair routine (one header per group of pairs, declared in namespace
 /// proxima::narrow, defined in one .cpp per pair): for each pair (A, B) it serves, with A
@@ -29,17 +29,19 @@ inline Real resolve_tolerance(const PairRequest& request, Real scale) {
   return request.tolerance > Real(0) ? request.tolerance : linear_tolerance(scale);
 }
 
-/// True when both poses are finite (rotation and position).
-inline bool finite_poses(const Transform& pose_a, const Transform& pose_b) {
-  const auto finite = [](const Transform& t) {
-    return std::isfinite(t.position.x) && std::isfinite(t.position.y) && std::isfinite(t.position.z) &&
-           std::isfinite(t.rotation.w) && std::isfinite(t.rotation.x) && std::isfinite(t.rotation.y) &&
-           std::isfinite(t.rotation.z);
+/// True when both poses lie in the stated range: finite rotations, positions finite and
+/// within kMaxPlacedCoordinate (core/tolerance.hpp), where every answer is right.
+inline bool poses_in_range(const Transform& pose_a, const Transform& pose_b) {
+  // islessequal: quiet on NaN (an ordered comparison would raise the invalid flag).
+  const auto in_range = [](const Transform& t) {
+    const auto near = [](Real x) { return std::islessequal(std::abs(x), kMaxPlacedCoordinate); };
+    return near(t.position.x) && near(t.position.y) && near(t.position.z) && std::isfinite(t.rotation.w) &&
+           std::isfinite(t.rotation.x) && std::isfinite(t.rotation.y) && std::isfinite(t.rotation.z);
   };
-  return finite(pose_a) && finite(pose_b);
+  return in_range(pose_a) && in_range(pose_b);
 }
 
-/// The defined answer for non-finite poses: separated by +infinity, status InvalidInput.
+/// The defined answer for poses out of range: separated by +infinity, status InvalidInput.
 inline DistanceResult invalid_distance() {
   DistanceResult r;
   r.signed_distance = std::numeric_limits<Real>::infinity();
@@ -47,7 +49,7 @@ inline DistanceResult invalid_distance() {
   return r;
 }
 
-/// The defined answer for non-finite poses: no contact, status InvalidInput.
+/// The defined answer for poses out of range: no contact, status InvalidInput.
 inline ContactManifold invalid_manifold() {
   ContactManifold m;
   m.status = PairStatus::InvalidInput;

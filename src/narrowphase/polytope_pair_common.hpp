@@ -101,7 +101,7 @@ ContactManifold sat_collide_result(const A& a, const Transform& pose_a, const B&
 template <class A, class B>
 bool sat_pair_intersect(const A& a, const Transform& pose_a, const B& b, const Transform& pose_b,
                         const PairRequest& request, PairCache* cache) {
-  if (!finite_poses(pose_a, pose_b)) return false;
+  if (!poses_in_range(pose_a, pose_b)) return false;
   return in_contact(pair_distance(a, pose_a, b, pose_b, request, cache), request);
 }
 
@@ -110,7 +110,7 @@ bool sat_pair_intersect(const A& a, const Transform& pose_a, const B& b, const T
 template <class A, class B>
 ContactManifold sat_pair_collide(const A& a, const Transform& pose_a, const B& b, const Transform& pose_b,
                                  const PairRequest& request, PairCache* cache) {
-  if (!finite_poses(pose_a, pose_b)) return invalid_manifold();
+  if (!poses_in_range(pose_a, pose_b)) return invalid_manifold();
   const DistanceResult d = pair_distance(a, pose_a, b, pose_b, request, cache);
   ContactManifold m = manifold_of(a, pose_a, b, pose_b, d, request);
   m.method = PairMethod::Sat;

@@ -37,13 +37,13 @@ detail::CoreSegmentPair segment_segment(const Segment& a, const Transform& pose_
 
 DistanceResult pair_distance(const Segment& a, const Transform& pose_a, const Segment& b, const Transform& pose_b,
                              const PairRequest& request, PairCache* /*cache*/) {
-  if (!finite_poses(pose_a, pose_b)) return invalid_distance();
+  if (!poses_in_range(pose_a, pose_b)) return invalid_distance();
   return segment_segment(a, pose_a, b, pose_b, request).result;
 }
 
 bool pair_intersect(const Segment& a, const Transform& pose_a, const Segment& b, const Transform& pose_b,
                     const PairRequest& request, PairCache* /*cache*/) {
-  if (!finite_poses(pose_a, pose_b)) return false;
+  if (!poses_in_range(pose_a, pose_b)) return false;
   return detail::core_segments_within(
       pose_a.apply(a.a()), pose_a.apply(a.b()), pose_b.apply(b.a()), pose_b.apply(b.b()), Real(0), Real(0),
       request.contact_distance, segment_pair_tolerance(a, pose_a, b, pose_b, request),
@@ -52,7 +52,7 @@ bool pair_intersect(const Segment& a, const Transform& pose_a, const Segment& b,
 
 ContactManifold pair_collide(const Segment& a, const Transform& pose_a, const Segment& b, const Transform& pose_b,
                              const PairRequest& request, PairCache* /*cache*/) {
-  if (!finite_poses(pose_a, pose_b)) return invalid_manifold();
+  if (!poses_in_range(pose_a, pose_b)) return invalid_manifold();
   return detail::core_segment_manifold(segment_segment(a, pose_a, b, pose_b, request), Real(0), Real(0), request);
 }
 

@@ -62,13 +62,13 @@ SphereBox sphere_box(const Sphere& a, const Transform& pose_a, const Box& b, con
 
 DistanceResult pair_distance(const Sphere& a, const Transform& pose_a, const Box& b, const Transform& pose_b,
                              const PairRequest& request, PairCache* /*cache*/) {
-  if (!finite_poses(pose_a, pose_b)) return invalid_distance();
+  if (!poses_in_range(pose_a, pose_b)) return invalid_distance();
   return sphere_box(a, pose_a, b, pose_b, request).result;
 }
 
 bool pair_intersect(const Sphere& a, const Transform& pose_a, const Box& b, const Transform& pose_b,
                     const PairRequest& request, PairCache* /*cache*/) {
-  if (!finite_poses(pose_a, pose_b)) return false;
+  if (!poses_in_range(pose_a, pose_b)) return false;
   // Squared distance of the centre to the solid box (box frame) against (contact reach +
   // r)^2; a centre inside is at depth r + (distance to the nearest face) >= r: a hit.
   const Vec3& h = b.half_extents();
@@ -84,7 +84,7 @@ bool pair_intersect(const Sphere& a, const Transform& pose_a, const Box& b, cons
 
 ContactManifold pair_collide(const Sphere& a, const Transform& pose_a, const Box& b, const Transform& pose_b,
                              const PairRequest& request, PairCache* /*cache*/) {
-  if (!finite_poses(pose_a, pose_b)) return invalid_manifold();
+  if (!poses_in_range(pose_a, pose_b)) return invalid_manifold();
   const SphereBox sb = sphere_box(a, pose_a, b, pose_b, request);
   return manifold_from_distance(sb.result, request, sb.feature);
 }

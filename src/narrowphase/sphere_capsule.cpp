@@ -46,13 +46,13 @@ SphereCapsule sphere_capsule(const Sphere& a, const Transform& pose_a, const Cap
 
 DistanceResult pair_distance(const Sphere& a, const Transform& pose_a, const Capsule& b, const Transform& pose_b,
                              const PairRequest& request, PairCache* /*cache*/) {
-  if (!finite_poses(pose_a, pose_b)) return invalid_distance();
+  if (!poses_in_range(pose_a, pose_b)) return invalid_distance();
   return sphere_capsule(a, pose_a, b, pose_b, request).result;
 }
 
 bool pair_intersect(const Sphere& a, const Transform& pose_a, const Capsule& b, const Transform& pose_b,
                     const PairRequest& request, PairCache* /*cache*/) {
-  if (!finite_poses(pose_a, pose_b)) return false;
+  if (!poses_in_range(pose_a, pose_b)) return false;
   // Squared distance of the centre to the core (in the capsule's frame, where the core is
   // the z axis from -half_length to half_length) against (contact reach + radii)^2.
   const Vec3 c = pose_b.inverse_apply(pose_a.position);
@@ -68,7 +68,7 @@ bool pair_intersect(const Sphere& a, const Transform& pose_a, const Capsule& b, 
 
 ContactManifold pair_collide(const Sphere& a, const Transform& pose_a, const Capsule& b, const Transform& pose_b,
                              const PairRequest& request, PairCache* /*cache*/) {
-  if (!finite_poses(pose_a, pose_b)) return invalid_manifold();
+  if (!poses_in_range(pose_a, pose_b)) return invalid_manifold();
   const SphereCapsule sc = sphere_capsule(a, pose_a, b, pose_b, request);
   FeatureKind kind{};
   std::uint32_t index = 0;

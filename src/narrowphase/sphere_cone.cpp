@@ -115,19 +115,19 @@ SphereCone sphere_cone(const Sphere& a, const Transform& pose_a, const Cone& b, 
 
 DistanceResult pair_distance(const Sphere& a, const Transform& pose_a, const Cone& b, const Transform& pose_b,
                              const PairRequest& request, PairCache* /*cache*/) {
-  if (!finite_poses(pose_a, pose_b)) return invalid_distance();
+  if (!poses_in_range(pose_a, pose_b)) return invalid_distance();
   return sphere_cone(a, pose_a, b, pose_b, request).result;
 }
 
 bool pair_intersect(const Sphere& a, const Transform& pose_a, const Cone& b, const Transform& pose_b,
                     const PairRequest& request, PairCache* /*cache*/) {
-  if (!finite_poses(pose_a, pose_b)) return false;
+  if (!poses_in_range(pose_a, pose_b)) return false;
   return in_contact(sphere_cone(a, pose_a, b, pose_b, request).result, request);
 }
 
 ContactManifold pair_collide(const Sphere& a, const Transform& pose_a, const Cone& b, const Transform& pose_b,
                              const PairRequest& request, PairCache* /*cache*/) {
-  if (!finite_poses(pose_a, pose_b)) return invalid_manifold();
+  if (!poses_in_range(pose_a, pose_b)) return invalid_manifold();
   const SphereCone sc = sphere_cone(a, pose_a, b, pose_b, request);
   return manifold_from_distance(sc.result, request, sc.feature);
 }

@@ -75,19 +75,19 @@ SphereCylinder sphere_cylinder(const Sphere& a, const Transform& pose_a, const C
 
 DistanceResult pair_distance(const Sphere& a, const Transform& pose_a, const Cylinder& b, const Transform& pose_b,
                              const PairRequest& request, PairCache* /*cache*/) {
-  if (!finite_poses(pose_a, pose_b)) return invalid_distance();
+  if (!poses_in_range(pose_a, pose_b)) return invalid_distance();
   return sphere_cylinder(a, pose_a, b, pose_b, request).result;
 }
 
 bool pair_intersect(const Sphere& a, const Transform& pose_a, const Cylinder& b, const Transform& pose_b,
                     const PairRequest& request, PairCache* /*cache*/) {
-  if (!finite_poses(pose_a, pose_b)) return false;
+  if (!poses_in_range(pose_a, pose_b)) return false;
   return in_contact(sphere_cylinder(a, pose_a, b, pose_b, request).result, request);
 }
 
 ContactManifold pair_collide(const Sphere& a, const Transform& pose_a, const Cylinder& b, const Transform& pose_b,
                              const PairRequest& request, PairCache* /*cache*/) {
-  if (!finite_poses(pose_a, pose_b)) return invalid_manifold();
+  if (!poses_in_range(pose_a, pose_b)) return invalid_manifold();
   const SphereCylinder sc = sphere_cylinder(a, pose_a, b, pose_b, request);
   return manifold_from_distance(sc.result, request, sc.feature);
 }

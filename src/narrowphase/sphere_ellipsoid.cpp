@@ -40,13 +40,13 @@ DistanceResult sphere_ellipsoid(const Sphere& a, const Transform& pose_a, const 
 
 DistanceResult pair_distance(const Sphere& a, const Transform& pose_a, const Ellipsoid& b, const Transform& pose_b,
                              const PairRequest& request, PairCache* /*cache*/) {
-  if (!finite_poses(pose_a, pose_b)) return invalid_distance();
+  if (!poses_in_range(pose_a, pose_b)) return invalid_distance();
   return sphere_ellipsoid(a, pose_a, b, pose_b, ellipsoid_tolerance(a, pose_a, b, pose_b, request));
 }
 
 bool pair_intersect(const Sphere& a, const Transform& pose_a, const Ellipsoid& b, const Transform& pose_b,
                     const PairRequest& request, PairCache* /*cache*/) {
-  if (!finite_poses(pose_a, pose_b)) return false;
+  if (!poses_in_range(pose_a, pose_b)) return false;
   const Real tol = ellipsoid_tolerance(a, pose_a, b, pose_b, request);
   const Real reach = std::max(request.contact_distance, tol);
   const Vec3 e = b.radii();
@@ -58,7 +58,7 @@ bool pair_intersect(const Sphere& a, const Transform& pose_a, const Ellipsoid& b
 
 ContactManifold pair_collide(const Sphere& a, const Transform& pose_a, const Ellipsoid& b, const Transform& pose_b,
                              const PairRequest& request, PairCache* /*cache*/) {
-  if (!finite_poses(pose_a, pose_b)) return invalid_manifold();
+  if (!poses_in_range(pose_a, pose_b)) return invalid_manifold();
   return manifold_from_distance(
       sphere_ellipsoid(a, pose_a, b, pose_b, ellipsoid_tolerance(a, pose_a, b, pose_b, request)), request,
       make_feature_id(FeatureKind::Surface, 0, FeatureKind::Surface, 0));

@@ -14,7 +14,7 @@ namespace proxima::narrow {
 
 DistanceResult pair_distance(const Sphere& a, const Transform& pose_a, const Sphere& b, const Transform& pose_b,
                              const PairRequest& request, PairCache* /*cache*/) {
-  if (!finite_poses(pose_a, pose_b)) return invalid_distance();
+  if (!poses_in_range(pose_a, pose_b)) return invalid_distance();
   const Vec3 ca = pose_a.position;
   const Vec3 cb = pose_b.position;
   Real length = Real(0);
@@ -25,7 +25,7 @@ DistanceResult pair_distance(const Sphere& a, const Transform& pose_a, const Sph
 
 bool pair_intersect(const Sphere& a, const Transform& pose_a, const Sphere& b, const Transform& pose_b,
                     const PairRequest& request, PairCache* /*cache*/) {
-  if (!finite_poses(pose_a, pose_b)) return false;
+  if (!poses_in_range(pose_a, pose_b)) return false;
   // |cb - ca| - ra - rb <= contact reach, without the square root away from the threshold.
   const Real tol = resolve_tolerance(request, detail::pair_scale(pose_a, pose_b, a.radius() + b.radius()));
   return decide_contact_squared(length_squared(pose_b.position - pose_a.position), a.radius() + b.radius(),
@@ -36,7 +36,7 @@ bool pair_intersect(const Sphere& a, const Transform& pose_a, const Sphere& b, c
 
 ContactManifold pair_collide(const Sphere& a, const Transform& pose_a, const Sphere& b, const Transform& pose_b,
                              const PairRequest& request, PairCache* cache) {
-  if (!finite_poses(pose_a, pose_b)) return invalid_manifold();
+  if (!poses_in_range(pose_a, pose_b)) return invalid_manifold();
   return manifold_from_distance(pair_distance(a, pose_a, b, pose_b, request, cache), request,
                                 make_feature_id(FeatureKind::Surface, 0, FeatureKind::Surface, 0));
 }

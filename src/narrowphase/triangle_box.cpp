@@ -107,7 +107,7 @@ struct TriangleBoxSat {
 
 DistanceResult pair_distance(const Triangle& a, const Transform& pose_a, const Box& b, const Transform& pose_b,
                              const PairRequest& request, PairCache* cache) {
-  if (!finite_poses(pose_a, pose_b)) return invalid_distance();
+  if (!poses_in_range(pose_a, pose_b)) return invalid_distance();
   const TriangleBoxSat sat(a, pose_a, b, pose_b, request);
   return sat_distance_result(sat.s, pose_a, sat.tol, cache, sat.closest(b, pose_b));
 }
@@ -134,7 +134,7 @@ Real triangle_box_directional_signed_distance(const Triangle& a, const Transform
 
 bool pair_intersect(const Triangle& a, const Transform& pose_a, const Box& b, const Transform& pose_b,
                     const PairRequest& request, PairCache* cache) {
-  if (!finite_poses(pose_a, pose_b)) return false;
+  if (!poses_in_range(pose_a, pose_b)) return false;
   // The separation along the best axis is a lower bound of the distance: beyond the
   // contact reach the answer is no without the exact closest features (the same answer
   // and cache as the full distance).
@@ -151,7 +151,7 @@ bool pair_intersect(const Triangle& a, const Transform& pose_a, const Box& b, co
 
 ContactManifold pair_collide(const Triangle& a, const Transform& pose_a, const Box& b, const Transform& pose_b,
                              const PairRequest& request, PairCache* cache) {
-  if (!finite_poses(pose_a, pose_b)) return invalid_manifold();
+  if (!poses_in_range(pose_a, pose_b)) return invalid_manifold();
   const TriangleBoxSat sat(a, pose_a, b, pose_b, request);
   return sat_collide_result(a, pose_a, b, pose_b, sat.s, sat.tol, request, cache, sat.closest(b, pose_b));
 }

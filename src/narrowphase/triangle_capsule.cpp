@@ -111,19 +111,19 @@ TriangleCapsule triangle_capsule(const Triangle& a, const Transform& pose_a, con
 
 DistanceResult pair_distance(const Triangle& a, const Transform& pose_a, const Capsule& b, const Transform& pose_b,
                              const PairRequest& request, PairCache* /*cache*/) {
-  if (!finite_poses(pose_a, pose_b)) return invalid_distance();
+  if (!poses_in_range(pose_a, pose_b)) return invalid_distance();
   return triangle_capsule(a, pose_a, b, pose_b, request).result;
 }
 
 bool pair_intersect(const Triangle& a, const Transform& pose_a, const Capsule& b, const Transform& pose_b,
                     const PairRequest& request, PairCache* cache) {
-  if (!finite_poses(pose_a, pose_b)) return false;
+  if (!poses_in_range(pose_a, pose_b)) return false;
   return in_contact(pair_distance(a, pose_a, b, pose_b, request, cache), request);
 }
 
 ContactManifold pair_collide(const Triangle& a, const Transform& pose_a, const Capsule& b, const Transform& pose_b,
                              const PairRequest& request, PairCache* /*cache*/) {
-  if (!finite_poses(pose_a, pose_b)) return invalid_manifold();
+  if (!poses_in_range(pose_a, pose_b)) return invalid_manifold();
   const TriangleCapsule tc = triangle_capsule(a, pose_a, b, pose_b, request);
   ContactManifold m = manifold_from_distance(tc.result, request, tc.feature);
   if (m.count == 0 || request.max_contacts < 2) return m;

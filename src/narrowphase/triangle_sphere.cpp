@@ -83,19 +83,19 @@ TriangleSphere triangle_sphere(const Triangle& a, const Transform& pose_a, const
 
 DistanceResult pair_distance(const Triangle& a, const Transform& pose_a, const Sphere& b, const Transform& pose_b,
                              const PairRequest& request, PairCache* /*cache*/) {
-  if (!finite_poses(pose_a, pose_b)) return invalid_distance();
+  if (!poses_in_range(pose_a, pose_b)) return invalid_distance();
   return triangle_sphere(a, pose_a, b, pose_b, request).result;
 }
 
 bool pair_intersect(const Triangle& a, const Transform& pose_a, const Sphere& b, const Transform& pose_b,
                     const PairRequest& request, PairCache* cache) {
-  if (!finite_poses(pose_a, pose_b)) return false;
+  if (!poses_in_range(pose_a, pose_b)) return false;
   return in_contact(pair_distance(a, pose_a, b, pose_b, request, cache), request);
 }
 
 ContactManifold pair_collide(const Triangle& a, const Transform& pose_a, const Sphere& b, const Transform& pose_b,
                              const PairRequest& request, PairCache* /*cache*/) {
-  if (!finite_poses(pose_a, pose_b)) return invalid_manifold();
+  if (!poses_in_range(pose_a, pose_b)) return invalid_manifold();
   const TriangleSphere ts = triangle_sphere(a, pose_a, b, pose_b, request);
   return manifold_from_distance(ts.result, request, ts.feature);
 }

@@ -22,7 +22,7 @@ namespace proxima::narrow {
 
 DistanceResult pair_distance(const Triangle& a, const Transform& pose_a, const Triangle& b, const Transform& pose_b,
                              const PairRequest& request, PairCache* cache) {
-  if (!finite_poses(pose_a, pose_b)) return invalid_distance();
+  if (!poses_in_range(pose_a, pose_b)) return invalid_distance();
   SmallPolytope pa;
   SmallPolytope pb;
   triangle_polytope(a, pose_a, pa);

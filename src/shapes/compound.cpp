@@ -11,6 +11,8 @@
 #include <proxima/shapes/compound.hpp>
 #include <proxima/shapes/shape_queries.hpp>
 
+#include <limits>
+#include <span>
 #include <string>
 #include <type_traits>
 #include <utility>
@@ -65,6 +67,21 @@ MassProperties child_mass_properties(const Shape& shape, Real density) {
       shape);
 }
 
+/// The answer past Real's range (a child's properties overflowed): turning and shifting an
+/// infinite inertia would mix infinities of both signs into NaN, so the whole inertia is
+/// +infinity, the volume and mass the children's sums, the centroid the box centre.
+MassProperties overflowed(std::span<const CompoundChild> kids, Real density, const Vec3& centre) {
+  MassProperties total;
+  for (const CompoundChild& child : kids) {
+    const MassProperties m = child_mass_properties(child.shape, density);
+    total.volume += m.volume;
+    total.mass += m.mass;
+  }
+  total.centroid = centre;
+  for (int c = 0; c < 3; ++c) total.inertia[c] = Vec3(std::numeric_limits<Real>::infinity());
+  return total;
+}
+
 }  // namespace
 
 MassProperties Compound::mass_properties(Real density) const {
@@ -75,6 +92,7 @@ MassProperties Compound::mass_properties(Real density) const {
   Vec3 weighted{Real(0)};
   for (const CompoundChild& child : kids) {
     MassProperties m = child_mass_properties(child.shape, density);
+    if (!is_finite(m)) return overflowed(kids, density, local_aabb().center());
     const Mat3 r = child.pose.rotation_matrix();
     m.centroid = child.pose.apply(m.centroid);
     m.inertia = r * m.inertia * glm::transpose(r);

@@ -109,8 +109,9 @@ MassProperties Cylinder::mass_properties(Real density) const {
   MassProperties m;
   m.volume = Real(2) * kPi * r2 * half_length_;
   m.mass = density * m.volume;
-  // (3 r^2 + L^2) / 12 with L = 2h.
-  const Real transverse = m.mass * (Real(3) * r2 + Real(4) * h2) / Real(12);
+  // (3 r^2 + L^2) / 12 with L = 2h (divided before the mass multiplies: the product of
+  // the mass and the sum alone can overflow where the inertia does not).
+  const Real transverse = m.mass * ((Real(3) * r2 + Real(4) * h2) / Real(12));
   m.inertia = Mat3(Real(0));
   m.inertia[0][0] = transverse;
   m.inertia[1][1] = transverse;

@@ -617,7 +617,7 @@ Real pick(test::Random& rng) {
                          Real(1),
                          Real(3),
                          Real(1e4),
-                         Real(1e12),
+                         kMaxCoordinate * Real(1e-3),
                          kMaxCoordinate};
   const Real magnitude = values[rng.integer(0, 10)];
   const Real v = magnitude * rng.uniform(Real(0.5), Real(1));

@@ -482,7 +482,7 @@ TEST(PairsHalfSpace, HalfSpaceHalfSpace) {
     EXPECT_TRUE(pair_intersect(up, at({1, 2, 3}), other, at({}), {}, nullptr));
   }
   // Far planes: finite answers.
-  const HalfSpace far = *HalfSpace::create(Vec3(0, 0, -1), Real(-1e15));
+  const HalfSpace far = *HalfSpace::create(Vec3(0, 0, -1), -kMaxCoordinate);
   const DistanceResult f = pair_distance(up, at({}), far, at({}), {}, nullptr);
   EXPECT_TRUE(std::isfinite(f.signed_distance));
   EXPECT_GT(f.signed_distance, Real(0));

@@ -228,7 +228,7 @@ TEST(Ellipsoid, SupportOfDegenerateDirections) {
   EXPECT_TRUE(test::all_finite(s));
   EXPECT_NEAR(surface_offset(el.radii(), to_d(s)), 0.0, tol_at(3));
   // A ratio of radii of 1e30 (float: the squares of the ratio overflow) stays finite.
-  const Ellipsoid flat = make(Vec3(Real(1e15), Real(1), Real(1e-15)));
+  const Ellipsoid flat = make(Vec3(kMaxCoordinate, Real(1), kMaxCoordinate * Real(1e-30)));
   for (const Vec3& d : {Vec3(1, 1, 1), Vec3(0, 0, 1), Vec3(tiny, tiny, 1), Vec3(1, tiny, tiny)}) {
     EXPECT_TRUE(test::all_finite(flat.support(d)));
   }
@@ -358,8 +358,10 @@ TEST(Ellipsoid, ClosestPointOfExtremeRatiosIsBoundedAndFinite) {
   // Ratios up to 1e30 (beyond float's squared range) and points far away or on the axes:
   // the bisection stays bounded and every answer is finite.
   const Real tiny = std::numeric_limits<Real>::denorm_min();
-  for (const Vec3& radii : {Vec3(Real(1e15), Real(1), Real(1e-15)), Vec3(Real(1e-15), Real(1e-15), Real(1e15)),
-                            Vec3(Real(1e3), Real(1e-3), Real(1)), Vec3(kMaxCoordinate, Real(1), Real(1))}) {
+  const Real big = kMaxCoordinate;
+  const Real small = kMaxCoordinate * Real(1e-30);
+  for (const Vec3& radii : {Vec3(big, Real(1), small), Vec3(small, small, big), Vec3(Real(1e3), Real(1e-3), Real(1)),
+                            Vec3(kMaxCoordinate, Real(1), Real(1))}) {
     const Ellipsoid el = make(radii);
     for (const Vec3& q : {Vec3(0), Vec3(1, 1, 1), Vec3(tiny, tiny, tiny), Vec3(0, 0, 1), Vec3(1, 0, 0),
                           Vec3(kMaxCoordinate, kMaxCoordinate, kMaxCoordinate), Vec3(0, kMaxCoordinate, 0),

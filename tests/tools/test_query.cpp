@@ -9,6 +9,7 @@
 
 #include <array>
 #include <cmath>
+#include <limits>
 #include <set>
 #include <string>
 
@@ -426,6 +427,25 @@ TEST(Query, ErrorsNameTheirField) {
     const std::string message = a.value("error", "");
     EXPECT_EQ(message.rfind(std::string(c.field) + ": ", 0), 0u) << message;
   }
+}
+
+// Past the number range (the inertia, density times size^5, overflows): an error on the
+// density, never null or infinite numbers in the answer.
+TEST(Query, MassPastTheNumberRangeIsRefusedOnTheDensity) {
+  const Json request = {{"id", 1},
+                        {"op", "mass"},
+                        {"target", {{"type", "sphere"}, {"radius", double(kMaxCoordinate)}}},
+                        {"density", double(std::numeric_limits<Real>::max()) / 10}};
+  bool rejected = false;
+  const Json a = tool::answer_line(request.dump(), rejected);
+  EXPECT_TRUE(rejected) << a.dump();
+  EXPECT_EQ(a.value("field", ""), "density");
+  EXPECT_EQ(a.value("code", ""), "out_of_range");
+  // At the largest accepted size and unit density the answer is finite.
+  const Json ok = {{"id", 2}, {"op", "mass"}, {"target", {{"type", "sphere"}, {"radius", double(kMaxCoordinate)}}}};
+  const Json b = tool::answer_line(ok.dump(), rejected);
+  EXPECT_FALSE(rejected) << b.dump();
+  EXPECT_TRUE(b["inertia"][0][0].is_number()) << b.dump();
 }
 
 TEST(Query, BadJsonAndNonObjects) {

@@ -2,8 +2,11 @@
 // shapes, chains report their segment, and bad input names the request's field.
 #include <gtest/gtest.h>
 
+#include <proxima/core/tolerance.hpp>
 #include <proxima/d2/narrowphase.hpp>
 #include <proxima/d2/time_of_impact.hpp>
+
+#include <limits>
 
 #include "json_shapes_2d.hpp"
 #include "query_test_util.hpp"
@@ -107,6 +110,12 @@ TEST(Query2d, BadInputNamesTheField) {
   EXPECT_EQ(field({{"op", "cast"}, {"a", kCircle}, {"translation", {1, 2, 3}}, {"b", kCircle}}), "translation");
   EXPECT_EQ(field({{"op", "toi"}, {"a", kCircle}, {"b", kCircle}, {"tolerance", -1}}), "tolerance");
   EXPECT_EQ(field({{"op", "mass"}, {"target", kFloor}}), "target.shape");
+  // Past the number range (density times size^4 overflows): refused on the density.
+  const double huge_density = double(std::numeric_limits<Real>::max()) / 10;
+  EXPECT_EQ(field({{"op", "mass"},
+                   {"target", {{"type", "box2d"}, {"half_extents", {double(kMaxCoordinate), double(kMaxCoordinate)}}}},
+                   {"density", huge_density}}),
+            "density");
   EXPECT_EQ(field({{"op", "distance"}, {"a", {{"type", "chain"}, {"points", {{0, 0}, {0, 0}}}}}, {"b", kCircle}}),
             "a.points[1]");
 }

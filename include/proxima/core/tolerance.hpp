@@ -25,8 +25,17 @@ inline const Real kSqrtEpsilon = std::sqrt(kEpsilon);
 /// that the tolerance never underflows): kRelativeTolerance * max(1, |scale|).
 inline Real linear_tolerance(Real scale) { return kRelativeTolerance * std::max(Real(1), std::abs(scale)); }
 
-/// Largest Real accepted as a coordinate or size at construction (1e18 for float, 1e150
-/// for double): beyond it squared lengths overflow.
-inline constexpr Real kMaxCoordinate = sizeof(Real) == 4 ? Real(1e18) : Real(1e150);
+/// Largest Real accepted as a coordinate or size (1e7 for float, 1e50 for double): the
+/// stated range in which every answer is right (docs/conventions.md, "Limits"). The most
+/// fragile products hold four lengths in the narrow phase (GJK's and EPA's squared signed
+/// areas: with 1e18 accepted, float answers broke from about 1e9) and five in mass
+/// properties (the inertia per unit density, 1e36 for the largest accepted float hull), so
+/// both stay finite, with room for densities up to about 100 in float and 1e50 in double.
+inline constexpr Real kMaxCoordinate = sizeof(Real) == 4 ? Real(1e7) : Real(1e50);
+
+/// Largest position component the narrow phase accepts in a pose (4 kMaxCoordinate): room
+/// for composed placements, a compound's child placed inside a placed compound reaching
+/// (1 + sqrt 3) kMaxCoordinate. Poses beyond it answer status InvalidInput.
+inline constexpr Real kMaxPlacedCoordinate = Real(4) * kMaxCoordinate;
 
 }  // namespace proxima

@@ -33,7 +33,7 @@ enum class PairStatus : std::uint8_t {
                   ///< (for a gap: an upper bound on the distance, exact witnesses of it)
   Degenerate,     ///< EPA could not build or grow its polytope; the answer came from the
                   ///< fall-back named by `method` (SAT for polytopes, else GJK's core contact)
-  InvalidInput,   ///< a transform was not finite; the answer is "separated, +infinity"
+  InvalidInput,   ///< a transform not finite or past kMaxPlacedCoordinate: "separated, +inf"
 };
 
 /// Which algorithm produced the answer (for diagnostics, tests and benchmarks).

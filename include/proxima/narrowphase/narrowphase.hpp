@@ -18,7 +18,8 @@
 ///     src/narrowphase/), else GJK on the cores, EPA when the cores overlap, SAT when EPA
 ///     cannot answer for polytopes; half-spaces meet every shape through its support mapping.
 ///     These allocate nothing, throw nothing and never return NaN: a transform that is not
-///     finite gives status InvalidInput with "separated, +infinity" answers.
+///     finite or whose position exceeds kMaxPlacedCoordinate (the stated range, core/tolerance.hpp)
+///     gives status InvalidInput with "separated, +infinity" answers.
 ///   - a triangle mesh against a convex shape: the mesh's BVH walked with the shape's box,
 ///     the convex routine per triangle, internal-edge handling so that a shape sliding over
 ///     a flat mesh gets no ghost contacts; mesh against mesh: both hierarchies descended

@@ -35,6 +35,7 @@ class Compound {
   Aabb world_aabb(const Transform& pose) const;
   /// Mass properties of the union of the children at `density`, children assumed disjoint
   /// (overlapping volume counts twice, as in Jolt and Bullet); open meshes contribute none.
+  /// Past Real's range (is_finite false for a child) the whole inertia is +infinity.
   MassProperties mass_properties(Real density = Real(1)) const;
 
  private:
