@@ -661,6 +661,13 @@ bool epa_answer(Ladder<A, B>& l, const EpaRun& run) {
                      : status_from_distance(l.ans.signed_distance, l.setup.tolerance);
   l.ans.stage = run.stage;
   place_witnesses_on_the_normal(l, e);
+  if constexpr (kPolytopePair<A, B>) {
+    // Witnesses still off the relation: EPA stopped short of the depth (float EPA on shapes of
+    // very different sizes, e.g. a hull 0.1 across in a triangle 26 across). The polytopes'
+    // exact SAT answers instead (stage d).
+    const Real off = glm::length(l.ans.point_b - (l.ans.point_a + l.ans.signed_distance * l.ans.normal));
+    if (off > l.setup.tolerance) return false;
+  }
   // Touching cores whose core search found the distance exactly: that distance, EPA's normal
   // (EPA's own within sqrt(eps) of the size: its error on inflated cores, not another contact).
   if (std::isfinite(l.core_touch) && std::abs(l.core_touch - l.ans.signed_distance) <= kSqrtEpsilon * l.setup.scale) {

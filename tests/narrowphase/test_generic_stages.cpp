@@ -443,5 +443,38 @@ TEST(GenericStages, EpaThatCannotStartFromGjksTetrahedronRunsOnInflatedCores) {
   }
 }
 
+// Fuzz finding (fuzz/corpus/narrowphase_pairs/regression_triangle_hull_epa_short): a hull
+// 0.1 across inside a triangle 29 across, 0.0305 deep. Float EPA converged to 0.029 with
+// witnesses 0.053 apart across its normal (off point_b = point_a + d n by twice the
+// tolerance), and no support feature along that normal met the relation. Polytope pairs whose
+// EPA witnesses stay off the relation now take the exact SAT's answer.
+TEST(GenericStages, PolytopeEpaWitnessesOffTheRelationGiveWayToTheSat) {
+  const Real big = Real(14.437169075012207);
+  const Triangle a = Triangle::create(Vec3(big), Vec3(-big, -big, big),
+                                      Vec3(Real(-14.32966423034668), -big, Real(-14.411173820495605)))
+                         .value();
+  const Real h = Real(0.052391301840543747);
+  const std::vector<Vec3> cloud{{h, h, h},
+                                {h, -h, h},
+                                {h, -h, -h},
+                                {-h, Real(-0.051981989294290543), Real(-0.049116794019937515)},
+                                {-h, Real(-0.018827613443136215), Real(-0.052258595824241638)},
+                                {Real(0.052061934024095535), Real(-0.048296570777893066), h},
+                                {-h, -h, -h}};
+  const ConvexHull b = ConvexHull::create(cloud).value();
+  const Transform pose = at(Vec3(-20));
+  const Real tol = (sizeof(Real) == 4 ? Real(1e-3) : Real(1e-6)) * Real(26);
+  for (const bool swapped : {false, true}) {
+    const DistanceResult d =
+        swapped ? generic_distance(b, pose, a, pose, {}, nullptr) : generic_distance(a, pose, b, pose, {}, nullptr);
+    // The support-function reference, seeded with the answered normal (which it only
+    // evaluates: a wrong one cannot raise the answer above the true maximum).
+    const test::D3v seed = test::d3v(swapped ? -d.normal : d.normal);
+    const double expected = test::decide_signed_distance(a, pose, b, pose, {seed});
+    EXPECT_NEAR(d.signed_distance, expected, tol) << swapped;
+    EXPECT_LT(glm::length(d.point_b - (d.point_a + d.signed_distance * d.normal)), tol) << swapped;
+  }
+}
+
 }  // namespace test_generic_stages
 }  // namespace proxima
