@@ -627,21 +627,40 @@ EpaRun run_epa(Ladder<A, B>& l) {
   return run;
 }
 
+/// Where the support features along EPA's normal do not meet the relation either (a small
+/// cone's apex against a sliver hull whose faces are not quite normal to it): one witness
+/// moved by the signed distance along the normal, kept when it lies on the other shape's
+/// surface (its closest_point, within the tolerance). B's first, then A's.
+template <class A, class B>
+void partner_on_the_other_surface(Ladder<A, B>& l) {
+  const MappedSupport<CoreSupport<B>>& to_b = l.setup.support_b;
+  const Vec3 on_b = l.ans.point_a + l.ans.signed_distance * l.ans.normal;
+  if (std::abs(l.b.closest_point(to_b.rotation_t * (on_b - to_b.translation)).signed_distance) <= l.setup.tolerance) {
+    l.ans.point_b = on_b;
+    return;
+  }
+  const Vec3 on_a = l.ans.point_b - l.ans.signed_distance * l.ans.normal;
+  if (std::abs(l.a.closest_point(on_a).signed_distance) <= l.setup.tolerance) l.ans.point_a = on_a;
+}
+
 /// EPA's witnesses off point_b = point_a + signed_distance n beyond the tolerance (its
 /// nearest face's projection fell outside it on a flat contact of coplanar faces, and the
 /// face's nearest point answered): the witnesses of the cores' support feature along EPA's
 /// normal (epa::witnesses_along), A's kept and B's placed on the normal, when they meet the
-/// line along it closer. Seen on two cones whose bases overlap face to face 2.5 deep:
-/// witnesses 1.9 apart across the normal.
+/// line along it closer, else partner_on_the_other_surface. Seen on two cones whose bases
+/// overlap face to face 2.5 deep: witnesses 1.9 apart across the normal.
 template <class A, class B>
 void place_witnesses_on_the_normal(Ladder<A, B>& l, const epa::Outcome& e) {
   const Real off = glm::length(l.ans.point_b - (l.ans.point_a + l.ans.signed_distance * l.ans.normal));
   if (!(off > l.setup.tolerance)) return;
   const epa::Refinement w = epa::witnesses_along(l.setup.support_a, l.setup.support_b, e.normal, l.setup.scale);
   l.ans.iterations += w.iterations;
-  if (!(w.witness_gap < off)) return;
-  l.ans.point_a = w.support_a + l.setup.radius_a * e.normal;
-  l.ans.point_b = l.ans.point_a + l.ans.signed_distance * e.normal;
+  if (w.witness_gap < off) {
+    l.ans.point_a = w.support_a + l.setup.radius_a * e.normal;
+    l.ans.point_b = l.ans.point_a + l.ans.signed_distance * e.normal;
+    return;
+  }
+  partner_on_the_other_surface(l);
 }
 
 /// Stage c: EPA's answer when it converged, or (curved pairs, which have no exact

@@ -476,5 +476,34 @@ TEST(GenericStages, PolytopeEpaWitnessesOffTheRelationGiveWayToTheSat) {
   }
 }
 
+// Fuzz finding (fuzz/corpus/narrowphase_pairs/regression_cone_sliver_hull_witness): a cone
+// 0.13 long inside a sliver hull 25 across, 0.068 deep. Float EPA's witnesses (the apex, a
+// point of the hull) were 0.066 apart across its normal, and the support features along the
+// normal (the apex, one far vertex of a face not quite normal to it) did not meet the
+// relation either. The apex moved by the distance along the normal lies on the hull's surface:
+// that is B's witness now.
+TEST(GenericStages, WitnessesOffTheRelationTakeAPartnerOnTheOtherSurface) {
+  const Cone a = Cone::create(Real(0.05000000074505806), Real(0.13053065538406372)).value();
+  const std::vector<Vec3> cloud{{Real(-13.732939720153809), Real(-13.732939720153809), Real(-13.732939720153809)},
+                                {Real(12.009591102600098), Real(11.947562217712402), Real(12.01126766204834)},
+                                {Real(-12.872941970825195), Real(-13.732939720153809), Real(-13.732939720153809)},
+                                {Real(12.009591102600098), Real(4.4992742538452148), Real(11.80213451385498)},
+                                {Real(-13.626068115234375), Real(-13.303778648376465), Real(-13.302102088928223)}};
+  const ConvexHull b = ConvexHull::create(cloud).value();
+  const Transform pose = at(Vec3(-20));
+  const Real tol = (sizeof(Real) == 4 ? Real(1e-3) : Real(1e-6)) * Real(25);
+  for (const bool swapped : {false, true}) {
+    const DistanceResult d =
+        swapped ? generic_distance(b, pose, a, pose, {}, nullptr) : generic_distance(a, pose, b, pose, {}, nullptr);
+    const test::D3v seed = test::d3v(swapped ? -d.normal : d.normal);
+    EXPECT_NEAR(d.signed_distance, test::decide_signed_distance(a, pose, b, pose, {seed}), tol) << swapped;
+    EXPECT_LT(glm::length(d.point_b - (d.point_a + d.signed_distance * d.normal)), tol) << swapped;
+    const Vec3 on_cone = swapped ? d.point_b : d.point_a;
+    const Vec3 on_hull = swapped ? d.point_a : d.point_b;
+    EXPECT_LT(std::abs(a.closest_point(pose.inverse_apply(on_cone)).signed_distance), tol) << swapped;
+    EXPECT_LT(std::abs(b.closest_point(pose.inverse_apply(on_hull)).signed_distance), tol) << swapped;
+  }
+}
+
 }  // namespace test_generic_stages
 }  // namespace proxima
