@@ -505,5 +505,28 @@ TEST(GenericStages, WitnessesOffTheRelationTakeAPartnerOnTheOtherSurface) {
   }
 }
 
+// Fuzz finding (fuzz/corpus/narrowphase_pairs/regression_sphere_segment_crease): an
+// ellipsoid of three radii 20 holding a segment 0.74 long, 19.24 deep. EPA stopped at its cap
+// 0.06 short; the depth refinement's descent zigzagged along the crease where the segment's
+// support switches ends, ran out of steps 3.3e-8 off it (beyond the tipped supports' reach,
+// sqrt(eps)), and the crease was followed only after a converged descent. Now it is followed
+// after any descent, looked for with a wider tip when the descent did not converge. Against
+// the closed form: the radius minus the distance of the centre from the segment.
+TEST(GenericStages, DepthDescentOutOfStepsOnACreaseStillFollowsIt) {
+  const Ellipsoid a = Ellipsoid::create(Vec3(20)).value();
+  const double c = -0.53706468723088785;
+  const Segment b = Segment::create(Vec3(Real(c)), Vec3(Real(0.20740932584308447), Real(c), Real(c))).value();
+  const Transform pose = at(Vec3(-20));
+  const double y = double(Real(c));
+  const double expected = -(20.0 - std::sqrt(2.0 * y * y));  // the nearest point is (0, y, y)
+  const Real tol = (sizeof(Real) == 4 ? Real(1e-3) : Real(1e-6)) * Real(20);
+  for (const bool swapped : {false, true}) {
+    const DistanceResult d =
+        swapped ? generic_distance(b, pose, a, pose, {}, nullptr) : generic_distance(a, pose, b, pose, {}, nullptr);
+    EXPECT_NEAR(d.signed_distance, expected, tol) << swapped;
+    EXPECT_NE(d.status, PairStatus::MaxIterations) << swapped;
+  }
+}
+
 }  // namespace test_generic_stages
 }  // namespace proxima

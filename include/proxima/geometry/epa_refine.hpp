@@ -367,13 +367,13 @@ inline void keep_weighted(TangentPoints& t, const std::array<Real, 4>& best, int
 /// against a point) as convex weights over support pairs. The feature's own support in a
 /// tangent direction e is D's support along n tipped by sqrt(eps) towards e, so a small GJK
 /// in the tangent plane (at most 16 support pairs, counted in `queries`) finds the feature's
-/// point nearest the line along n.
+/// point nearest the line along n. `tip` (radians) may be wider, to reach a crease the
+/// normal lies beyond sqrt(eps) of.
 template <class SupportA, class SupportB>
 TangentPoints feature_points(SupportA& support_a, SupportB& support_b, const SupportSample& at, Real scale,
-                             int& queries) {
+                             int& queries, Real tip = std::sqrt(kEpsilon)) {
   const Vec3& n = at.n;
   const TangentBasis tb = tangent_basis(n);
-  const Real tip = std::sqrt(kEpsilon);
   TangentPoints t;
   t.pa[0] = at.a;
   t.pb[0] = at.b;
@@ -497,9 +497,14 @@ Refinement refine(SupportA& support_a, SupportB& support_b, const Vec3& start_no
   rd::Descent d = rd::descend(support_a, support_b, start, tol, max_steps);
   int queries = d.queries;
   rd::TangentPoints feature = rd::feature_points(support_a, support_b, d.at, tol.scale, queries);
-  // Settled on a ridge (an edge of D the line along n misses): along the ridge, then on.
-  for (int round = 0; round < 4 && d.converged; ++round) {
-    const Vec3 e = rd::missed_edge(feature, tol.scale);
+  // Settled on a ridge (an edge of D the line along n misses): along the ridge, then on. A
+  // descent that ran out of steps may be zigzagging along a crease beyond the tipped
+  // supports' reach of it: the edge is looked for with a wider tip there.
+  const Real wide_tip = std::min(Real(1e-3), Real(1024) * std::sqrt(kEpsilon));
+  for (int round = 0; round < 4; ++round) {
+    Vec3 e = rd::missed_edge(feature, tol.scale);
+    if (!(glm::dot(e, e) > Real(0)) && !d.converged)
+      e = rd::missed_edge(rd::feature_points(support_a, support_b, d.at, tol.scale, queries, wide_tip), tol.scale);
     if (!(glm::dot(e, e) > Real(0))) break;
     d.queries = 0;
     const bool moved = rd::follow_ridge(support_a, support_b, d, e, tol, max_steps);
