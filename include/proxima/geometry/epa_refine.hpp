@@ -25,7 +25,10 @@
 ///      great circle of normals across e, h is smooth and its slope is the tangent's dot
 ///      with D's support; doubling steps bracket the slope's sign change and bisection
 ///      closes it; then the descent goes on (at most four such rounds). Seen on a small
-///      tetrahedron inside a sphere of radius 17: settled 0.0056 deeper than the minimum;
+///      tetrahedron inside a sphere of radius 17: settled 0.0056 deeper than the minimum.
+///      Also after a descent that ran out of steps zigzagging along a crease, the edge then
+///      looked for with a wider tip (a segment in a sphere of radius 20: stopped 3.3e-8 off
+///      the crease, beyond sqrt(eps));
 ///   4. witnesses: where D's support along n is a face or an edge, a small GJK in the plane
 ///      across n (Gilbert, Johnson, Keerthi, IEEE J. Robotics and Automation 1988) over
 ///      supports tipped by sqrt(eps) finds the feature's point nearest the line along n; its
