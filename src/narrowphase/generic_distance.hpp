@@ -627,6 +627,11 @@ EpaRun run_epa(Ladder<A, B>& l) {
   return run;
 }
 
+/// How far the answer's witnesses are from point_b = point_a + signed_distance normal.
+inline Real relation_gap(const LocalAnswer& ans) {
+  return glm::length(ans.point_b - (ans.point_a + ans.signed_distance * ans.normal));
+}
+
 /// Where the support features along EPA's normal do not meet the relation either (a small
 /// cone's apex against a sliver hull whose faces are not quite normal to it): one witness
 /// moved by the signed distance along the normal, kept when it lies on the other shape's
@@ -651,7 +656,7 @@ void partner_on_the_other_surface(Ladder<A, B>& l) {
 /// overlap face to face 2.5 deep: witnesses 1.9 apart across the normal.
 template <class A, class B>
 void place_witnesses_on_the_normal(Ladder<A, B>& l, const epa::Outcome& e) {
-  const Real off = glm::length(l.ans.point_b - (l.ans.point_a + l.ans.signed_distance * l.ans.normal));
+  const Real off = relation_gap(l.ans);
   if (!(off > l.setup.tolerance)) return;
   const epa::Refinement w = epa::witnesses_along(l.setup.support_a, l.setup.support_b, e.normal, l.setup.scale);
   l.ans.iterations += w.iterations;
@@ -684,7 +689,7 @@ bool epa_answer(Ladder<A, B>& l, const EpaRun& run) {
     // Witnesses still off the relation: EPA stopped short of the depth (float EPA on shapes of
     // very different sizes, e.g. a hull 0.1 across in a triangle 26 across). The polytopes'
     // exact SAT answers instead (stage d).
-    const Real off = glm::length(l.ans.point_b - (l.ans.point_a + l.ans.signed_distance * l.ans.normal));
+    const Real off = relation_gap(l.ans);
     if (off > l.setup.tolerance) return false;
   }
   // Touching cores whose core search found the distance exactly: that distance, EPA's normal

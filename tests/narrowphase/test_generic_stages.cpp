@@ -7,6 +7,7 @@
 #include <proxima/shapes/placed.hpp>
 #include <proxima/shapes/shape.hpp>
 
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -443,6 +444,24 @@ TEST(GenericStages, EpaThatCannotStartFromGjksTetrahedronRunsOnInflatedCores) {
   }
 }
 
+/// Both orders of a pair posed alike by `pose`: the distance against the support-function
+/// reference, seeded with the answered normal (which it only evaluates: a wrong one cannot
+/// raise the answer above the true maximum), and the witness relation, within `tol`.
+/// Returns the answers, A against B first.
+template <class A, class B>
+std::array<DistanceResult, 2> expect_reference_and_relation(const A& a, const B& b, const Transform& pose, Real tol) {
+  std::array<DistanceResult, 2> answers;
+  for (const bool swapped : {false, true}) {
+    const DistanceResult d =
+        swapped ? generic_distance(b, pose, a, pose, {}, nullptr) : generic_distance(a, pose, b, pose, {}, nullptr);
+    const test::D3v seed = test::d3v(swapped ? -d.normal : d.normal);
+    EXPECT_NEAR(d.signed_distance, test::decide_signed_distance(a, pose, b, pose, {seed}), tol) << swapped;
+    EXPECT_LT(glm::length(d.point_b - (d.point_a + d.signed_distance * d.normal)), tol) << swapped;
+    answers[swapped ? 1 : 0] = d;
+  }
+  return answers;
+}
+
 // Fuzz finding (fuzz/corpus/narrowphase_pairs/regression_triangle_hull_epa_short): a hull
 // 0.1 across inside a triangle 29 across, 0.0305 deep. Float EPA converged to 0.029 with
 // witnesses 0.053 apart across its normal (off point_b = point_a + d n by twice the
@@ -464,16 +483,7 @@ TEST(GenericStages, PolytopeEpaWitnessesOffTheRelationGiveWayToTheSat) {
   const ConvexHull b = ConvexHull::create(cloud).value();
   const Transform pose = at(Vec3(-20));
   const Real tol = (sizeof(Real) == 4 ? Real(1e-3) : Real(1e-6)) * Real(26);
-  for (const bool swapped : {false, true}) {
-    const DistanceResult d =
-        swapped ? generic_distance(b, pose, a, pose, {}, nullptr) : generic_distance(a, pose, b, pose, {}, nullptr);
-    // The support-function reference, seeded with the answered normal (which it only
-    // evaluates: a wrong one cannot raise the answer above the true maximum).
-    const test::D3v seed = test::d3v(swapped ? -d.normal : d.normal);
-    const double expected = test::decide_signed_distance(a, pose, b, pose, {seed});
-    EXPECT_NEAR(d.signed_distance, expected, tol) << swapped;
-    EXPECT_LT(glm::length(d.point_b - (d.point_a + d.signed_distance * d.normal)), tol) << swapped;
-  }
+  expect_reference_and_relation(a, b, pose, tol);
 }
 
 // Fuzz finding (fuzz/corpus/narrowphase_pairs/regression_cone_sliver_hull_witness): a cone
@@ -492,12 +502,9 @@ TEST(GenericStages, WitnessesOffTheRelationTakeAPartnerOnTheOtherSurface) {
   const ConvexHull b = ConvexHull::create(cloud).value();
   const Transform pose = at(Vec3(-20));
   const Real tol = (sizeof(Real) == 4 ? Real(1e-3) : Real(1e-6)) * Real(25);
+  const std::array<DistanceResult, 2> answers = expect_reference_and_relation(a, b, pose, tol);
   for (const bool swapped : {false, true}) {
-    const DistanceResult d =
-        swapped ? generic_distance(b, pose, a, pose, {}, nullptr) : generic_distance(a, pose, b, pose, {}, nullptr);
-    const test::D3v seed = test::d3v(swapped ? -d.normal : d.normal);
-    EXPECT_NEAR(d.signed_distance, test::decide_signed_distance(a, pose, b, pose, {seed}), tol) << swapped;
-    EXPECT_LT(glm::length(d.point_b - (d.point_a + d.signed_distance * d.normal)), tol) << swapped;
+    const DistanceResult& d = answers[swapped ? 1 : 0];
     const Vec3 on_cone = swapped ? d.point_b : d.point_a;
     const Vec3 on_hull = swapped ? d.point_a : d.point_b;
     EXPECT_LT(std::abs(a.closest_point(pose.inverse_apply(on_cone)).signed_distance), tol) << swapped;
