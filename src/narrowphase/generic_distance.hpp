@@ -578,9 +578,18 @@ epa::Outcome inflated_epa(Ladder<A, B>& l, const epa::Settings& es) {
   const Real delta = std::max({Real(1024) * kEpsilon * setup.scale, setup.tolerance, gap});
   InflatedSupport<decltype(setup.support_a)> ia{setup.support_a, delta};
   InflatedSupport<decltype(setup.support_b)> ib{setup.support_b, delta};
-  const gjk::Outcome gi = gjk::distance(ia, ib, setup.axis, setup.gjk_settings(l.request));
+  gjk::Settings gs = setup.gjk_settings(l.request);
+  gjk::Outcome gi = gjk::distance(ia, ib, setup.axis, gs);
   l.ans.iterations += gi.iterations;
   epa::Outcome ei = epa::penetration(ia, ib, gi.simplex, setup.scale, es);
+  if (ei.status == epa::Status::Degenerate && gs.variant != gjk::Variant::Plain) {
+    // Nesterov's momentum can end on a flat tetrahedron (the origin 6e-7 inside it, on a box
+    // holding an ellipsoid 20 deep), from which EPA cannot start: plain GJK's tetrahedron.
+    gs.variant = gjk::Variant::Plain;
+    gi = gjk::distance(ia, ib, setup.axis, gs);
+    l.ans.iterations += gi.iterations + ei.iterations;
+    ei = epa::penetration(ia, ib, gi.simplex, setup.scale, es);
+  }
   // Inflated cores are curved; for polytopes only when the cores merely touch (deeper
   // polytope pairs have the exact SAT fall-back, while a refinement stops at a local
   // minimum of a starved EPA's normal).
@@ -711,7 +720,10 @@ bool sat_fallback(Ladder<A, B>& l, const epa::Outcome& e) {
     const SatResult s = run_sat(l);
     if (!s.valid) return false;
     answer_from_sat(l, s, GenericStage::SatFallback);
-    const Vec3 core_a = l.touching ? l.core.point_a : s.point_a;
+    // GJK's point is on both surfaces only where the cores really touch; a simplex short of
+    // a tetrahedron can also hold the origin deep inside D (a triangle 0.05 deep in a hull).
+    const bool touching = l.touching && std::abs(s.signed_distance) <= l.setup.tolerance;
+    const Vec3 core_a = touching ? l.core.point_a : s.point_a;
     l.ans.point_a = core_a + l.setup.radius_a * s.normal;
     l.ans.point_b = l.ans.point_a + l.ans.signed_distance * s.normal;
     l.ans.status = e.status == epa::Status::Degenerate ? PairStatus::Degenerate

@@ -535,5 +535,83 @@ TEST(GenericStages, DepthDescentOutOfStepsOnACreaseStillFollowsIt) {
   }
 }
 
+// Both orders of a pair at its own poses: the signed distance against the deciding reference
+// (seeded with the answered normal), the witness relation, each witness on its own surface,
+// and, unless `degenerate_allowed` (the SAT's fall-back after a failed EPA says so), a status
+// other than Degenerate.
+template <class A, class B>
+void expect_right_in_both_orders(const A& a, const Transform& pa, const B& b, const Transform& pb,
+                                 const PairRequest& request, Real tol, bool degenerate_allowed = false) {
+  for (const bool swapped : {false, true}) {
+    const DistanceResult d =
+        swapped ? generic_distance(b, pb, a, pa, request, nullptr) : generic_distance(a, pa, b, pb, request, nullptr);
+    const test::D3v seed = test::d3v(swapped ? -d.normal : d.normal);
+    EXPECT_NEAR(d.signed_distance, test::decide_signed_distance(a, pa, b, pb, {seed}), tol) << swapped;
+    EXPECT_LT(glm::length(d.point_b - (d.point_a + d.signed_distance * d.normal)), tol) << swapped;
+    const Vec3 on_a = swapped ? d.point_b : d.point_a;
+    const Vec3 on_b = swapped ? d.point_a : d.point_b;
+    EXPECT_LT(std::abs(a.closest_point(pa.inverse_apply(on_a)).signed_distance), tol) << swapped;
+    EXPECT_LT(std::abs(b.closest_point(pb.inverse_apply(on_b)).signed_distance), tol) << swapped;
+    if (!degenerate_allowed) {
+      EXPECT_NE(d.status, PairStatus::Degenerate) << swapped;
+    }
+  }
+}
+
+// Fuzz findings (fuzz/corpus/narrowphase_pairs/regression_box_ellipsoid_nesterov_flat,
+// regression_box_cylinder_nesterov_flat): a box 40 across holding at its centre an ellipsoid
+// 39 long and 0.3 thick, 20.2 deep (a cylinder 40 long, 27 deep). Nesterov GJK on the cores
+// ended on a triangle through the origin (the cores taken as touching), and its run on the
+// inflated cores on a tetrahedron holding the origin 6e-7 deep, from which EPA cannot
+// start: the answer was distance 0, status Degenerate, the witnesses at the centre. The
+// inflated cores' GJK now runs plain where EPA cannot start from Nesterov's tetrahedron.
+TEST(GenericStages, NesterovFlatTetrahedronOnInflatedCoresGivesWayToPlainGjk) {
+  PairRequest request;
+  request.gjk = gjk::Variant::Nesterov;
+  const Real tol = (sizeof(Real) == 4 ? Real(1e-3) : Real(1e-6)) * Real(40);
+  {
+    const Ellipsoid a =
+        Ellipsoid::create(Vec3(Real(0.28018629550933838), Real(0.15811523795127869), Real(19.626857757568359))).value();
+    const Transform pa{Vec3(20), glm::normalize(Quat(Real(-0.49707317352294922), Real(-0.50097179412841797),
+                                                     Real(0.50097179412841797), Real(0.50097179412841797)))};
+    const Box b = Box::create(Vec3(20, 20, Real(19.761894226074219))).value();
+    const Transform pb{Vec3(20), glm::normalize(Quat(Real(0.55321431159973145), Real(0.55321431159973145),
+                                                     Real(-0.44040200114250183), Real(-0.44040200114250183)))};
+    expect_right_in_both_orders(a, pa, b, pb, request, tol);
+  }
+  {
+    const Cylinder a = Cylinder::create(Real(0.19654922187328339), 20).value();
+    const Transform pa{Vec3(20), glm::normalize(Quat(Real(0.57845503091812134), Real(-0.013443002477288246),
+                                                     Real(0.5749773383140564), Real(0.57845503091812134)))};
+    const Box b = Box::create(Vec3(20)).value();
+    const Transform pb{Vec3(20), Quat(Real(0.5), Real(0.5), Real(0.5), Real(0.5))};
+    expect_right_in_both_orders(a, pa, b, pb, request, tol);
+  }
+}
+
+// Fuzz finding (fuzz/corpus/narrowphase_pairs/regression_triangle_hull_sat_witness): a
+// triangle 0.1 across 0.054 deep in a hull 45 across. Plain GJK ended on a simplex short of
+// a tetrahedron (the cores taken as touching), EPA on the inflated cores could not start,
+// and the SAT's fall-back placed A's witness at GJK's point, a point of both shapes inside
+// the hull: B's witness, moved the depth along the normal, was 0.053 off the hull. GJK's
+// point now serves only where the SAT finds the cores touching; else the SAT's feature.
+TEST(GenericStages, SatFallbackOnDeepCoresTakesTheSatsFeaturePoint) {
+  const Triangle a =
+      Triangle::create(Vec3(Real(-0.050302613526582718), Real(-0.050251953303813934), Real(-0.050302613526582718)),
+                       Vec3(Real(-0.050302613526582718), Real(-0.030652854591608047), Real(-0.050302613526582718)),
+                       Vec3(Real(-0.050302613526582718), Real(0.024366464465856552), Real(0.043713804334402084)))
+          .value();
+  const std::vector<Vec3> cloud{{Real(-13.732939720153809), Real(-13.732939720153809), Real(-13.732939720153809)},
+                                {Real(12.009591102600098), Real(12.009591102600098), Real(12.009591102600098)},
+                                {Real(-13.525484085083008), Real(-13.712822914123535), Real(-3.0697154998779297)},
+                                {Real(-12.833127021789551), Real(-8.3680095672607422), Real(-13.717851638793945)},
+                                {Real(8.5763025283813477), Real(10.207030296325684), Real(-1.7901954650878906)},
+                                {Real(-3.9368381500244141), Real(-3.6547832489013672), Real(-13.632774353027344)}};
+  const ConvexHull b = ConvexHull::create(cloud).value();
+  const Transform pose = at(Vec3(-20));
+  const Real tol = (sizeof(Real) == 4 ? Real(1e-3) : Real(1e-6)) * Real(25);
+  expect_right_in_both_orders(a, pose, b, pose, {}, tol, /*degenerate_allowed=*/true);
+}
+
 }  // namespace test_generic_stages
 }  // namespace proxima
