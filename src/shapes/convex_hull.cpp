@@ -18,7 +18,8 @@
 //  - closest_point (Ericson 5.1): inside, the nearest face plane (for a convex solid the
 //    depth is the smallest plane distance and the projection lies on that face); outside,
 //    the nearest of the projections that fall inside their face polygon and the closest
-//    points on every edge.
+//    points on every edge; its normal the offset's direction, or, within the coordinates'
+//    rounding of the surface, the normal of the face whose plane is farthest in front.
 //  - world_aabb: box of the transformed vertices; above 512 vertices, six hill-climbing
 //    support queries along the world axes seen in the local frame.
 // Every query works relative to the centre of the hull's box (shifted vertices and plane
@@ -308,8 +309,12 @@ SurfacePoint ConvexHull::closest_point(const Vec3& point) const {
   const Real dist = std::sqrt(best_d2);
   r.point = best_point + ref;
   r.signed_distance = dist;
-  // Normal from the offset when it is well defined, else the nearest face's normal.
-  if (dist > std::numeric_limits<Real>::min() * Real(1e6)) {
+  // Normal from the offset when it is beyond the rounding of the coordinates, else the
+  // normal of the face whose plane is farthest in front, one of the nearest feature's faces
+  // (a point on a vertex was 1 ulp off it in z, and its normal was +z, outside the vertex's
+  // normal cone).
+  const Real rounding = Real(64) * kEpsilon * std::max(max_abs_component(point), max_abs_component(p));
+  if (dist > rounding && dist > std::numeric_limits<Real>::min() * Real(1e6)) {
     const Vec3 n = (p - best_point) / dist;
     const Real nl = glm::length(n);
     r.normal = (nl > Real(0.5) && nl < Real(1.5)) ? n / nl : faces[best_face].normal;
