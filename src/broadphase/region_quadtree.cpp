@@ -5,7 +5,8 @@
 /// pairs reported once through a reference point as for the grids of 7.1).
 ///
 /// Steps: 1. the root cell covers the boxes' x-y extent, doubling towards any box outside it (the
-/// old root becomes one quadrant of the new one, its bounds kept exactly); 2. a box descends into
+/// old root becomes one quadrant of the new one, its bounds kept exactly; an empty root is
+/// replaced by a cell around the box instead); 2. a box descends into
 /// every quadrant whose closed cell its x-y extent overlaps and is linked into each leaf reached
 /// (children created on demand); 3. a leaf whose boxes not covering its cell exceed the bucket
 /// splits when that at least halves its pair tests (header; a refusal is weighed again after
@@ -80,6 +81,13 @@ bool RegionQuadtree::owns(std::int32_t node, Real x, Real y) const {
 // ---- placement ------------------------------------------------------------------------------
 
 void RegionQuadtree::make_room(const Aabb& box) {
+  if (root_ != kNil && nodes_[std::size_t(root_)].leaf && nodes_[std::size_t(root_)].count == 0) {
+    // An empty root (its last box removed or moved away) is not grown: a root grown above it
+    // would keep it as an empty quadrant. A cell around the box replaces it.
+    nodes_[std::size_t(root_)].live = false;
+    free_nodes_.push_back(root_);
+    root_ = kNil;
+  }
   if (root_ == kNil) {
     // A square around the box, never empty (a point gets a small cell).
     const Vec3 c = box.center();

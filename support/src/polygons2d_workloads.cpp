@@ -104,7 +104,7 @@ Result<std::vector<Polygons2dPair>> read_polygons2d_pairs(const std::string& pat
     const Header h = expect_header(src, "polygons2d_pairs");
     const std::uint64_t count = require_count(src, h, "count");
     std::vector<Polygons2dPair> pairs;
-    pairs.reserve(count);
+    pairs.reserve(reservable(src, count));
     std::string_view line;
     for (std::uint64_t k = 0; k < count; ++k) {
       if (!src.next_record(line)) {

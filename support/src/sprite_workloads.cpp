@@ -47,7 +47,7 @@ d2::SpriteMask read_one_mask(Source& src, std::uint64_t id) {
   const std::uint64_t height = parse_unsigned(src, t[3], "height");
   if (width > d2::kMaxSpriteSide || height > d2::kMaxSpriteSide) src.fail_here("mask larger than kMaxSpriteSide");
   std::vector<std::string> rows;
-  rows.reserve(height);
+  rows.reserve(reservable(src, height));
   for (std::uint64_t y = 0; y < height; ++y) {
     if (!src.next_raw(line)) fail(src.path(), src.line(), "file ends inside mask " + std::to_string(id));
     while (!line.empty() && is_space(line.back())) line.remove_suffix(1);
@@ -91,7 +91,7 @@ Result<std::vector<d2::SpriteMask>> read_sprite_masks(const std::string& path) {
     const auto encoding = h.keys.find("encoding");
     if (encoding != h.keys.end() && encoding->second != "hex") fail(path, 1, "encoding= must be hex");
     std::vector<d2::SpriteMask> masks;
-    masks.reserve(count);
+    masks.reserve(reservable(src, count));
     for (std::uint64_t id = 0; id < count; ++id) masks.push_back(read_one_mask(src, id));
     std::string_view line;
     if (src.next_record(line)) src.fail_here("more masks than the header's count=" + std::to_string(count));
@@ -113,10 +113,13 @@ Result<SpriteWorkload> read_sprite_workload(const std::string& path) {
     const std::uint64_t repeat = require_count(src, h, "repeat");
     require_key(src, h, "masks");
     if (repeat == 0) fail(path, 1, "repeat= must be >= 1");
+    if (count > 0 && repeat > kMaxWorkloadQueries / count) {
+      fail(path, 1, "count= * repeat= is more than kMaxWorkloadQueries (2^24)");
+    }
     SpriteWorkload out;
     out.masks = std::move(masks).value();
     out.repeat = repeat;
-    out.distinct.reserve(count);
+    out.distinct.reserve(reservable(src, count));
     read_records(src, count, [&](const std::vector<std::string_view>& t) {
       out.distinct.push_back(parse_query(src, t, out.masks.size()));
     });
@@ -130,7 +133,7 @@ Result<std::vector<SpriteExpected>> read_sprites_expected(const std::string& pat
     const Header h = expect_header(src, "sprites_expected");
     const std::uint64_t count = require_count(src, h, "count");
     std::vector<SpriteExpected> out;
-    out.reserve(count);
+    out.reserve(reservable(src, count));
     read_records(src, count, [&](const std::vector<std::string_view>& t) {
       expect_tokens(src, t, 3, "<query> <0|1> <count>");
       SpriteExpected e;

@@ -84,6 +84,9 @@ class Source {
 
   [[noreturn]] void fail_here(const std::string& message) const { fail(path_, line_, message); }
 
+  /// Bytes not read yet.
+  std::size_t remaining_bytes() const { return text_.size() - pos_; }
+
  private:
   std::string path_;
   std::string text_;
@@ -304,6 +307,13 @@ inline double require_number(const Source& src, const Header& h, const char* key
     fail(src.path(), 1, std::string("header key ") + key + "=" + text + " is not a finite number");
   }
   return value;
+}
+
+/// How many of `count` announced records (or rows, or points) to reserve room for: no more
+/// than the bytes left to read, since each takes at least one. A hostile count then reserves
+/// only what the file could hold, and reading stops at the file's end with an error.
+inline std::size_t reservable(const Source& src, std::uint64_t count) {
+  return static_cast<std::size_t>(std::min<std::uint64_t>(count, src.remaining_bytes()));
 }
 
 /// Reads exactly `count` records with `parse(tokens)` and checks nothing follows.

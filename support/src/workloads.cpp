@@ -190,7 +190,7 @@ Result<BroadphaseWorkload> read_broadphase(const std::string& path) {
     if (!(w.lo < w.hi)) fail(path, 1, "lo= must be smaller than hi=");
     const auto name = h.keys.find("name");
     w.name = name != h.keys.end() ? name->second : file_stem(path);
-    w.boxes.reserve(n);
+    w.boxes.reserve(reservable(src, n));
     read_records(src, n, [&](const std::vector<std::string_view>& t) {
       expect_tokens(src, t, 9, "cx cy cz hx hy hz vx vy vz");
       BroadphaseBox b;
@@ -215,7 +215,7 @@ Result<ConvexShapes> read_convex_shapes(const std::string& path) {
     if (points == 0 || points > 100000000u) fail(path, 1, "points= must be in [1, 1e8]");
     ConvexShapes out;
     out.points_per_shape = static_cast<int>(points);
-    out.shapes.reserve(count);
+    out.shapes.reserve(reservable(src, count));
     std::string_view line;
     for (std::uint64_t k = 0; k < count; ++k) {
       if (!src.next_record(line)) {
@@ -232,7 +232,7 @@ Result<ConvexShapes> read_convex_shapes(const std::string& path) {
       }
       ConvexShape shape;
       shape.semi_axes = parse_vec3(src, t, 3);
-      shape.points.reserve(points);
+      shape.points.reserve(reservable(src, points));
       for (std::uint64_t p = 0; p < points; ++p) {
         if (!src.next_record(line)) {
           fail(path, src.line(),
@@ -259,7 +259,7 @@ ConvexPairs parse_convex_pairs(const std::string& path, std::uint64_t shape_limi
   const std::uint64_t count = require_count(src, h, "count");
   ConvexPairs out;
   out.shapes_file = require_key(src, h, "shapes");
-  out.pairs.reserve(count);
+  out.pairs.reserve(reservable(src, count));
   read_records(src, count, [&](const std::vector<std::string_view>& t) {
     expect_tokens(src, t, 16, "a b pA(7) pB(7)");
     ConvexPair p;
@@ -290,7 +290,7 @@ Result<std::vector<BoxPair>> read_box_pairs(const std::string& path) {
     const Header h = expect_header(src, "box_pairs");
     const std::uint64_t count = require_count(src, h, "count");
     std::vector<BoxPair> out;
-    out.reserve(count);
+    out.reserve(reservable(src, count));
     read_records(src, count, [&](const std::vector<std::string_view>& t) {
       expect_tokens(src, t, 20, "hA(3) pA(7) hB(3) pB(7)");
       BoxPair p;
@@ -356,7 +356,7 @@ Result<MeshPoses> read_mesh_poses(const std::string& path) {
     MeshPoses out;
     out.mesh_a = require_key(src, h, "a");
     out.mesh_b = require_key(src, h, "b");
-    out.poses.reserve(count);
+    out.poses.reserve(reservable(src, count));
     read_records(src, count, [&](const std::vector<std::string_view>& t) {
       expect_tokens(src, t, 7, "px py pz qw qx qy qz");
       out.poses.push_back(parse_pose(src, t, 0));
@@ -372,7 +372,7 @@ Result<RayQueries> read_rays(const std::string& path) {
     const std::uint64_t count = require_count(src, h, "count");
     RayQueries out;
     out.mesh = require_key(src, h, "mesh");
-    out.rays.reserve(count);
+    out.rays.reserve(reservable(src, count));
     read_records(src, count, [&](const std::vector<std::string_view>& t) {
       expect_tokens(src, t, 7, "ox oy oz dx dy dz tmax");
       RayQuery r;
@@ -396,7 +396,7 @@ CcdPairs parse_ccd_pairs(const std::string& path, std::uint64_t hull_limit, cons
   const std::uint64_t count = require_count(src, h, "count");
   CcdPairs out;
   out.hulls_file = require_key(src, h, "hulls");
-  out.cases.reserve(count);
+  out.cases.reserve(reservable(src, count));
   std::string_view line;
   for (std::uint64_t k = 0; k < count; ++k) {
     if (!src.next_record(line)) {
@@ -453,10 +453,12 @@ PrimitivePairs<Record> read_primitive_pairs(const std::string& path, const char*
   const std::uint64_t count = require_count(src, h, "count");
   const std::uint64_t repeat = require_count(src, h, "repeat");
   if (repeat == 0) fail(path, 1, "repeat= must be >= 1");
-  if (count > 0 && repeat > (std::uint64_t{1} << 40) / count) fail(path, 1, "count= * repeat= is too large");
+  if (count > 0 && repeat > kMaxWorkloadQueries / count) {
+    fail(path, 1, "count= * repeat= is more than kMaxWorkloadQueries (2^24)");
+  }
   PrimitivePairs<Record> out;
   out.repeat = repeat;
-  out.distinct.reserve(count);
+  out.distinct.reserve(reservable(src, count));
   read_records(src, count, [&](const std::vector<std::string_view>& t) {
     expect_tokens(src, t, fields, layout);
     out.distinct.push_back(parse(src, t));

@@ -100,7 +100,7 @@ World2d parse_world2d(const std::string& path) {
   if (!(w.lo.x < w.hi.x && w.lo.y < w.hi.y)) fail(path, 1, "lo= must be smaller than hi= on both axes");
   const auto name = h.keys.find("name");
   w.name = name != h.keys.end() ? name->second : file_stem(path);
-  w.objects.reserve(n);
+  w.objects.reserve(reservable(src, n));
   std::string_view line;
   for (std::uint64_t k = 0; k < n; ++k) {
     if (!src.next_record(line)) {

@@ -78,7 +78,7 @@ World parse_world(const std::string& path, std::uint64_t hull_limit, const std::
   w.hulls_file = require_key(src, h, "hulls");
   const auto name = h.keys.find("name");
   w.name = name != h.keys.end() ? name->second : file_stem(path);
-  w.objects.reserve(n);
+  w.objects.reserve(reservable(src, n));
   std::string_view line;
   for (std::uint64_t k = 0; k < n; ++k) {
     if (!src.next_record(line)) {
@@ -148,7 +148,7 @@ Result<BulletsExpected> read_bullets_expected(const std::string& path) {
     const std::uint64_t count = require_count(src, h, "count");
     BulletsExpected out;
     out.world_file = require_key(src, h, "world");
-    out.contacts.reserve(count);
+    out.contacts.reserve(reservable(src, count));
     read_records(src, count, [&](const std::vector<std::string_view>& t) {
       expect_tokens(src, t, 4, "sphere k s plate");
       BulletContact c;

@@ -169,6 +169,33 @@ TEST(RegionQuadtree, EmptyLeavesArePruned) {
   EXPECT_EQ(s.entry_count(), 0u);
 }
 
+// Fuzz finding (fuzz/corpus/broadphase_ops/regression_quadtree_empty_root): the only box
+// moved far away left the root an empty leaf, and the root grown towards the box kept it as
+// an empty quadrant (validate() false; queries still right). The same after removing the last
+// box and inserting a far one. An empty root now gives way to a cell around the new box.
+TEST(RegionQuadtree, EmptyRootIsNotKeptWhenTheBoxMovesFar) {
+  const Aabb near_box{Vec3(Real(-1.5), Real(-0.5), Real(0.25)), Vec3(Real(5.75), Real(3), Real(6))};
+  const Aabb far_box{Vec3(Real(-31), Real(-21.25), Real(-28)), Vec3(Real(-23.75), Real(-17.75), Real(-25.25))};
+  {
+    RegionQuadtree s;
+    ASSERT_EQ(s.insert(1, near_box, ProxyKind::Static, {}), BroadPhaseStatus::Ok);
+    ASSERT_EQ(s.update(1, far_box), BroadPhaseStatus::Ok);
+    EXPECT_TRUE(s.validate());
+    EXPECT_EQ(s.node_count(), 1u);
+  }
+  {
+    RegionQuadtree s;
+    ASSERT_EQ(s.insert(1, near_box, ProxyKind::Moving, {}), BroadPhaseStatus::Ok);
+    ASSERT_EQ(s.remove(1), BroadPhaseStatus::Ok);
+    ASSERT_EQ(s.insert(2, far_box, ProxyKind::Moving, {}), BroadPhaseStatus::Ok);
+    EXPECT_TRUE(s.validate());
+    EXPECT_EQ(s.node_count(), 1u);
+    std::size_t found = 0;
+    s.query_point(far_box.center(), [&](ProxyId id) { return found += (id == 2), true; });
+    EXPECT_EQ(found, 1u);
+  }
+}
+
 TEST(RegionQuadtree, BoxesStackedInZ) {
   // Same x, y footprint, disjoint in z: one leaf's list, separated by the z test.
   RegionQuadtree s;

@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <cstdlib>
+#include <support/polygons2d_workloads.hpp>
+#include <support/world_workloads.hpp>
 
 #include "workload_test_util.hpp"
 
@@ -95,6 +97,23 @@ TEST(MalformedWorkloads, RecordErrorsNameTheLine) {
   const auto ok = read_broadphase(p);
   ASSERT_TRUE(ok.ok()) << ok.error().what();
   EXPECT_EQ(ok->name, "bp_ok");  // no name= key: the file stem
+}
+
+// Fuzz finding (fuzz/corpus/workload_readers/regression_bullets_huge_count): a header count
+// of 77777777777777773 was reserved before any record was read (std::length_error in the
+// release build, an allocation-size abort under ASan). Counts now reserve no more than the
+// bytes left to read, and reading stops at the file's end; count * repeat is capped.
+TEST(MalformedWorkloads, HugeCountsReserveOnlyWhatTheFileHolds) {
+  const std::string huge = "77777777777777773";
+  std::string p = temp_file("bullets_huge.txt", "world_bullets_expected 1 count=" + huge +
+                                                    " world=w.txt\n0 59 0.044720903 1024\n1 29 0.272580950 1151\n");
+  expect_error(read_bullets_expected(p), p + ":3", "file ends after 2 of the " + huge + " records");
+  p = temp_file("box_pairs_huge.txt", "box_pairs 1 count=" + huge + "\n" + kBoxLine);
+  expect_error(read_box_pairs(p), p + ":2", "file ends after 1 of the " + huge + " records");
+  p = temp_file("polygons_huge.txt", "polygons2d_pairs 1 count=" + huge + "\n");
+  expect_error(read_polygons2d_pairs(p), p + ":1", "");
+  p = temp_file("repeat_huge.txt", "sphere_pairs 1 count=2 repeat=8388609\n1 2 3 0.5 1 2 3 0.5\n1 2 3 0.5 1 2 3 0.5\n");
+  expect_error(read_sphere_pairs(p), p + ":1", "count= * repeat= is more than kMaxWorkloadQueries (2^24)");
 }
 
 TEST(MalformedWorkloads, ConvexShapes) {

@@ -266,6 +266,11 @@ struct CapsulePair {
   double radius_b;  ///< radius of capsule b
 };
 
+/// Largest count * repeat of a file of distinct queries repeated (W7 pairs, W9 sprites):
+/// 2^24, sixteen times the shared workloads' 10^6, so that materialising them stays within
+/// about a gigabyte; a larger product is an error naming the header.
+inline constexpr std::uint64_t kMaxWorkloadQueries = std::uint64_t{1} << 24;
+
 /// A W7 file: `distinct` pairs (header count=) repeated `repeat` times. The workload is
 /// the count * repeat queries in order, query k using distinct[k mod count]; `queries`
 /// holds them materialised (when the reader was asked to), so that a benchmark streams
