@@ -309,7 +309,7 @@ int run(int argc, char** argv) {
   bool mesh_info_no_repair = false;
   CLI::App* mesh_info_cmd = app.add_subcommand(
       "mesh-info", "Validation and repair report, bounds, volume, surface area and BVH statistics of a mesh file");
-  mesh_info_cmd->add_option("file", mesh_info.path, "Mesh file: OBJ, STL, PLY, glTF (anything assimp reads)")
+  mesh_info_cmd->add_option("file", mesh_info.path, "Mesh file: OBJ, STL, PLY, OFF, glTF (anything assimp reads)")
       ->required();
   mesh_info_cmd->add_flag("--no-repair", mesh_info_no_repair, "Only analyse; build the mesh shape as given");
   mesh_info_cmd

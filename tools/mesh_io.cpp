@@ -1,21 +1,27 @@
-// Mesh loading: the project's strict readers for OBJ, STL and PLY (mesh_readers.hpp), assimp
-// for the other formats.
+// Mesh loading: the project's strict readers for OBJ, STL, PLY and OFF (mesh_readers.hpp),
+// assimp for the other formats.
 //
-// Steps: check the file's size against kMaxMeshFileBytes; for .obj, .stl and .ply read the
+// Steps: check the file's size against kMaxMeshFileBytes; for .obj, .stl, .ply and .off read the
 // bytes and parse them with the strict reader, then join identical vertices. Otherwise
-// import through assimp with triangulation, identical-vertex joining and primitive sorting (never a
-// winding flip or normal generation); walk the node tree from the root, accumulating the
-// node transforms; append the triangles of every mesh a node references, their vertices
-// transformed to the root frame (reversed triangles when the transform mirrors); return the
-// merged vertices and triangles as they are (repair is the caller's choice), after checking
-// every index against its mesh's vertex count.
+// import through assimp in a child process (fork; its address space limited unless built with
+// a sanitizer), which sends the mesh or the error back through a pipe; the parent waits at
+// most ImportLimits::seconds, then kills it, and a child that dies on a signal or a non-zero
+// exit is an error naming the file. In the child: import with triangulation, identical-vertex joining and primitive
+// sorting (never a winding flip or normal generation); walk the node tree from the root, accumulating the node
+// transforms; append the triangles of every mesh a node references, their vertices transformed to the root frame
+// (reversed triangles when the transform mirrors); return the merged vertices and triangles as they are (repair is the
+// caller's choice), after checking every index against its mesh's vertex count.
 #include "mesh_io.hpp"
 
 #include <algorithm>
+#include <array>
 #include <assimp/Importer.hpp>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 #include <cctype>
+#include <cerrno>
+#include <chrono>
+#include <csignal>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
@@ -27,6 +33,14 @@
 #include <utility>
 
 #include "mesh_readers.hpp"
+
+#if defined(__unix__)
+#include <poll.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+#define PROXIMA_ISOLATED_IMPORT 1
+#endif
 
 namespace proxima::tool {
 namespace {
@@ -119,7 +133,10 @@ Result<IndexedMesh> read_with_own_reader(const std::string& path, const std::str
   if (bytes.size() > kMaxMeshFileBytes) {
     return make_error(ErrorCode::OutOfRange, "file", "mesh file \"" + path + "\" is larger than the limit");
   }
-  Result<IndexedMesh> read = ext == ".obj" ? read_obj(bytes) : ext == ".stl" ? read_stl(bytes) : read_ply(bytes);
+  Result<IndexedMesh> read = ext == ".obj"   ? read_obj(bytes)
+                             : ext == ".stl" ? read_stl(bytes)
+                             : ext == ".ply" ? read_ply(bytes)
+                                             : read_off(bytes);
   if (!read.ok()) {
     const Error& e = read.error();
     return make_error(e.code, "file", "mesh file \"" + path + "\": " + e.message);
@@ -152,7 +169,158 @@ Result<IndexedMesh> read_with_assimp(const std::string& path) {
   return mesh;
 }
 
+#if defined(PROXIMA_ISOLATED_IMPORT)
+
+// True in builds with AddressSanitizer, whose shadow memory needs more address space than
+// any limit a mesh import should get: the child's memory is then not limited.
+constexpr bool kSanitizedBuild =
+#if defined(__SANITIZE_ADDRESS__)
+    true;
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+    true;
+#else
+    false;
+#endif
+#else
+    false;
+#endif
+
+// The child's answer on the pipe: 'M', vertex and triangle counts (uint64), the vertices
+// (3 Real each) and the triangles (3 uint32 each); or 'E', the error code (one byte) and the
+// message.
+std::string encode(const Result<IndexedMesh>& r) {
+  std::string out;
+  if (!r.ok()) {
+    out += 'E';
+    out += static_cast<char>(r.error().code);
+    out += r.error().message;
+    return out;
+  }
+  const IndexedMesh& m = *r;
+  const std::array<std::uint64_t, 2> counts{m.vertices.size(), m.triangles.size()};
+  out += 'M';
+  out.append(reinterpret_cast<const char*>(counts.data()), sizeof(counts));
+  out.append(reinterpret_cast<const char*>(m.vertices.data()), m.vertices.size() * sizeof(Vec3));
+  out.append(reinterpret_cast<const char*>(m.triangles.data()), m.triangles.size() * sizeof(TriangleIndices));
+  return out;
+}
+
+Result<IndexedMesh> decode(const std::string& bytes, const std::string& path) {
+  const Error broken =
+      make_error(ErrorCode::InvalidArgument, "file", "mesh file \"" + path + "\": the import's answer was cut short");
+  if (bytes.size() >= 2 && bytes[0] == 'E') {
+    return make_error(static_cast<ErrorCode>(static_cast<unsigned char>(bytes[1])), "file", bytes.substr(2));
+  }
+  std::array<std::uint64_t, 2> counts{};
+  if (bytes.size() < 1 + sizeof(counts) || bytes[0] != 'M') return broken;
+  std::memcpy(counts.data(), bytes.data() + 1, sizeof(counts));
+  const std::size_t body = bytes.size() - 1 - sizeof(counts);
+  if (counts[0] > body / sizeof(Vec3) || counts[1] > body / sizeof(TriangleIndices) ||
+      counts[0] * sizeof(Vec3) + counts[1] * sizeof(TriangleIndices) != body) {
+    return broken;
+  }
+  IndexedMesh m;
+  m.vertices.resize(counts[0]);
+  m.triangles.resize(counts[1]);
+  const char* at = bytes.data() + 1 + sizeof(counts);
+  std::memcpy(m.vertices.data(), at, counts[0] * sizeof(Vec3));
+  std::memcpy(m.triangles.data(), at + counts[0] * sizeof(Vec3), counts[1] * sizeof(TriangleIndices));
+  return m;
+}
+
+// The child: import, answer on `fd`, leave without running the parent's exit handlers.
+[[noreturn]] void import_in_child(const std::string& path, const ImportLimits& limits, int fd) {
+  if (!kSanitizedBuild) {
+    const rlimit memory{static_cast<rlim_t>(limits.memory_bytes), static_cast<rlim_t>(limits.memory_bytes)};
+    setrlimit(RLIMIT_AS, &memory);
+  }
+  std::string answer;
+  try {
+    answer = encode(read_with_assimp(path));
+  } catch (const std::exception& e) {
+    answer = encode(make_error(ErrorCode::InvalidArgument, "file",
+                               "cannot read mesh file \"" + path + "\": assimp failed (" + e.what() + ")"));
+  }
+  for (std::size_t done = 0; done < answer.size();) {
+    const ssize_t n = ::write(fd, answer.data() + done, answer.size() - done);
+    if (n <= 0) break;
+    done += static_cast<std::size_t>(n);
+  }
+  ::_exit(0);
+}
+
+// The parent: everything the child writes until it closes the pipe, or false past the deadline.
+bool read_answer(int fd, int seconds, std::string& out) {
+  using Clock = std::chrono::steady_clock;
+  const Clock::time_point deadline = Clock::now() + std::chrono::seconds(seconds);
+  char buffer[1 << 16];
+  for (;;) {
+    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now()).count();
+    if (left <= 0) return false;
+    pollfd p{fd, POLLIN, 0};
+    const int ready = ::poll(&p, 1, static_cast<int>(std::min<long long>(left, 1 << 30)));
+    if (ready < 0 && errno == EINTR) continue;
+    if (ready <= 0) return false;
+    const ssize_t n = ::read(fd, buffer, sizeof(buffer));
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) return true;
+    out.append(buffer, static_cast<std::size_t>(n));
+  }
+}
+
+Result<IndexedMesh> read_with_assimp_isolated(const std::string& path, const ImportLimits& limits) {
+  const std::string name = "mesh file \"" + path + "\"";
+  int fds[2];
+  if (::pipe(fds) != 0)
+    return make_error(ErrorCode::InvalidArgument, "file", name + ": cannot start the import (pipe)");
+  const pid_t pid = ::fork();
+  if (pid < 0) {
+    ::close(fds[0]);
+    ::close(fds[1]);
+    return make_error(ErrorCode::InvalidArgument, "file", name + ": cannot start the import (fork)");
+  }
+  if (pid == 0) {
+    ::close(fds[0]);
+    import_in_child(path, limits, fds[1]);
+  }
+  ::close(fds[1]);
+  std::string answer;
+  const bool finished = read_answer(fds[0], limits.seconds, answer);
+  ::close(fds[0]);
+  if (!finished) ::kill(pid, SIGKILL);
+  int status = 0;
+  while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  if (!finished) {
+    return make_error(
+        ErrorCode::OutOfRange, "file",
+        name + ": assimp's import took more than " + std::to_string(limits.seconds) + " s and was stopped");
+  }
+  if (WIFSIGNALED(status)) {
+    return make_error(ErrorCode::InvalidArgument, "file",
+                      name + ": assimp's import died on signal " + std::to_string(WTERMSIG(status)) + " (" +
+                          ::strsignal(WTERMSIG(status)) + ")");
+  }
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+    return make_error(ErrorCode::InvalidArgument, "file",
+                      name + ": assimp's import failed (exit status " + std::to_string(WEXITSTATUS(status)) + ")");
+  }
+  return decode(answer, path);
+}
+
+#endif
+
 }  // namespace
+
+Result<IndexedMesh> import_with_assimp(const std::string& path, const ImportLimits& limits) {
+#if defined(PROXIMA_ISOLATED_IMPORT)
+  return read_with_assimp_isolated(path, limits);
+#else
+  (void)limits;
+  return read_with_assimp(path);
+#endif
+}
 
 Result<IndexedMesh> load_mesh(const std::string& path) {
   std::error_code ec;
@@ -167,8 +335,8 @@ Result<IndexedMesh> load_mesh(const std::string& path) {
                           std::to_string(kMaxMeshFileBytes) + " (256 MiB)");
   }
   const std::string ext = lower_extension(path);
-  const bool own = ext == ".obj" || ext == ".stl" || ext == ".ply";
-  auto loaded = own ? read_with_own_reader(path, ext) : read_with_assimp(path);
+  const bool own = ext == ".obj" || ext == ".stl" || ext == ".ply" || ext == ".off";
+  auto loaded = own ? read_with_own_reader(path, ext) : import_with_assimp(path);
   if (!loaded.ok()) return loaded;
   const IndexedMesh& mesh = *loaded;
   if (mesh.triangles.empty()) {

@@ -1,5 +1,5 @@
 #pragma once
-// The project's own strict readers of the simple mesh formats (OBJ, STL, PLY). Each takes the
+// The project's own strict readers of the simple mesh formats (OBJ, STL, PLY, OFF). Each takes the
 // whole file's bytes and returns its vertices and triangles as written (polygons fanned from
 // their first vertex, identical vertices not joined), or an error naming the line, element or
 // field that is wrong. They never read outside the bytes given, never allocate more than the
@@ -40,5 +40,14 @@ Result<IndexedMesh> read_stl(std::string_view bytes);
 /// bytes cannot hold (checked before anything is allocated), data ending early or continuing
 /// past the declared elements, a negative or out-of-range index, a non-finite coordinate.
 Result<IndexedMesh> read_ply(std::string_view bytes);
+
+/// OFF (Geomview): the keyword `OFF` (optional `ST`, `C`, `N` prefixes; `4OFF` and `nOFF`
+/// refused), the counts `vertices faces edges`, one vertex per line (its first three numbers),
+/// one face per line (`n` then n 0-based indices; a colour after them is ignored), `#`
+/// comments and blank lines anywhere. Faces of fewer than 3 corners are skipped. Errors name
+/// the line and the vertex or face: counts that the remaining bytes cannot hold (checked
+/// before anything is allocated), a malformed number, a negative or out-of-range index, data
+/// ending early or continuing past the declared faces, a non-finite coordinate.
+Result<IndexedMesh> read_off(std::string_view text);
 
 }  // namespace proxima::tool
