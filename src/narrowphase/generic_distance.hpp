@@ -36,7 +36,9 @@
 ///         direction finds a normal along which D's support distance is within reach of 0;
 ///      f. GjkCoreContact: GJK's core contact (depth r_A + r_B along the best axis known),
 ///         status Degenerate;
-///   5. tolerance from resolve_tolerance (size of the pair), outputs in the world frame,
+///   5. an answer whose witnesses stay off point_b = point_a + d n after a Nesterov GJK run:
+///      steps 2-4 again from plain GJK, the answer closer to the relation kept;
+///   6. tolerance from resolve_tolerance (size of the pair), outputs in the world frame,
 ///      cache written back.
 /// pair_intersect runs GJK in boolean mode with early exit on a separating axis.
 
@@ -774,7 +776,7 @@ void gjk_core_contact(Ladder<A, B>& l, const Vec3& n) {
 /// The ladder (see the file comment): GJK on the cores, then the stages in order until one
 /// answers. A's-frame answer with the stage that gave it.
 template <class A, class B>
-LocalAnswer solve(const A& a, const B& b, PairSetup<A, B>& setup, const PairRequest& request) {
+LocalAnswer climb_ladder(const A& a, const B& b, PairSetup<A, B>& setup, const PairRequest& request) {
   Ladder<A, B> l(a, b, setup, request);
   widen_open_polytope_gjk(l);
   if (sat_at_gjk_cap(l) || core_closest(l) || projected_distance(l)) return l.ans;
@@ -793,6 +795,22 @@ LocalAnswer solve(const A& a, const B& b, PairSetup<A, B>& setup, const PairRequ
   const Vec3 n = unit_or(-l.core.v, setup.axis);
   if (!core_refinement(l, n)) gjk_core_contact(l, n);
   return l.ans;
+}
+
+/// The ladder's answer; where its witnesses stay off point_b = point_a + d n beyond the
+/// tolerance after a Nesterov GJK run, the ladder again from plain GJK, whose answer is kept
+/// when it is closer to the relation (the momentum can leave EPA a start it converges from
+/// slowly: a disc 0.1 thick pierced by a needle cone, witnesses 0.038 off after 135
+/// iterations; 1e-4 off after 22 from plain GJK's simplex).
+template <class A, class B>
+LocalAnswer solve(const A& a, const B& b, PairSetup<A, B>& setup, const PairRequest& request) {
+  const LocalAnswer first = climb_ladder(a, b, setup, request);
+  if (request.gjk == gjk::Variant::Plain || !(relation_gap(first) > setup.tolerance)) return first;
+  PairRequest plain = request;
+  plain.gjk = gjk::Variant::Plain;
+  LocalAnswer again = climb_ladder(a, b, setup, plain);
+  again.iterations += first.iterations;
+  return relation_gap(again) < relation_gap(first) ? again : first;
 }
 
 /// generic_distance's body: writes the world-frame answer into `r` and returns the stage

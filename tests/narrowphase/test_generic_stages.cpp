@@ -613,5 +613,52 @@ TEST(GenericStages, SatFallbackOnDeepCoresTakesTheSatsFeaturePoint) {
   expect_right_in_both_orders(a, pose, b, pose, {}, tol, /*degenerate_allowed=*/true);
 }
 
+// Fuzz finding (session 20 campaign, fuzz/findings/narrowphase_pairs/crash-354a08ec): a
+// tetrahedron 0.5 across deep inside an ellipsoid of radius 13.7. EPA stopped at its cap with
+// a gap of 0.048, and the depth's descent from it zigzagged across the crease where two
+// vertices of the tetrahedron tie, 4 degrees from the minimum along it: in double it ran out
+// of steps 0.0014 above the depth and the EPA's nearest face answered, 0.046 short. The
+// crease is now found across it (the tetrahedron's support jumps between normals tipped both
+// ways) and followed to the minimum.
+TEST(GenericStages, CreaseMissedAlongItIsFoundAcrossIt) {
+  const Ellipsoid a =
+      Ellipsoid::create(Vec3(Real(13.43735288362266), Real(13.73293885531416), Real(13.73293885531416))).value();
+  const Real c = Real(-0.31716607251148965);
+  const std::vector<Vec3> cloud{{c, c, c},
+                                {Real(-0.079626663478012338), Real(0.23136886287566627), Real(-0.31502694984344848)},
+                                {Real(-0.3122199562971501), c, c},
+                                {c, c, Real(-0.10902266140941982)}};
+  const ConvexHull b = ConvexHull::create(cloud).value();
+  const Transform pose = at(Vec3(-20));
+  const Real tol = (sizeof(Real) == 4 ? Real(1e-3) : Real(1e-6)) * Real(27);
+  for (const bool swapped : {false, true}) {
+    const DistanceResult d =
+        swapped ? generic_distance(b, pose, a, pose, {}, nullptr) : generic_distance(a, pose, b, pose, {}, nullptr);
+    const test::D3v seed = test::d3v(swapped ? -d.normal : d.normal);
+    EXPECT_NEAR(d.signed_distance, test::decide_signed_distance(a, pose, b, pose, {seed}), tol) << swapped;
+    EXPECT_LT(glm::length(d.point_b - (d.point_a + d.signed_distance * d.normal)), tol) << swapped;
+  }
+}
+
+// Fuzz finding (fuzz/corpus/narrowphase_pairs/regression_disc_needle_nesterov): a disc of
+// radius 10 and 0.1 thick pierced by a needle cone 39 long, 2.39 deep. From Nesterov GJK's
+// simplex, EPA took 135 iterations and answered witnesses 0.038 off point_b = point_a + d n
+// (the tolerance 0.03); from plain GJK's, 22 iterations and 1e-4 off. An answer off the
+// relation after a Nesterov run now has the ladder run again from plain GJK.
+TEST(GenericStages, NesterovAnswerOffTheRelationGivesWayToPlainGjk) {
+  const Cylinder a = Cylinder::create(Real(10.1387167), Real(0.0501510799)).value();
+  const Cone b = Cone::create(Real(0.0611728914), Real(19.4731503)).value();
+  const Transform pa{
+      Vec3(Real(-6.08377266), Real(-6.03921509), Real(-6.03921509)),
+      glm::normalize(Quat(Real(-0.269802094), Real(-0.269802094), Real(-0.269802094), Real(-0.884093046)))};
+  const Transform pb{
+      Vec3(Real(-6.08987617), Real(-6.03921509), Real(-6.03921509)),
+      glm::normalize(Quat(Real(-0.267975718), Real(-0.885041654), Real(-0.270331979), Real(-0.267975718)))};
+  PairRequest request;
+  request.gjk = gjk::Variant::Nesterov;
+  const Real tol = (sizeof(Real) == 4 ? Real(1e-3) : Real(1e-6)) * Real(20);
+  expect_right_in_both_orders(a, pa, b, pb, request, tol);
+}
+
 }  // namespace test_generic_stages
 }  // namespace proxima
