@@ -619,7 +619,7 @@ TEST(GenericStages, SatFallbackOnDeepCoresTakesTheSatsFeaturePoint) {
 // vertices of the tetrahedron tie, 4 degrees from the minimum along it: in double it ran out
 // of steps 0.0014 above the depth and the EPA's nearest face answered, 0.046 short. The
 // crease is now found across it (the tetrahedron's support jumps between normals tipped both
-// ways) and followed to the minimum.
+// ways) and followed to the minimum, on the great circle through the crease itself.
 TEST(GenericStages, CreaseMissedAlongItIsFoundAcrossIt) {
   const Ellipsoid a =
       Ellipsoid::create(Vec3(Real(13.43735288362266), Real(13.73293885531416), Real(13.73293885531416))).value();
@@ -630,8 +630,10 @@ TEST(GenericStages, CreaseMissedAlongItIsFoundAcrossIt) {
                                 {c, c, Real(-0.10902266140941982)}};
   const ConvexHull b = ConvexHull::create(cloud).value();
   const Transform pose = at(Vec3(-20));
-  const Real tol = (sizeof(Real) == 4 ? Real(1e-3) : Real(1e-6)) * Real(27);
-  expect_reference_and_relation(a, b, pose, tol);
+  // The ellipsoid's size: float's witnesses were 0.015 off the hull before the crease was
+  // entered on itself (the descent's normal 6e-4 rad off it).
+  const Real tol = (sizeof(Real) == 4 ? Real(1e-3) : Real(1e-6)) * Real(13.7);
+  expect_right_in_both_orders(a, pose, b, pose, {}, tol);
 }
 
 // Fuzz finding (fuzz/corpus/narrowphase_pairs/regression_disc_needle_nesterov): a disc of
