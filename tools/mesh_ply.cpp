@@ -255,13 +255,14 @@ class Values {
       case Type::U32: return double(static_cast<std::uint32_t>(u));
       case Type::F32: {
         float f = 0.0f;
-        const auto bits = static_cast<std::uint32_t>(u);
+        const auto bits = mesh_read::quiet_nan_bits(static_cast<std::uint32_t>(u));
         std::memcpy(&f, &bits, sizeof f);
         return double(f);
       }
       case Type::F64: {
         double d = 0.0;
-        std::memcpy(&d, &u, sizeof d);
+        const std::uint64_t bits = mesh_read::quiet_nan_bits(u);
+        std::memcpy(&d, &bits, sizeof d);
         return d;
       }
     }

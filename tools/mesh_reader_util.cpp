@@ -33,6 +33,17 @@ void Tokens::skip_line() {
   while (pos_ < text_.size() && text_[pos_] != '\n') ++pos_;
 }
 
+std::uint32_t quiet_nan_bits(std::uint32_t float_bits) {
+  const bool nan = (float_bits & 0x7f800000u) == 0x7f800000u && (float_bits & 0x007fffffu) != 0;
+  return nan ? float_bits | 0x00400000u : float_bits;
+}
+
+std::uint64_t quiet_nan_bits(std::uint64_t double_bits) {
+  const bool nan =
+      (double_bits & 0x7ff0000000000000ull) == 0x7ff0000000000000ull && (double_bits & 0x000fffffffffffffull) != 0;
+  return nan ? double_bits | 0x0008000000000000ull : double_bits;
+}
+
 std::optional<double> parse_double(std::string_view token) {
   double value = 0.0;
   const char* end = token.data() + token.size();

@@ -34,6 +34,12 @@ class Tokens {
   std::size_t token_line_ = 1;
 };
 
+/// A binary float32 (or float64) whose bits are a signaling NaN made quiet, its payload kept:
+/// converting or comparing a signaling NaN raises the invalid flag (a trap where it is on),
+/// a quiet one is then refused as not finite like any other NaN.
+std::uint32_t quiet_nan_bits(std::uint32_t float_bits);
+std::uint64_t quiet_nan_bits(std::uint64_t double_bits);
+
 /// The whole token as a double (std::from_chars: no leading '+', no spaces), or nothing.
 std::optional<double> parse_double(std::string_view token);
 

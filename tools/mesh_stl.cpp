@@ -27,7 +27,7 @@ std::uint32_t little_u32(const unsigned char* p) {
 }
 
 float little_f32(const unsigned char* p) {
-  const std::uint32_t bits = little_u32(p);
+  const std::uint32_t bits = mesh_read::quiet_nan_bits(little_u32(p));
   float value = 0.0f;
   std::memcpy(&value, &bits, sizeof value);
   return value;

@@ -656,5 +656,26 @@ TEST(GenericStages, NesterovAnswerOffTheRelationGivesWayToPlainGjk) {
   expect_right_in_both_orders(a, pa, b, pb, request, tol);
 }
 
+// Mutation finding (fuzz/corpus/narrowphase_pairs/regression_disc_sliver_hull_epa_witnesses):
+// an ellipsoid disc 0.15 thick and 27 across in a sliver hull, 8.72 deep. Float EPA converged
+// 0.007 short with witnesses 0.04 off point_b = point_a + d n (the tolerance 0.027); its
+// refinement reached the depth to 2e-5 but was dropped, its own witnesses 0.019 apart across
+// the normal. The refinement now answers where EPA's witnesses are further off.
+TEST(GenericStages, RefinedDepthWinsOverAConvergedEpaFurtherOffTheRelation) {
+  const Ellipsoid a =
+      Ellipsoid::create(Vec3(Real(0.07307104766368866), Real(13.732939720153809), Real(12.505633354187012))).value();
+  const Real c = Real(13.732939720153809);
+  const std::vector<Vec3> cloud{{-c, -c, -c},
+                                {Real(8.6458749771118164), Real(13.713242530822754), c},
+                                {c, c, Real(-0.85853099822998047)},
+                                {c, c, c},
+                                {Real(-0.91552925109863281), Real(-0.91552925109863281), Real(0.10456657409667969)},
+                                {Real(-13.626068115234375), -c, -c}};
+  const ConvexHull b = ConvexHull::create(cloud).value();
+  const Transform pose = at(Vec3(-20));
+  const Real tol = (sizeof(Real) == 4 ? Real(1e-3) : Real(1e-6)) * Real(27);
+  expect_right_in_both_orders(a, pose, b, pose, {}, tol);
+}
+
 }  // namespace test_generic_stages
 }  // namespace proxima

@@ -363,6 +363,22 @@ TEST(MeshReaders, NonFiniteCoordinates) {
   std::string ply = write_ply(m, "binary_little_endian");
   std::memcpy(&ply[ply.find("end_header\n") + 11 + 17], &nan, 4);
   expect_error(tool::read_ply(ply), "PLY element \"vertex\" [1]: coordinate x is not finite");
+  // Signaling NaNs (the tests trap the invalid flag, which converting or comparing one
+  // raises): refused like any NaN, without the trap (found by the CI's mutation run).
+  const std::uint32_t signaling = 0x7f800001u;
+  std::memcpy(&stl[84 + 12 + 12 + 4], &signaling, 4);
+  expect_error(tool::read_stl(stl), "STL triangle 0: coordinate y is not finite");
+  std::memcpy(&ply[ply.find("end_header\n") + 11 + 17], &signaling, 4);
+  expect_error(tool::read_ply(ply), "PLY element \"vertex\" [1]: coordinate x is not finite");
+  std::string ply_double =
+      "ply\nformat binary_little_endian 1.0\nelement vertex 1\nproperty double x\n"
+      "property double y\nproperty double z\nend_header\n";
+  const std::uint64_t signaling_double = 0x7ff0000000000001ull;
+  const double zero = 0.0;
+  ply_double.append(reinterpret_cast<const char*>(&signaling_double), 8);
+  ply_double.append(reinterpret_cast<const char*>(&zero), 8);
+  ply_double.append(reinterpret_cast<const char*>(&zero), 8);
+  expect_error(tool::read_ply(ply_double), "coordinate x is not finite");
 }
 
 // Random bytes, and random corruptions of valid files: every reader returns (mesh or error),
