@@ -499,6 +499,9 @@ void DynamicAabbTree::rebuild_tree(Tree& tree) {
         const Real extent = centres.max[axis] - lo;
         if (!(extent > Real(0))) continue;
         const Real scale = Real(kBins) / extent;
+        // A spread so small (subnormal) that the bins' scale overflows: no split on this axis
+        // (an infinite scale made 0 * inf, an invalid operation).
+        if (!std::isfinite(scale)) continue;
         Bin bins[kBins];
         for (std::size_t i = begin; i < end; ++i) {
           int bi = static_cast<int>((items[i].centre[axis] - lo) * scale);

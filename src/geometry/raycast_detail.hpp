@@ -58,7 +58,8 @@ struct UnitRay {
 /// Checks the query (finite origin and direction, max_t >= 0 and not NaN; +inf allowed)
 /// and builds the unit ray. Returns false when the query can never hit.
 inline bool prepare(const Ray& ray, Real max_t, UnitRay& out) {
-  if (!is_finite(ray.origin) || !is_finite(ray.direction) || !(max_t >= Real(0))) return false;
+  // A quiet comparison: a NaN max_t is refused without raising the invalid flag.
+  if (!is_finite(ray.origin) || !is_finite(ray.direction) || !std::isgreaterequal(max_t, Real(0))) return false;
   out.origin = ray.origin;
   if (!length_and_direction(ray.direction, out.length, out.unit)) {
     out.length = Real(0);

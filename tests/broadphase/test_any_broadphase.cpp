@@ -9,6 +9,7 @@
 #include <proxima/broadphase/brute_force.hpp>
 #include <proxima/core/tolerance.hpp>
 
+#include <limits>
 #include <set>
 #include <string>
 
@@ -48,6 +49,51 @@ TEST(AnyBroadPhase, EveryRegisteredStructureOnEveryScene) {
       std::unique_ptr<AnyBroadPhase> bp = std::move(made).value();
       EXPECT_TRUE(test::run_differential(*bp, scene, 5)) << name << " on " << scene.name;
     }
+  }
+}
+
+// Fuzz findings (fuzz/corpus/broadphase_ops/regression_loose_tree_subnormal_ray,
+// regression_aabb_tree_subnormal_spread): a ray with a subnormal direction component made the
+// loose trees' slab test add -inf and +inf (its slack on an infinite t1), an invalid
+// operation (a trap in the tests); a ray with a NaN origin reached that test's comparisons; a
+// NaN max_t raised the flag in every structure's check of it; and the dynamic tree's rebuild
+// binned boxes whose centres spread a subnormal width, its bin scale infinite, 0 * inf. Now
+// a ray that is not finite (or a NaN max_t) finds nothing in every structure, as in the brute
+// force, without the flag; a subnormal direction is a valid ray; the tree's rebuild does not
+// split on such an axis.
+TEST(AnyBroadPhase, RaysThatAreNotFiniteFindNothingAndSubnormalSpreadsRebuild) {
+  const Real nan = std::numeric_limits<Real>::quiet_NaN();
+  const Real inf = std::numeric_limits<Real>::infinity();
+  const Real tiny = std::numeric_limits<Real>::denorm_min();
+  for (std::string_view name : broadphase_names()) {
+    auto made = make_broadphase(name);
+    ASSERT_TRUE(made.ok());
+    AnyBroadPhase& bp = **made;
+    for (ProxyId id = 0; id < 40; ++id) {
+      const Vec3 c(Real(id % 2) * tiny, Real(0), Real(0));  // centres a subnormal apart
+      ASSERT_EQ(bp.insert(id, {c - Vec3(1), c + Vec3(1)}, ProxyKind::Moving, {}), BroadPhaseStatus::Ok) << name;
+    }
+    bp.rebuild();
+    EXPECT_TRUE(bp.validate()) << name;
+    for (const Ray& ray : {Ray{Vec3(nan, 0, 0), Vec3(1, 0, 0)}, Ray{Vec3(-5, 0, 0), Vec3(nan, 1, 0)},
+                           Ray{Vec3(inf, 0, 0), Vec3(1, 0, 0)}, Ray{Vec3(-5, 0, 0), Vec3(inf, 0, 0)}}) {
+      std::size_t hits = 0;
+      bp.query_ray(ray, Real(10), [&](ProxyId, Real) { return ++hits, Real(10); });
+      EXPECT_EQ(hits, 0u) << name;
+    }
+    std::size_t hits = 0;
+    bp.query_ray(Ray{Vec3(-5, 0, 0), Vec3(1, 0, 0)}, nan, [&](ProxyId, Real) { return ++hits, Real(10); });
+    EXPECT_EQ(hits, 0u) << name;
+    // Along y with a subnormal x: the boxes' x slabs give t = -inf and +inf.
+    bp.query_ray(Ray{Vec3(Real(0.5), -5, 0), Vec3(tiny, 1, 0)}, Real(10),
+                 [&](ProxyId, Real) { return ++hits, Real(10); });
+    EXPECT_EQ(hits, 40u) << name;
+    hits = 0;
+    bp.query_ray(Ray{Vec3(Real(3), -5, 0), Vec3(tiny, 1, 0)}, Real(10),
+                 [&](ProxyId, Real) { return ++hits, Real(10); });
+    EXPECT_EQ(hits, 0u) << name;
+    bp.query_ray(Ray{Vec3(-5, 0, 0), Vec3(1, 0, 0)}, Real(10), [&](ProxyId, Real) { return ++hits, Real(10); });
+    EXPECT_EQ(hits, 40u) << name;
   }
 }
 

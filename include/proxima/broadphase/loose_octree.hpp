@@ -182,7 +182,7 @@ template <int Dim>
 template <RayCallback OnRay>
 BroadPhaseStats LooseTree<Dim>::query_ray(const Ray& ray, Real max_t, OnRay&& on_ray) const {
   BroadPhaseStats st;
-  if (root_ == kNil) return st;
+  if (root_ == kNil || !detail::ray_input_ok(ray, max_t)) return st;
   Real limit = max_t;
   std::vector<std::int32_t> stack{root_};
   while (!stack.empty()) {

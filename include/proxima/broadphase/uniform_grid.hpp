@@ -380,6 +380,7 @@ bool CellEngine::march_ray(const Ray& ray, Real max_t, OnRay& on_ray, BroadPhase
 template <RayCallback OnRay>
 BroadPhaseStats CellEngine::query_ray(const Ray& ray, Real max_t, OnRay&& on_ray) const {
   BroadPhaseStats st;
+  if (!detail::ray_input_ok(ray, max_t)) return st;
   if (mode_ == CellMode::Dense && !dirty_ && proxies_.size() != 0 && march_ray(ray, max_t, on_ray, st)) return st;
   Real limit = max_t;
   for (const ProxyId id : proxies_.ids()) {

@@ -91,7 +91,7 @@ inline bool ray_input_ok(const Ray& ray, Real max_t) {
   for (int a = 0; a < 3; ++a) {
     if (!std::isfinite(ray.origin[a]) || !std::isfinite(ray.direction[a])) return false;
   }
-  return max_t >= Real(0);
+  return std::isgreaterequal(max_t, Real(0));  // quiet: a NaN raises no invalid flag
 }
 
 /// Applies the ray-callback protocol: returns false when the query must stop; updates max_t.
