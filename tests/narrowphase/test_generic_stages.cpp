@@ -677,5 +677,25 @@ TEST(GenericStages, RefinedDepthWinsOverAConvergedEpaFurtherOffTheRelation) {
   expect_right_in_both_orders(a, pose, b, pose, {}, tol);
 }
 
+// Mutation finding (fuzz/corpus/narrowphase_pairs/regression_cone_sliver_hull_closed_gap): a
+// cone 0.26 long 0.068 deep in a sliver hull 25 across. Float EPA converged with its gap
+// closed but its witnesses, the apex and a hull point, 0.067 apart across the normal; the
+// support feature's witnesses then taken were moved half that gap each, the cone's 0.027 off
+// its surface. A converged EPA whose witnesses are off the relation now refines.
+TEST(GenericStages, ConvergedEpaWithWitnessesOffTheRelationRefines) {
+  const Cone a = Cone::create(Real(0.05000000074505806), Real(0.13053065538406372)).value();
+  const Real c = Real(-13.732939720153809);
+  const std::vector<Vec3> cloud{{c, c, c},
+                                {Real(12.009591102600098), Real(11.947562217712402), Real(12.01126766204834)},
+                                {Real(12.009591102600098), Real(-8.132054328918457), Real(-8.132054328918457)},
+                                {Real(-13.711146354675293), Real(4.4992742538452148), Real(11.80213451385498)},
+                                {Real(-13.626068115234375), Real(-13.303778648376465), Real(-13.302102088928223)},
+                                {Real(-12.872941970825195), c, c}};
+  const ConvexHull b = ConvexHull::create(cloud).value();
+  const Transform pose = at(Vec3(-20));
+  const Real tol = (sizeof(Real) == 4 ? Real(1e-3) : Real(1e-6)) * Real(25);
+  expect_right_in_both_orders(a, pose, b, pose, {}, tol);
+}
+
 }  // namespace test_generic_stages
 }  // namespace proxima

@@ -224,11 +224,11 @@ TEST(MeshIo, AssimpImportIsIsolatedWithinItsLimits) {
   const tool::ImportLimits limits{3, std::size_t(512) << 20};
   const std::string vertices = "0 0 0\n1 0 0\n0 1 0\n";
   const std::string lying = temporary_file("lying.off", "OFF\n3 1000000000 0\n" + vertices + "3 0 1 2\n");
-  const std::string negative = temporary_file(
-      "negative.ply",
-      "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
-      "element face 1\nproperty list uchar int vertex_indices\nend_header\n" +
-          vertices + "3 0 1 -30000000\n");
+  const std::string negative =
+      temporary_file("negative.ply",
+                     "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+                     "element face 1\nproperty list uchar int vertex_indices\nend_header\n" +
+                         vertices + "3 0 1 -30000000\n");
   for (const std::string& path : {lying, negative}) {
     SCOPED_TRACE(path);
     const auto start = std::chrono::steady_clock::now();
