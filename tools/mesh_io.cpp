@@ -6,10 +6,11 @@
 // import through assimp in a child process (fork; its address space limited unless built with
 // a sanitizer), which sends the mesh or the error back through a pipe; the parent waits at
 // most ImportLimits::seconds, then kills it, and a child that dies on a signal or a non-zero
-// exit is an error naming the file. In the child: import with triangulation, identical-vertex joining and primitive
-// sorting (never a winding flip or normal generation); walk the node tree from the root, accumulating the node
-// transforms; append the triangles of every mesh a node references, their vertices transformed to the root frame
-// (reversed triangles when the transform mirrors); return the merged vertices and triangles as they are (repair is the
+// exit is an error naming the file. In the child: import with triangulation, identical-vertex
+// joining and primitive sorting (never a winding flip or normal generation); walk the node
+// tree from the root, accumulating the node transforms; append the triangles of every mesh a
+// node references, their vertices transformed to the root frame (reversed triangles when the
+// transform mirrors); return the merged vertices and triangles as they are (repair is the
 // caller's choice), after checking every index against its mesh's vertex count.
 #include "mesh_io.hpp"
 
@@ -126,17 +127,25 @@ std::string lower_extension(const std::string& path) {
   return ext;
 }
 
-Result<IndexedMesh> read_with_own_reader(const std::string& path, const std::string& ext) {
+using OwnReader = Result<IndexedMesh> (*)(std::string_view);
+
+// The project's strict reader of a file extension (lower case), or null: assimp's then.
+OwnReader own_reader(const std::string& ext) {
+  if (ext == ".obj") return read_obj;
+  if (ext == ".stl") return read_stl;
+  if (ext == ".ply") return read_ply;
+  if (ext == ".off") return read_off;
+  return nullptr;
+}
+
+Result<IndexedMesh> read_with_own_reader(const std::string& path, OwnReader reader) {
   std::ifstream in(path, std::ios::binary);
   std::string bytes(std::istreambuf_iterator<char>(in), {});
   if (!in && !in.eof()) return make_error(ErrorCode::InvalidArgument, "file", "cannot read mesh file \"" + path + "\"");
   if (bytes.size() > kMaxMeshFileBytes) {
     return make_error(ErrorCode::OutOfRange, "file", "mesh file \"" + path + "\" is larger than the limit");
   }
-  Result<IndexedMesh> read = ext == ".obj"   ? read_obj(bytes)
-                             : ext == ".stl" ? read_stl(bytes)
-                             : ext == ".ply" ? read_ply(bytes)
-                                             : read_off(bytes);
+  Result<IndexedMesh> read = reader(bytes);
   if (!read.ok()) {
     const Error& e = read.error();
     return make_error(e.code, "file", "mesh file \"" + path + "\": " + e.message);
@@ -334,9 +343,8 @@ Result<IndexedMesh> load_mesh(const std::string& path) {
                       "mesh file \"" + path + "\" has " + std::to_string(size) + " bytes, more than the limit of " +
                           std::to_string(kMaxMeshFileBytes) + " (256 MiB)");
   }
-  const std::string ext = lower_extension(path);
-  const bool own = ext == ".obj" || ext == ".stl" || ext == ".ply" || ext == ".off";
-  auto loaded = own ? read_with_own_reader(path, ext) : import_with_assimp(path);
+  const OwnReader reader = own_reader(lower_extension(path));
+  auto loaded = reader != nullptr ? read_with_own_reader(path, reader) : import_with_assimp(path);
   if (!loaded.ok()) return loaded;
   const IndexedMesh& mesh = *loaded;
   if (mesh.triangles.empty()) {

@@ -462,9 +462,7 @@ bool RegionQuadtree::ray_meets(const Ray& ray, Real max_t, const Cell& cell) {
     if (ta > tb) std::swap(ta, tb);
     t0 = std::max(t0, ta);
     t1 = std::min(t1, tb);
-    // An infinite t1 (a subnormal direction component) takes no slack: -inf + inf is invalid.
-    const Real slack = std::isfinite(t1) ? std::abs(t1) * Real(1e-4) + Real(1e-30) : Real(0);
-    if (t0 > t1 + slack) return false;
+    if (detail::slab_interval_empty(t0, t1)) return false;
   }
   return true;
 }

@@ -466,9 +466,10 @@ Vec3 crossed_edge(SupportA& support_a, SupportB& support_b, const SupportSample&
 
 /// Step 3b: the descent settled on a ridge of h, where D's support along n is an edge of
 /// direction e (two vertices tie): across it h has a crease, along it h is smooth. From n
-/// moved onto the crease (e . n = 0), on the great circle of normals across e, n(th) = cos th n + sin th m with m =
-/// unit(e x n), the slope of h is m(th) . s_D(n(th)) (both ends of the edge agree on it). Steps downhill, doubling
-/// until the slope turns or h rises, then bisects the bracket to the settle threshold, at most `budget` support pairs.
+/// moved onto the crease (e . n = 0), on the great circle of normals across e,
+/// n(th) = cos th n + sin th m with m = unit(e x n), the slope of h is m(th) . s_D(n(th))
+/// (both ends of the edge agree on it). Steps downhill, doubling until the slope turns or h
+/// rises, then bisects the bracket to the settle threshold, at most `budget` support pairs.
 /// True when it lowered h beyond rounding.
 template <class SupportA, class SupportB>
 bool follow_ridge(SupportA& support_a, SupportB& support_b, Descent& d, const Vec3& e, const RefineTolerances& tol,

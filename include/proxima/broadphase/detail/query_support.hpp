@@ -85,6 +85,14 @@ struct SlabRay {
   }
 };
 
+/// True when a node's slab interval [t0, t1] is empty beyond a small slack (1e-4 relative):
+/// node tests only prune, the boxes themselves are tested exactly. An infinite t1 (a
+/// subnormal direction component) takes no slack, since -inf + inf is an invalid operation.
+inline bool slab_interval_empty(Real t0, Real t1) {
+  const Real slack = std::isfinite(t1) ? std::abs(t1) * Real(1e-4) + Real(1e-30) : Real(0);
+  return t0 > t1 + slack;
+}
+
 /// True when a ray query has defined, hit-capable input: finite origin and direction and
 /// max_t >= 0 (max_t may be +infinity; NaN is rejected).
 inline bool ray_input_ok(const Ray& ray, Real max_t) {
