@@ -33,10 +33,6 @@ T unwrap_vertices(Result<T> result, const std::string& path) {
   return std::move(result).value();
 }
 
-Real member_real(const Json& value, const std::string& path, std::string_view key) {
-  return read_real(require_member(value, path, key), join_path(path, key));
-}
-
 Vec3 member_vec3(const Json& value, const std::string& path, std::string_view key) {
   return read_vec3(require_member(value, path, key), join_path(path, key));
 }

@@ -11,10 +11,6 @@ namespace {
 constexpr std::array<std::string_view, 7> kTypes = {"circle",  "point2d", "segment2d", "capsule2d",
                                                     "polygon", "box2d",   "chain"};
 
-Real member_real(const Json& value, const std::string& path, std::string_view key) {
-  return read_real(require_member(value, path, key), join_path(path, key));
-}
-
 Real optional_real(const Json& value, std::string_view key, const std::string& path, Real fallback) {
   const Json* m = find_member(value, key);
   return m == nullptr ? fallback : read_real(*m, join_path(path, key));

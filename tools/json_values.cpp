@@ -62,6 +62,12 @@ double read_double(const Json& value, const std::string& path) {
 
 Real read_real(const Json& value, const std::string& path) { return static_cast<Real>(read_double(value, path)); }
 
+Real member_real(const Json& object, const std::string& path, std::string_view key) {
+  return read_real(require_member(object, path, key), join_path(path, key));
+}
+
+Json ok_answer() { return Json{{"ok", true}}; }
+
 std::string read_string(const Json& value, const std::string& path) {
   if (!value.is_string()) throw FieldError(path, "wrong_type", "must be a string");
   return value.get<std::string>();

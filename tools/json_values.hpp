@@ -60,12 +60,16 @@ void reject_unknown_fields(const Json& value, const std::string& path, std::init
 const Json& require_member(const Json& object, const std::string& path, std::string_view key);
 /// The member `key` of `object`, or nullptr when absent.
 const Json* find_member(const Json& object, std::string_view key);
+/// The answer {"ok": true} of a request that changes state and reports nothing else.
+Json ok_answer();
 
 /// A JSON number as double: finite (JSON cannot hold NaN or infinity; numbers beyond the
 /// double range are rejected by the parser) and at most kMaxCoordinate in magnitude.
 double read_double(const Json& value, const std::string& path);
 /// A JSON number as Real (same checks as read_double, so it never overflows Real).
 Real read_real(const Json& value, const std::string& path);
+/// The member `key` of `object` read as read_real does (error "missing" when absent).
+Real member_real(const Json& object, const std::string& path, std::string_view key);
 /// A JSON string.
 std::string read_string(const Json& value, const std::string& path);
 /// A JSON array [x, y, z] of numbers; a bad component is named path.x / path.y / path.z.

@@ -22,7 +22,7 @@ namespace {
 
 using mesh_read::file_error;
 
-std::string at_line(std::size_t line) { return "OBJ line " + std::to_string(line); }
+std::string obj_line(std::size_t line) { return "OBJ line " + std::to_string(line); }
 
 std::optional<Error> read_vertex(mesh_read::Tokens& tokens, IndexedMesh& mesh) {
   double c[3] = {0.0, 0.0, 0.0};
@@ -31,15 +31,15 @@ std::optional<Error> read_vertex(mesh_read::Tokens& tokens, IndexedMesh& mesh) {
     const auto parsed = mesh_read::parse_double(token);
     if (!parsed) {
       return file_error(ErrorCode::InvalidArgument,
-                        at_line(tokens.line()) + ": a vertex needs three numbers, found " + mesh_read::quoted(token));
+                        obj_line(tokens.line()) + ": a vertex needs three numbers, found " + mesh_read::quoted(token));
     }
     value = *parsed;
   }
   tokens.skip_line();
   if (mesh.vertices.size() >= std::numeric_limits<std::uint32_t>::max()) {
-    return file_error(ErrorCode::OutOfRange, at_line(tokens.line()) + ": too many vertices");
+    return file_error(ErrorCode::OutOfRange, obj_line(tokens.line()) + ": too many vertices");
   }
-  return mesh_read::push_vertex(mesh, c[0], c[1], c[2], at_line(tokens.line()));
+  return mesh_read::push_vertex(mesh, c[0], c[1], c[2], obj_line(tokens.line()));
 }
 
 // One face corner: the index before any '/', resolved to 0-based (negative: relative).
@@ -48,18 +48,19 @@ std::optional<Error> read_corner(std::string_view token, std::size_t line, std::
   const std::string_view index = token.substr(0, token.find('/'));
   const auto value = mesh_read::parse_integer(index);
   if (!value) {
-    return file_error(ErrorCode::InvalidArgument, at_line(line) + ": malformed face index " + mesh_read::quoted(token));
+    return file_error(ErrorCode::InvalidArgument,
+                      obj_line(line) + ": malformed face index " + mesh_read::quoted(token));
   }
-  if (*value == 0) return file_error(ErrorCode::OutOfRange, at_line(line) + ": face index 0 (indices start at 1)");
+  if (*value == 0) return file_error(ErrorCode::OutOfRange, obj_line(line) + ": face index 0 (indices start at 1)");
   std::int64_t zero_based = *value > 0 ? *value - 1 : std::int64_t(vertex_count) + *value;
   if (zero_based < 0) {
-    return file_error(ErrorCode::OutOfRange, at_line(line) + ": relative face index " + std::to_string(*value) +
+    return file_error(ErrorCode::OutOfRange, obj_line(line) + ": relative face index " + std::to_string(*value) +
                                                  " refers before the first vertex (" + std::to_string(vertex_count) +
                                                  " read so far)");
   }
   if (zero_based >= std::int64_t(std::numeric_limits<std::uint32_t>::max())) {
     return file_error(ErrorCode::OutOfRange,
-                      at_line(line) + ": face index " + std::to_string(*value) + " is too large");
+                      obj_line(line) + ": face index " + std::to_string(*value) + " is too large");
   }
   corner = static_cast<std::uint32_t>(zero_based);
   return std::nullopt;
@@ -76,7 +77,7 @@ std::optional<Error> read_face(mesh_read::Tokens& tokens, IndexedMesh& mesh, std
   if (corners.size() < 3) {
     return file_error(
         ErrorCode::InvalidArgument,
-        at_line(tokens.line()) + ": a face needs at least 3 vertices, found " + std::to_string(corners.size()));
+        obj_line(tokens.line()) + ": a face needs at least 3 vertices, found " + std::to_string(corners.size()));
   }
   mesh_read::push_fan(mesh, corners.data(), corners.size());
   face_lines.resize(mesh.triangles.size(), tokens.line());
@@ -104,9 +105,9 @@ Result<IndexedMesh> read_obj(std::string_view text) {
   for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
     for (const std::uint32_t corner : mesh.triangles[t]) {
       if (corner >= mesh.vertices.size()) {
-        return file_error(ErrorCode::OutOfRange, at_line(face_lines[t]) + ": face index " + std::to_string(corner + 1) +
-                                                     " is beyond the " + std::to_string(mesh.vertices.size()) +
-                                                     " vertices of the file");
+        return file_error(ErrorCode::OutOfRange, obj_line(face_lines[t]) + ": face index " +
+                                                     std::to_string(corner + 1) + " is beyond the " +
+                                                     std::to_string(mesh.vertices.size()) + " vertices of the file");
       }
     }
   }

@@ -24,7 +24,7 @@ namespace {
 
 using mesh_read::file_error;
 
-std::string at_line(std::size_t line) { return "OFF line " + std::to_string(line); }
+std::string off_line(std::size_t line) { return "OFF line " + std::to_string(line); }
 
 // The first token of the next record, skipping `#` comment lines; empty at the end.
 std::string_view next_record(mesh_read::Tokens& tokens) {
@@ -60,7 +60,7 @@ std::optional<Error> read_counts(mesh_read::Tokens& tokens, Counts& counts) {
     if (!value || *value < 0) {
       return file_error(
           ErrorCode::InvalidArgument,
-          at_line(tokens.line()) + ": the header needs the vertex and face counts, found " + mesh_read::quoted(token));
+          off_line(tokens.line()) + ": the header needs the vertex and face counts, found " + mesh_read::quoted(token));
     }
     *targets[i] = static_cast<std::uint64_t>(*value);
   }
@@ -69,7 +69,7 @@ std::optional<Error> read_counts(mesh_read::Tokens& tokens, Counts& counts) {
   const bool held = counts.vertices <= limit && counts.faces <= limit &&
                     5 * counts.vertices + 7 * counts.faces <= tokens.remaining() + 1;
   if (!held) {
-    return file_error(ErrorCode::OutOfRange, at_line(tokens.line()) + ": the header declares " +
+    return file_error(ErrorCode::OutOfRange, off_line(tokens.line()) + ": the header declares " +
                                                  std::to_string(counts.vertices) + " vertices and " +
                                                  std::to_string(counts.faces) + " faces, more than the " +
                                                  std::to_string(tokens.remaining()) + " bytes left can hold");
@@ -83,21 +83,21 @@ std::optional<Error> read_vertex(mesh_read::Tokens& tokens, IndexedMesh& mesh, s
   for (double& value : c) {
     const auto parsed = mesh_read::parse_double(token);
     if (!parsed) {
-      return file_error(ErrorCode::InvalidArgument, at_line(tokens.line()) + ": vertex " + std::to_string(index) +
+      return file_error(ErrorCode::InvalidArgument, off_line(tokens.line()) + ": vertex " + std::to_string(index) +
                                                         " needs three numbers, found " + mesh_read::quoted(token));
     }
     value = *parsed;
     token = tokens.next_on_line();
   }
   tokens.skip_line();
-  return mesh_read::push_vertex(mesh, c[0], c[1], c[2], at_line(tokens.line()));
+  return mesh_read::push_vertex(mesh, c[0], c[1], c[2], off_line(tokens.line()));
 }
 
 std::optional<Error> read_face(mesh_read::Tokens& tokens, IndexedMesh& mesh, std::uint64_t index,
                                std::vector<std::uint32_t>& corners) {
   const std::string_view first = next_record(tokens);
   const auto n = mesh_read::parse_integer(first);
-  const std::string where = at_line(tokens.line()) + ": face " + std::to_string(index);
+  const std::string where = off_line(tokens.line()) + ": face " + std::to_string(index);
   if (!n || *n < 0 || std::uint64_t(*n) > tokens.remaining()) {
     return file_error(first.empty() ? ErrorCode::TooFew : ErrorCode::InvalidArgument,
                       first.empty() ? "OFF: the file ends before face " + std::to_string(index)
@@ -130,7 +130,7 @@ Result<IndexedMesh> read_off(std::string_view text) {
   const std::string_view keyword = next_record(tokens);
   if (!is_off_keyword(keyword)) {
     return file_error(ErrorCode::InvalidArgument,
-                      at_line(tokens.line()) + ": expected the keyword OFF (3D), found " + mesh_read::quoted(keyword));
+                      off_line(tokens.line()) + ": expected the keyword OFF (3D), found " + mesh_read::quoted(keyword));
   }
   Counts counts;
   if (auto e = read_counts(tokens, counts)) return *e;
@@ -146,7 +146,7 @@ Result<IndexedMesh> read_off(std::string_view text) {
   const std::string_view extra = next_record(tokens);
   if (!extra.empty()) {
     return file_error(ErrorCode::InvalidArgument,
-                      at_line(tokens.line()) + ": data after the " + std::to_string(counts.faces) + " declared faces");
+                      off_line(tokens.line()) + ": data after the " + std::to_string(counts.faces) + " declared faces");
   }
   return mesh;
 }

@@ -51,14 +51,14 @@ Result<IndexedMesh> read_binary(std::string_view bytes, std::uint32_t count) {
   return mesh;
 }
 
-std::string at_line(std::size_t line) { return "STL line " + std::to_string(line); }
+std::string stl_line(std::size_t line) { return "STL line " + std::to_string(line); }
 
 std::optional<Error> expect(mesh_read::Tokens& tokens, std::string_view keyword) {
   const std::string_view token = tokens.next();
   if (token == keyword) return std::nullopt;
   const std::string found = token.empty() ? "the end of the file" : mesh_read::quoted(token);
   return file_error(ErrorCode::InvalidArgument,
-                    at_line(tokens.line()) + ": expected " + mesh_read::quoted(keyword) + ", found " + found);
+                    stl_line(tokens.line()) + ": expected " + mesh_read::quoted(keyword) + ", found " + found);
 }
 
 std::optional<Error> read_numbers(mesh_read::Tokens& tokens, double (&out)[3]) {
@@ -67,7 +67,7 @@ std::optional<Error> read_numbers(mesh_read::Tokens& tokens, double (&out)[3]) {
     const auto parsed = mesh_read::parse_double(token);
     if (!parsed) {
       return file_error(ErrorCode::InvalidArgument,
-                        at_line(tokens.line()) + ": expected a number, found " + mesh_read::quoted(token));
+                        stl_line(tokens.line()) + ": expected a number, found " + mesh_read::quoted(token));
     }
     value = *parsed;
   }
@@ -81,13 +81,13 @@ std::optional<Error> read_facet(mesh_read::Tokens& tokens, IndexedMesh& mesh) {
   if (auto e = expect(tokens, "outer")) return e;
   if (auto e = expect(tokens, "loop")) return e;
   if (mesh.vertices.size() + 3 >= std::numeric_limits<std::uint32_t>::max()) {
-    return file_error(ErrorCode::OutOfRange, at_line(tokens.line()) + ": too many vertices");
+    return file_error(ErrorCode::OutOfRange, stl_line(tokens.line()) + ": too many vertices");
   }
   const auto base = static_cast<std::uint32_t>(mesh.vertices.size());
   for (int corner = 0; corner < 3; ++corner) {
     if (auto e = expect(tokens, "vertex")) return e;
     if (auto e = read_numbers(tokens, c)) return e;
-    if (auto e = mesh_read::push_vertex(mesh, c[0], c[1], c[2], at_line(tokens.line()))) return e;
+    if (auto e = mesh_read::push_vertex(mesh, c[0], c[1], c[2], stl_line(tokens.line()))) return e;
   }
   mesh.triangles.push_back({base, base + 1, base + 2});
   if (auto e = expect(tokens, "endloop")) return e;
@@ -100,14 +100,14 @@ Result<IndexedMesh> read_ascii(std::string_view text) {
   for (std::string_view token = tokens.next(); !token.empty(); token = tokens.next()) {
     if (token != "solid") {
       return file_error(ErrorCode::InvalidArgument,
-                        at_line(tokens.line()) + ": expected \"solid\", found " + mesh_read::quoted(token));
+                        stl_line(tokens.line()) + ": expected \"solid\", found " + mesh_read::quoted(token));
     }
     tokens.skip_line();  // the solid's name
     for (token = tokens.next(); token != "endsolid"; token = tokens.next()) {
       if (token != "facet") {
         const std::string found = token.empty() ? "the end of the file" : mesh_read::quoted(token);
         return file_error(ErrorCode::InvalidArgument,
-                          at_line(tokens.line()) + ": expected \"facet\" or \"endsolid\", found " + found);
+                          stl_line(tokens.line()) + ": expected \"facet\" or \"endsolid\", found " + found);
       }
       if (auto e = read_facet(tokens, mesh)) return *e;
     }

@@ -23,8 +23,6 @@ std::string operation_names() {
   return names;
 }
 
-Json ok() { return Json{{"ok", true}}; }
-
 Json pairs(const std::vector<ContactEvent>& events) {
   Json list = Json::array();
   for (const ContactEvent& e : events)
@@ -96,7 +94,7 @@ Json WorldSession2d::add(const Json& request) {
 Json WorldSession2d::remove(const Json& request) {
   reject_unknown_fields(request, "", {"id", "op", "object"});
   check_world(world_.remove(live_handle(request, "object")));
-  return ok();
+  return ok_answer();
 }
 
 Json WorldSession2d::move(const Json& request) {
@@ -106,14 +104,14 @@ Json WorldSession2d::move(const Json& request) {
   bool teleport = false;
   if (const Json* t = find_member(request, "teleport")) teleport = read_bool(*t, "teleport");
   check_world(teleport ? world_.teleport(h, pose) : world_.move(h, pose));
-  return ok();
+  return ok_answer();
 }
 
 Json WorldSession2d::set_filter(const Json& request) {
   reject_unknown_fields(request, "", {"id", "op", "object", "filter"});
   const d2::ObjectHandle h = live_handle(request, "object");
   check_world(world_.set_filter(h, read_collision_filter(require_member(request, "", "filter"), "filter")));
-  return ok();
+  return ok_answer();
 }
 
 Json WorldSession2d::exclude(const Json& request) {
@@ -123,7 +121,7 @@ Json WorldSession2d::exclude(const Json& request) {
   bool excluded = true;
   if (const Json* e = find_member(request, "excluded")) excluded = read_bool(*e, "excluded");
   check_world(world_.set_pair_excluded(a, b, excluded));
-  return ok();
+  return ok_answer();
 }
 
 Json WorldSession2d::step(const Json& request) {
@@ -198,7 +196,7 @@ Json WorldSession2d::hash(const Json& request) const {
 Json WorldSession2d::save(const Json& request) const {
   reject_unknown_fields(request, "", {"id", "op", "file"});
   save_snapshot_file(world_, request);
-  return ok();
+  return ok_answer();
 }
 
 Json WorldSession2d::load(const Json& request) {

@@ -13,16 +13,6 @@
 
 namespace proxima::tool {
 
-namespace {
-
-Json ok() {
-  Json answer = Json::object();
-  answer["ok"] = true;
-  return answer;
-}
-
-}  // namespace
-
 Json op_world_add(WorldSession& session, const Json& request) {
   reject_unknown_fields(
       request, "",
@@ -93,14 +83,14 @@ Json op_world_move(WorldSession& session, const Json& request) {
       moves.push_back({h, read_pose(require_member(entry, path, "pose"), join_path(path, "pose"))});
     }
     check_world(world.move(moves));
-    return ok();
+    return ok_answer();
   }
   const ObjectHandle object = member_live_handle(request, "object", world);
   const Transform pose = read_pose(require_member(request, "", "pose"), "pose");
   const Json* teleport = find_member(request, "teleport");
   const bool warp = teleport != nullptr && read_bool(*teleport, "teleport");
   check_world(warp ? world.teleport(object, pose) : world.move(object, pose));
-  return ok();
+  return ok_answer();
 }
 
 namespace {
@@ -113,7 +103,7 @@ Json set_property(WorldSession& session, const Json& request, const char* member
   const ObjectHandle object = member_live_handle(request, "object", session.world());
   const auto value = read(require_member(request, "", member), member);
   check_world(set(session.world(), object, value));
-  return ok();
+  return ok_answer();
 }
 
 }  // namespace
@@ -162,7 +152,7 @@ Json op_world_attach(WorldSession& session, const Json& request) {
     throw FieldError("local_pose", "invalid_argument", "a detached object keeps its world pose: no \"local_pose\"");
   }
   check_world(world.attach(object, parent, local_pose));
-  return ok();
+  return ok_answer();
 }
 
 Json op_world_exclude(WorldSession& session, const Json& request) {
@@ -172,7 +162,7 @@ Json op_world_exclude(WorldSession& session, const Json& request) {
   bool excluded = true;
   if (const Json* e = find_member(request, "excluded")) excluded = read_bool(*e, "excluded");
   check_world(session.world().set_pair_excluded(a, b, excluded));
-  return ok();
+  return ok_answer();
 }
 
 }  // namespace proxima::tool

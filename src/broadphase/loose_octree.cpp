@@ -19,18 +19,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include "broadphase/structure_support.hpp"
+
 namespace proxima {
-
-namespace {
-
-ProxyPair ordered(ProxyId a, ProxyId b) { return a < b ? ProxyPair{a, b} : ProxyPair{b, a}; }
-
-template <class T>
-std::size_t capacity_bytes(const std::vector<T>& v) {
-  return v.capacity() * sizeof(T);
-}
-
-}  // namespace
 
 template <int Dim>
 Aabb LooseTree<Dim>::loose_of(const Vec3& center, Real half) {
@@ -323,7 +314,8 @@ void LooseTree<Dim>::test_items(std::uint32_t begin, std::uint32_t end, std::uin
     for (std::uint32_t j = begin2; j < end2; ++j) {
       const Item& b = items_[j];
       ++st.pairs_tested;
-      if (a.box.overlaps(b.box) && detail::may_pair(proxies_[a.id], proxies_[b.id])) out.push_back(ordered(a.id, b.id));
+      if (a.box.overlaps(b.box) && detail::may_pair(proxies_[a.id], proxies_[b.id]))
+        out.push_back(detail::ordered_pair(a.id, b.id));
     }
   }
 }
@@ -356,7 +348,8 @@ void LooseTree<Dim>::own_pairs(std::int32_t node, std::vector<ProxyPair>& out, B
       const Item& b = items_[j];
       if (n.count > 16 && b.box.min.x > a.box.max.x) break;
       ++st.pairs_tested;
-      if (a.box.overlaps(b.box) && detail::may_pair(proxies_[a.id], proxies_[b.id])) out.push_back(ordered(a.id, b.id));
+      if (a.box.overlaps(b.box) && detail::may_pair(proxies_[a.id], proxies_[b.id]))
+        out.push_back(detail::ordered_pair(a.id, b.id));
     }
   }
   for (const std::int32_t child : n.child) {
@@ -542,9 +535,10 @@ int LooseTree<Dim>::depth() const {
 
 template <int Dim>
 std::size_t LooseTree<Dim>::memory_bytes() const {
-  return capacity_bytes(node_of_) + capacity_bytes(next_) + capacity_bytes(prev_) + capacity_bytes(nodes_) +
-         capacity_bytes(free_) + capacity_bytes(items_) + capacity_bytes(own_begin_) + capacity_bytes(own_fit_) +
-         capacity_bytes(fit_) + capacity_bytes(order_) + sort_scratch_.keys.capacity() * 16 +
+  return detail::capacity_bytes(node_of_) + detail::capacity_bytes(next_) + detail::capacity_bytes(prev_) +
+         detail::capacity_bytes(nodes_) + detail::capacity_bytes(free_) + detail::capacity_bytes(items_) +
+         detail::capacity_bytes(own_begin_) + detail::capacity_bytes(own_fit_) + detail::capacity_bytes(fit_) +
+         detail::capacity_bytes(order_) + sort_scratch_.keys.capacity() * 16 +
          proxies_.size() * (sizeof(detail::ProxyRecord) + sizeof(ProxyId));
 }
 

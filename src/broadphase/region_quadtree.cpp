@@ -25,16 +25,11 @@
 #include <atomic>
 #include <cmath>
 
+#include "broadphase/structure_support.hpp"
+
 namespace proxima {
 
 namespace {
-
-ProxyPair ordered(ProxyId a, ProxyId b) { return a < b ? ProxyPair{a, b} : ProxyPair{b, a}; }
-
-template <class T>
-std::size_t capacity_bytes(const std::vector<T>& v) {
-  return v.capacity() * sizeof(T);
-}
 
 /// Leaves holding more boxes than this are sorted on x and swept.
 constexpr std::uint32_t kSweepAbove = 16;
@@ -412,7 +407,7 @@ void RegionQuadtree::leaf_pairs(std::size_t leaf, std::vector<ProxyPair>& out, s
       ++tested;
       if (!a.box.overlaps(b.box)) continue;
       if (!owns(node, std::max(a.box.min.x, b.box.min.x), std::max(a.box.min.y, b.box.min.y))) continue;
-      if (detail::may_pair(proxies_[a.id], proxies_[b.id])) out.push_back(ordered(a.id, b.id));
+      if (detail::may_pair(proxies_[a.id], proxies_[b.id])) out.push_back(detail::ordered_pair(a.id, b.id));
     }
   }
 }
@@ -557,9 +552,9 @@ int RegionQuadtree::depth() const {
 }
 
 std::size_t RegionQuadtree::memory_bytes() const {
-  return capacity_bytes(first_own_) + capacity_bytes(nodes_) + capacity_bytes(free_nodes_) + capacity_bytes(entries_) +
-         capacity_bytes(free_entries_) + capacity_bytes(leaves_) + capacity_bytes(item_begin_) +
-         capacity_bytes(items_) + sort_scratch_.keys.capacity() * 16 +
+  return detail::capacity_bytes(first_own_) + detail::capacity_bytes(nodes_) + detail::capacity_bytes(free_nodes_) +
+         detail::capacity_bytes(entries_) + detail::capacity_bytes(free_entries_) + detail::capacity_bytes(leaves_) +
+         detail::capacity_bytes(item_begin_) + detail::capacity_bytes(items_) + sort_scratch_.keys.capacity() * 16 +
          proxies_.size() * (sizeof(detail::ProxyRecord) + sizeof(ProxyId));
 }
 

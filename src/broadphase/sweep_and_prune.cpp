@@ -312,25 +312,25 @@ void SweepStorage::radix_sort_ids(std::vector<ProxyId>& ids, int axis) {
     all_and &= k;
   }
   const std::uint64_t varying = (all_or ^ all_and) >> 32;
-  constexpr int kBits = 11;
-  constexpr std::size_t kBuckets = std::size_t{1} << kBits;
+  constexpr int kRadixBits = 11;
+  constexpr std::size_t kRadixBuckets = std::size_t{1} << kRadixBits;
   std::uint64_t* src = keys_.data();
   std::uint64_t* dst = keys_tmp_.data();
-  for (int shift = 0; shift < 32; shift += kBits) {
+  for (int shift = 0; shift < 32; shift += kRadixBits) {
     if (n <= 2048) {  // small lists: a comparison sort beats clearing the histograms
       std::sort(src, src + n);
       break;
     }
-    if (((varying >> shift) & (kBuckets - 1)) == 0) continue;
-    std::array<std::uint32_t, kBuckets> hist{};
-    for (std::size_t i = 0; i < n; ++i) ++hist[(src[i] >> (32 + shift)) & (kBuckets - 1)];
+    if (((varying >> shift) & (kRadixBuckets - 1)) == 0) continue;
+    std::array<std::uint32_t, kRadixBuckets> hist{};
+    for (std::size_t i = 0; i < n; ++i) ++hist[(src[i] >> (32 + shift)) & (kRadixBuckets - 1)];
     std::uint32_t sum = 0;
     for (auto& h : hist) {
       const std::uint32_t c = h;
       h = sum;
       sum += c;
     }
-    for (std::size_t i = 0; i < n; ++i) dst[hist[(src[i] >> (32 + shift)) & (kBuckets - 1)]++] = src[i];
+    for (std::size_t i = 0; i < n; ++i) dst[hist[(src[i] >> (32 + shift)) & (kRadixBuckets - 1)]++] = src[i];
     std::swap(src, dst);
   }
   ids_tmp_.resize(n);

@@ -23,6 +23,8 @@
 #include <cmath>
 #include <limits>
 
+#include "broadphase/structure_support.hpp"
+
 namespace proxima::detail {
 
 namespace {
@@ -56,16 +58,9 @@ bool overlaps(const Vec3& amin, const Vec3& amax, const Vec3& bmin, const Vec3& 
          bmin.z <= amax.z;
 }
 
-ProxyPair make_pair(ProxyId a, ProxyId b) { return a < b ? ProxyPair{a, b} : ProxyPair{b, a}; }
-
 Real max_extent(const Aabb& box) {
   const Vec3 e = box.extents();
   return std::max(e.x, std::max(e.y, e.z));
-}
-
-template <class T>
-std::size_t capacity_bytes(const std::vector<T>& v) {
-  return v.capacity() * sizeof(T);
 }
 
 }  // namespace
@@ -333,7 +328,7 @@ void CellEngine::pairs_in_cells(std::uint32_t cell_begin, std::uint32_t cell_end
         if (!overlaps(a.min, a.max, o.min, o.max)) continue;
         if ((a.bits | o.bits) != 7u) continue;
         if (!may_pair(proxies_[a.id], proxies_[o.id])) continue;
-        out.push_back(make_pair(a.id, o.id));
+        out.push_back(detail::ordered_pair(a.id, o.id));
       }
     }
   }
@@ -366,7 +361,7 @@ void CellEngine::pairs_across_levels(std::size_t begin, std::size_t end, std::ve
               if (!overlaps(rec.box.min, rec.box.max, o.min, o.max)) continue;
               if ((bits | o.bits) != 7u) continue;
               if (!may_pair(rec, proxies_[o.id])) continue;
-              out.push_back(make_pair(id, o.id));
+              out.push_back(detail::ordered_pair(id, o.id));
             }
           }
         }
@@ -385,7 +380,7 @@ void CellEngine::pairs_oversized(std::size_t begin, std::size_t end, std::vector
       if (t == s || (is_oversized_[t] != 0 && t < s)) continue;
       const ProxyRecord& b = proxies_[ids[t]];
       ++st.pairs_tested;
-      if (a.box.overlaps(b.box) && may_pair(a, b)) out.push_back(make_pair(ids[s], ids[t]));
+      if (a.box.overlaps(b.box) && may_pair(a, b)) out.push_back(detail::ordered_pair(ids[s], ids[t]));
     }
   }
 }
@@ -583,11 +578,12 @@ bool CellEngine::validate() const {
 }
 
 std::size_t CellEngine::memory_bytes() const {
-  std::size_t bytes = capacity_bytes(ranges_) + capacity_bytes(raw_cell_) + capacity_bytes(raw_slot_) +
-                      capacity_bytes(cell_start_) + capacity_bytes(cell_key_) + capacity_bytes(table_) +
-                      capacity_bytes(entries_) + capacity_bytes(oversized_) + capacity_bytes(is_oversized_) +
-                      capacity_bytes(sort_scratch_);
-  for (const auto& v : part_pairs_) bytes += capacity_bytes(v);
+  std::size_t bytes = detail::capacity_bytes(ranges_) + detail::capacity_bytes(raw_cell_) +
+                      detail::capacity_bytes(raw_slot_) + detail::capacity_bytes(cell_start_) +
+                      detail::capacity_bytes(cell_key_) + detail::capacity_bytes(table_) +
+                      detail::capacity_bytes(entries_) + detail::capacity_bytes(oversized_) +
+                      detail::capacity_bytes(is_oversized_) + detail::capacity_bytes(sort_scratch_);
+  for (const auto& v : part_pairs_) bytes += detail::capacity_bytes(v);
   return bytes + proxies_.size() * (sizeof(ProxyRecord) + sizeof(ProxyId));
 }
 

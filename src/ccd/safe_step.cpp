@@ -29,8 +29,6 @@ namespace proxima {
 
 namespace {
 
-constexpr Real kInfinity = std::numeric_limits<Real>::infinity();
-
 std::optional<Error> validate_body(const MovingBody& body, const std::string& name) {
   if (validate::is_acceptable(body.pose.position) && validate::is_unit(body.pose.rotation) &&
       validate::is_acceptable(body.linear) && validate::is_acceptable(body.angular)) {
@@ -50,7 +48,7 @@ Real rotating(const Vec3& w, Real radius) {
 // The step of one validated pair.
 Real pair_step(const MovingBody& a, const MovingBody& b, Real target) {
   const DistanceResult d = distance(a.shape, a.pose, b.shape, b.pose);
-  if (!std::isfinite(d.signed_distance)) return d.signed_distance > Real(0) ? kInfinity : Real(0);
+  if (!std::isfinite(d.signed_distance)) return d.signed_distance > Real(0) ? kRealInfinity : Real(0);
   const detail::ShapeRadii ra = detail::shape_radii(a.shape), rb = detail::shape_radii(b.shape);
   const Real scale = std::max({Real(1), glm::length(a.pose.position - b.pose.position) +
                                             (ra.halfspace ? Real(0) : ra.full) + (rb.halfspace ? Real(0) : rb.full)});
@@ -77,7 +75,7 @@ Real pair_step(const MovingBody& a, const MovingBody& b, Real target) {
   const Real lip_b = rb.halfspace ? reach + ra.full : rb.full;
   const Real speed = glm::length(a.linear - b.linear) + rotating(a.angular, lip_a) + rotating(b.angular, lip_b);
   if (!(lower > target)) return Real(0);
-  return speed > Real(0) ? (lower - target) / speed : kInfinity;
+  return speed > Real(0) ? (lower - target) / speed : kRealInfinity;
 }
 
 }  // namespace
@@ -87,7 +85,7 @@ Real safe_time_step_from_distance(Real gap, const Vec3& n, const Vec3& linear_a,
   if (!(gap > target_distance)) return Real(0);
   const Real mu = directional_speed_bound(n, linear_a - linear_b, angular_a, radius_a) +
                   directional_speed_bound(n, Vec3(Real(0)), angular_b, radius_b);
-  return mu > Real(0) ? (gap - target_distance) / mu : kInfinity;
+  return mu > Real(0) ? (gap - target_distance) / mu : kRealInfinity;
 }
 
 Real rotation_radius(ShapeRef shape) { return detail::shape_radii(shape).core; }
@@ -111,7 +109,7 @@ Result<Real> safe_time_steps(const MovingBody& a, std::span<const MovingBody> ot
   if (steps.size() != others.size()) {
     return make_error(ErrorCode::InvalidArgument, "steps", "must have one entry per body of others");
   }
-  Real least = kInfinity;
+  Real least = kRealInfinity;
   for (std::size_t i = 0; i < others.size(); ++i) {
     steps[i] = pair_step(a, others[i], target_distance);
     least = std::min(least, steps[i]);

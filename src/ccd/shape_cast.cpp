@@ -38,8 +38,6 @@ namespace proxima {
 
 namespace {
 
-constexpr Real kInfinity = std::numeric_limits<Real>::infinity();
-
 enum class Kind { Convex, HalfSpace, Mesh, Compound };
 
 Kind kind_of(ShapeRef s) {
@@ -214,14 +212,14 @@ Real entry_time(const Aabb& moving, const Vec3& s, const Aabb& node) {
     const Real lo = node.min[i] - moving.max[i];  // the translation must reach [lo, hi]
     const Real hi = node.max[i] - moving.min[i];
     if (s[i] == Real(0)) {
-      if (lo > Real(0) || hi < Real(0)) return kInfinity;
+      if (lo > Real(0) || hi < Real(0)) return kRealInfinity;
       continue;
     }
     Real a = lo / s[i], b = hi / s[i];
     if (a > b) std::swap(a, b);
     t0 = std::max(t0, a);
     t1 = std::min(t1, b);
-    if (t0 > t1) return kInfinity;
+    if (t0 > t1) return kRealInfinity;
   }
   return t0;
 }

@@ -43,11 +43,7 @@
 
 namespace proxima {
 
-namespace {
-
-constexpr Real kInfinity = std::numeric_limits<Real>::infinity();
-
-}  // namespace
+namespace {}  // namespace
 
 std::optional<Error> validate_toi_options(const ToiOptions& o) {
   const auto fine = [](Real x) { return std::isfinite(x) && x >= Real(0) && x <= kMaxCoordinate; };
@@ -130,7 +126,7 @@ Real rotational(const Vec3& w, Real radius) {
 Real closing_speed(const Pair& p, const Vec3& n) {
   if (p.ra.halfspace || p.rb.halfspace) {
     // A half-space's normal turns with it: only its translation is directional.
-    if (glm::length(p.wa) > Real(0) || glm::length(p.wb) > Real(0)) return kInfinity;
+    if (glm::length(p.wa) > Real(0) || glm::length(p.wb) > Real(0)) return kRealInfinity;
     return glm::dot(n, p.va - p.vb);
   }
   return directional_speed_bound(n, p.va - p.vb, p.wa, p.ra.core) + glm::length(glm::cross(n, p.wb)) * p.rb.core;
@@ -144,12 +140,12 @@ Real certified_step(const Pair& p, const DistanceResult& d, const Transform& pa,
   const Real error = Real(16) * kEpsilon * p.scale + Real(8) * kEpsilon * std::abs(d.signed_distance);
   const Real lower = d.signed_distance - error;
   const Real lip = glm::length(p.va - p.vb) + rotational(p.wa, p.lip_a) + rotational(p.wb, p.lip_b);
-  if (lower > p.target) step = lip > Real(0) ? (lower - p.target) / lip : kInfinity;
+  if (lower > p.target) step = lip > Real(0) ? (lower - p.target) / lip : kRealInfinity;
   // Directional bound (two bounded convex shapes).
   if (p.ra.convex && p.rb.convex) {
     const Real g = glm::dot(n, detail::world_support(p.b, pb, -n)) - glm::dot(n, detail::world_support(p.a, pa, n));
     const Real mu = closing_speed(p, n);
-    if (g > p.target) step = std::max(step, mu > Real(0) ? (g - p.target) / mu : kInfinity);
+    if (g > p.target) step = std::max(step, mu > Real(0) ? (g - p.target) / mu : kRealInfinity);
   }
   return step;
 }

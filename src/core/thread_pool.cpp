@@ -4,7 +4,7 @@
 /// Steps of ThreadPool::run(count, task):
 /// 1. Inline (task(0, count) on the caller) when the pool has one thread, the range has one
 ///    item, or the caller is already running one of this pool's tasks (nested run).
-/// 2. Otherwise publish a Job (the task, the range, an atomic cursor, a grain of about
+/// 2. Otherwise publish a PoolJob (the task, the range, an atomic cursor, a grain of about
 ///    count / (8 threads)) under the mutex with a new generation number and wake the workers.
 /// 3. Every participant (the caller and each worker that joins) takes grains from the cursor
 ///    until it passes count; the first exception of a task (when built with exceptions) is
@@ -27,10 +27,10 @@
 
 namespace proxima {
 
-namespace {
+namespace detail {
 
 /// One run() in progress.
-struct Job {
+struct PoolJob {
   RangeTask task;
   std::size_t count = 0;
   std::size_t grain = 1;
@@ -38,7 +38,7 @@ struct Job {
   std::mutex error_mutex;
   std::exception_ptr error;
 
-  Job(RangeTask t, std::size_t n, std::size_t g) : task(t), count(n), grain(g) {}
+  PoolJob(RangeTask t, std::size_t n, std::size_t g) : task(t), count(n), grain(g) {}
 
   /// Takes grains until the range is exhausted (step 3).
   void work() {
@@ -60,7 +60,7 @@ struct Job {
   }
 };
 
-}  // namespace
+}  // namespace detail
 
 struct ThreadPool::Shared {
   std::size_t concurrency = 1;
@@ -70,7 +70,7 @@ struct ThreadPool::Shared {
   std::condition_variable wake;      ///< workers: a new job or stop
   std::condition_variable finished;  ///< caller: the last worker left the job
   std::uint64_t generation = 0;      ///< number of jobs published
-  Job* job = nullptr;                ///< the job workers may join, or none
+  detail::PoolJob* job = nullptr;    ///< the job workers may join, or none
   std::size_t active = 0;            ///< workers inside `job`
   bool stop = false;
 
@@ -100,7 +100,7 @@ void ThreadPool::Shared::worker_loop() {
   const RunningPool running(this);
   std::uint64_t seen = 0;
   for (;;) {
-    Job* current = nullptr;
+    detail::PoolJob* current = nullptr;
     {
       std::unique_lock<std::mutex> lock(mutex);
       wake.wait(lock, [&] { return stop || (job != nullptr && generation != seen); });
@@ -146,7 +146,7 @@ void ThreadPool::run(std::size_t count, RangeTask task) {
     return;
   }
   const std::lock_guard<std::mutex> serve(s.run_mutex);
-  Job job(task, count, std::max<std::size_t>(1, count / (8 * s.concurrency)));
+  detail::PoolJob job(task, count, std::max<std::size_t>(1, count / (8 * s.concurrency)));
   {
     const std::lock_guard<std::mutex> lock(s.mutex);
     s.job = &job;

@@ -48,14 +48,15 @@ std::string CaptureRecorder2D::scene_line(const d2::CollisionWorld& world) {
   const auto record = [this](d2::ObjectHandle handle, const d2::ObjectDesc& desc) {
     return object_record(handle, desc);
   };
-  return detail::scene_line(world, options_.snapshot, written_, record, state_of);
+  return detail::scene_line(world, options_.snapshot, written_, record,
+                            [](const d2::ObjectDesc& desc) { return state_of(desc); });
 }
 
 std::string CaptureRecorder2D::object_changes(const d2::CollisionWorld& world) {
   const auto record = [this](d2::ObjectHandle handle, const d2::ObjectDesc& desc) {
     return object_record(handle, desc);
   };
-  return detail::object_changes(world, written_, record, state_of);
+  return detail::object_changes(world, written_, record, [](const d2::ObjectDesc& desc) { return state_of(desc); });
 }
 
 std::string CaptureRecorder2D::step_line(const d2::CollisionWorld& world, Real dt, const DrawBuffer* extra) {

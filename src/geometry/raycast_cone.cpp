@@ -34,7 +34,7 @@ namespace proxima::geometry {
 
 namespace {
 
-enum Feature : int { FeatureApex = 0, FeatureBase = 1, FeatureLateral = 2 };
+enum ConeFeature : int { ConeApex = 0, ConeBase = 1, ConeLateral = 2 };
 
 /// Precision of the discriminant: double even in the float build.
 using Wide = double;
@@ -70,7 +70,7 @@ std::optional<RayHit> ray_cone(const Ray& ray, Real max_t, const Vec3& apex, con
   const Vec3 m = frame.local(m0 + shift * r.unit);
   const Vec3 u = frame.local(r.unit);
 
-  const detail::Interval slab = detail::slab_interval(m.z, u.z, Real(0), height, FeatureApex, FeatureBase);
+  const detail::Interval slab = detail::slab_interval(m.z, u.z, Real(0), height, ConeApex, ConeBase);
   if (slab.empty()) return std::nullopt;
 
   const Real rho_m = detail::safe_length(Vec3(m.x, m.y, Real(0)));
@@ -80,7 +80,7 @@ std::optional<RayHit> ray_cone(const Ray& ray, Real max_t, const Vec3& apex, con
   const Real qc = (cos_a * rho_m - sin_a * m.z) * (cos_a * rho_m + sin_a * m.z);
   const Wide disc = Wide(qb) * Wide(qb) - Wide(qa) * Wide(qc);
   const Real disc_r = disc > Wide(kRealMax) ? kRealMax : static_cast<Real>(disc);
-  const detail::QuadraticSet set = detail::quadratic_nonpositive(qa, qb, qc, disc_r, FeatureLateral);
+  const detail::QuadraticSet set = detail::quadratic_nonpositive(qa, qb, qc, disc_r, ConeLateral);
 
   // Parameters below are relative to the shifted origin; the true origin is at -shift.
   const detail::Interval pieces[2] = {slab.clipped(set.first), slab.clipped(set.second)};
@@ -95,9 +95,9 @@ std::optional<RayHit> ray_cone(const Ray& ray, Real max_t, const Vec3& apex, con
   if (!std::isfinite(s)) return std::nullopt;
   Vec3 normal;
   switch (chord->lo_feature) {
-    case FeatureApex: normal = -frame.axis; break;
-    case FeatureBase: normal = frame.axis; break;
-    case FeatureLateral: {
+    case ConeApex: normal = -frame.axis; break;
+    case ConeBase: normal = frame.axis; break;
+    case ConeLateral: {
       const Real x = m.x + s * u.x;
       const Real y = m.y + s * u.y;
       const Real rho = detail::safe_length(Vec3(x, y, Real(0)));

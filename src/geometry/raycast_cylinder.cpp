@@ -57,7 +57,7 @@ Interval disc_interval(const Vec2& m, const Vec2& u, Real r, int feature) {
 
 namespace {
 
-enum Feature : int { FeatureCapStart = 0, FeatureCapEnd = 1, FeatureLateral = 2 };
+enum CylinderFeature : int { CylinderCapStart = 0, CylinderCapEnd = 1, CylinderLateral = 2 };
 
 }  // namespace
 
@@ -75,18 +75,18 @@ std::optional<RayHit> ray_cylinder(const Ray& ray, Real max_t, const Vec3& p0, c
   if (r.length == Real(0)) return std::nullopt;
   const Vec3 u = frame.local(r.unit);
 
-  detail::Interval span = detail::slab_interval(m.z, u.z, Real(0), len, FeatureCapStart, FeatureCapEnd);
+  detail::Interval span = detail::slab_interval(m.z, u.z, Real(0), len, CylinderCapStart, CylinderCapEnd);
   if (span.empty()) return std::nullopt;
-  span = span.clipped(detail::disc_interval(Vec2(m.x, m.y), Vec2(u.x, u.y), radius, FeatureLateral));
+  span = span.clipped(detail::disc_interval(Vec2(m.x, m.y), Vec2(u.x, u.y), radius, CylinderLateral));
   if (span.empty() || span.hi < Real(0)) return std::nullopt;
   // The origin tested outside: an entry before 0 is rounding at the surface.
   const Real s = std::max(span.lo, Real(0));
   if (!std::isfinite(s)) return std::nullopt;
   Vec3 normal;
   switch (span.lo_feature) {
-    case FeatureCapStart: normal = -frame.axis; break;
-    case FeatureCapEnd: normal = frame.axis; break;
-    case FeatureLateral: normal = frame.world(m.x + s * u.x, m.y + s * u.y, Real(0)); break;
+    case CylinderCapStart: normal = -frame.axis; break;
+    case CylinderCapEnd: normal = frame.axis; break;
+    case CylinderLateral: normal = frame.world(m.x + s * u.x, m.y + s * u.y, Real(0)); break;
     default: return detail::inside_hit(ray, r);
   }
   return detail::surface_hit(ray, max_t, s / r.length, normal);

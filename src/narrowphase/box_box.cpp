@@ -53,7 +53,6 @@ constexpr Real kFaceRelative = Real(0.98);
 // separating axis (whose separation is within that gap of the distance) gives the normal.
 constexpr Real kDirectionGap = Real(0.1);
 constexpr int kAxes = 15;
-constexpr Real kInfinity = std::numeric_limits<Real>::infinity();
 constexpr int kNext[3] = {1, 2, 0};
 constexpr int kPrev[3] = {2, 0, 1};
 
@@ -240,8 +239,8 @@ void face_separations(const BoxPair& p, SatResult& s) {
 // An axis whose separation cannot exceed `floor` is skipped (-infinity) without its square
 // root and division: with len = |A_i x B_j|, sep = e / len > floor is decided on e and
 // floor^2 len^2. `floor` = -infinity computes every axis (then edges_done).
-void edge_separations(const BoxPair& p, SatResult& s, Real floor = -kInfinity) {
-  const bool all = floor == -kInfinity;
+void edge_separations(const BoxPair& p, SatResult& s, Real floor = -kRealInfinity) {
+  const bool all = floor == -kRealInfinity;
   const Real floor2 = all ? Real(0) : floor * floor;  // (never infinity times a zero length)
   const bool below = floor < Real(0);
   for (int i = 0; i < 3; ++i) {
@@ -259,10 +258,10 @@ void edge_separations(const BoxPair& p, SatResult& s, Real floor = -kInfinity) {
       const Real ee = e * e;
       const Real ff = floor2 * len2;
       const bool may_exceed = all | (below ? ((e >= Real(0)) | (ee < ff)) : ((e > Real(0)) & (ee > ff)));
-      s.sep[6 + 3 * i + j] = ((len2 > kParallelSine2) & may_exceed) ? e / std::sqrt(len2) : -kInfinity;
+      s.sep[6 + 3 * i + j] = ((len2 > kParallelSine2) & may_exceed) ? e / std::sqrt(len2) : -kRealInfinity;
     }
   }
-  Real edge_sep = -kInfinity;
+  Real edge_sep = -kRealInfinity;
   for (int k = 6; k < kAxes; ++k) {
     const Real e = s.sep[k];
     if (e > edge_sep) {
@@ -356,7 +355,7 @@ void closest_edge_points(const BoxPair& p, int i, int j, const Vec3& ca, const V
 
 // Closest points of two boxes in A's frame and their squared distance.
 struct ClosestFeatures {
-  Real d2 = kInfinity;
+  Real d2 = kRealInfinity;
   Vec3 on_a{Real(0)};
   Vec3 on_b{Real(0)};
 };
@@ -675,7 +674,7 @@ int choose_points(const FacePoints& fp, int k, bool always, std::array<int, 4>& 
   best = Real(0);
   for (int q = 0; q < n; ++q) {
     if (q == i0 || q == i1 || q == i2) continue;
-    Real added = -kInfinity;
+    Real added = -kRealInfinity;
     for (int e = 0; e < 3; ++e) {
       const int f = e == 2 ? 0 : e + 1;
       const Real area = (pu[f] - pu[e]) * (P[q].v - pv[e]) - (pv[f] - pv[e]) * (P[q].u - pu[e]);
@@ -849,7 +848,7 @@ ContactManifold& near_manifold(const BoxPair& p, const Transform& pose_a, const 
     ref.dir_world = use_a ? m.normal : -m.normal;
     // The pair's own closest points, kept when every clipped point is shallower (tilted
     // reference face).
-    Real smallest_gap = kInfinity;
+    Real smallest_gap = kRealInfinity;
     for (int q = 0; q < fp.count; ++q) smallest_gap = std::min(smallest_gap, fp.p[q].gap);
     int witness = -1;
     if (smallest_gap > sd) {
@@ -934,7 +933,7 @@ DistanceResult pair_distance(const Box& a, const Transform& pose_a, const Box& b
   if (s.max_axis < 6) {
     Reference ref;
     FacePoints fp;
-    face_axis_points(p, s.max_axis, kInfinity, ref, fp);
+    face_axis_points(p, s.max_axis, kRealInfinity, ref, fp);
     if (fp.count > 0) {
       write_points(fp, ref, ref.is_a ? pose_a.position : pose_b.position, ref.is_a ? p.ma : p.mb, r.normal, 1, m);
     } else {

@@ -160,7 +160,7 @@ DistanceResult compound_distance(const Compound& a, const Transform& pa, ShapeRe
   const std::uint32_t first = hint != nullptr && hint->a < kids.size() ? hint->a : kNoIndex;
   if (first != kNoIndex) answer(first);
   const Aabb box = world_aabb(b, relative(pa, pb));
-  a.bvh().traverse_nearest([&](const Aabb& node) { return detail::aabb_gap(node, box); }, bound,
+  a.bvh().traverse_nearest([&](const Aabb& node) { return proxima::detail::aabb_gap(node, box); }, bound,
                            [&](std::uint32_t i) {
                              if (i != first) answer(i);
                            });

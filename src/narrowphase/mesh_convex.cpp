@@ -129,11 +129,11 @@ void for_each_triangle_near(const TriangleMesh& mesh, const Aabb& box, F&& f, Fl
 /// Box of the convex shape in the mesh's frame.
 Aabb convex_box_in_mesh(ShapeRef convex, const Transform& pose_mesh, const Transform& pose_convex) {
   const Transform rel = relative(pose_mesh, pose_convex);
-  return detail::visit_convex(convex, [&](const auto& s) { return s.world_aabb(rel); });
+  return proxima::detail::visit_convex(convex, [&](const auto& s) { return s.world_aabb(rel); });
 }
 
 Vec3 world_support(ShapeRef convex, const Transform& pose, const Vec3& world_direction) {
-  return detail::visit_convex(
+  return proxima::detail::visit_convex(
       convex, [&](const auto& s) { return pose.apply(s.support(pose.inverse_apply_vector(world_direction))); });
 }
 
@@ -394,7 +394,7 @@ DistanceResult mesh_convex_distance(const TriangleMesh& mesh, const Transform& p
   const std::uint32_t first = hint != nullptr && hint->a < mesh.triangle_count() ? hint->a : kNoIndex;
   if (first != kNoIndex) answer(first);
   const Aabb box = convex_box_in_mesh(convex, pose_mesh, pose_convex);
-  mesh.bvh().traverse_nearest([&](const Aabb& node) { return detail::aabb_gap(node, box); }, bound,
+  mesh.bvh().traverse_nearest([&](const Aabb& node) { return proxima::detail::aabb_gap(node, box); }, bound,
                               [&](std::uint32_t t) {
                                 if (t != first) answer(t);
                               });
@@ -410,8 +410,9 @@ void mesh_convex_collide_all(const TriangleMesh& mesh, const Transform& pose_mes
   }
   const Real cd = request_reach(request);  // the touching rule (contact.hpp)
   const Transform rel = relative(pose_mesh, pose_convex);
-  const Aabb box =
-      detail::visit_convex(convex, [&](const auto& s) { return s.world_aabb(rel); }).inflated(cull_margin(request));
+  const Aabb box = proxima::detail::visit_convex(convex, [&](const auto& s) {
+                     return s.world_aabb(rel);
+                   }).inflated(cull_margin(request));
   const Vec3 center_local = box.center();
   // Cosine above which a manifold normal counts as the face normal (about 0.1 degree).
   const Real face_cos = Real(1) - Real(2e-6);

@@ -97,7 +97,7 @@ inline NodeBox node_box(const BvhNode& n) { return {(n.min + n.max) * Real(0.5),
 bool boxes_overlap(const RelativeFrame& f, const NodeBox& a, const NodeBox& bl, Real margin) {
   const Vec3 d = f.rotation * bl.c + f.t - a.c;
   const Real t[3] = {d.x, d.y, d.z};
-  return detail::boxes_within(f.r, f.abs_r, t, a.h, bl.h, margin);
+  return proxima::detail::boxes_within(f.r, f.abs_r, t, a.h, bl.h, margin);
 }
 
 /// A lower bound of the squared distance between A's box and B's box: the larger of the
@@ -177,8 +177,8 @@ struct AabbNodes {
 /// test. The fixed side is mapped into the other mesh's frame once (A's box into B's frame
 /// by the inverse of f, B's into A's by f).
 struct OrientedNodes {
-  const detail::OrientedNode* oa;
-  const detail::OrientedNode* ob;
+  const proxima::detail::OrientedNode* oa;
+  const proxima::detail::OrientedNode* ob;
   const RelativeFrame* f;
 
   /// A box's axes and centre mapped into the other mesh's frame.
@@ -188,30 +188,30 @@ struct OrientedNodes {
     Vec3 half;
   };
   Mapped fix_a(std::uint32_t ia) const {
-    const detail::OrientedNode& a = oa[ia];
+    const proxima::detail::OrientedNode& a = oa[ia];
     const Mat3 inv = glm::transpose(f->rotation);
     return {{inv * a.axis[0], inv * a.axis[1], inv * a.axis[2]}, inv * (a.center - f->t), a.half};
   }
   Mapped fix_b(std::uint32_t ib) const {
-    const detail::OrientedNode& b = ob[ib];
+    const proxima::detail::OrientedNode& b = ob[ib];
     const Mat3& r = f->rotation;
     return {{r * b.axis[0], r * b.axis[1], r * b.axis[2]}, r * b.center + f->t, b.half};
   }
   static constexpr Real kParallel = Real(8) * kEpsilon;
-  detail::BoxPairFrame pair(std::uint32_t ia, const Mapped& b) const {
-    return detail::box_pair_frame(oa[ia].axis, oa[ia].center, b.axis, b.center, kParallel);
+  proxima::detail::BoxPairFrame pair(std::uint32_t ia, const Mapped& b) const {
+    return proxima::detail::box_pair_frame(oa[ia].axis, oa[ia].center, b.axis, b.center, kParallel);
   }
-  detail::BoxPairFrame pair(const Mapped& a, std::uint32_t ib) const {
-    return detail::box_pair_frame(a.axis, a.center, ob[ib].axis, ob[ib].center, kParallel);
+  proxima::detail::BoxPairFrame pair(const Mapped& a, std::uint32_t ib) const {
+    return proxima::detail::box_pair_frame(a.axis, a.center, ob[ib].axis, ob[ib].center, kParallel);
   }
   bool overlap(std::uint32_t ia, const Mapped& b, Real margin) const {
-    return detail::boxes_within(pair(ia, b), oa[ia].half, b.half, margin);
+    return proxima::detail::boxes_within(pair(ia, b), oa[ia].half, b.half, margin);
   }
   bool overlap(const Mapped& a, std::uint32_t ib, Real margin) const {
-    return detail::boxes_within(pair(a, ib), a.half, ob[ib].half, margin);
+    return proxima::detail::boxes_within(pair(a, ib), a.half, ob[ib].half, margin);
   }
-  static Real squared_gap(const detail::BoxPairFrame& p, const Vec3& ea, const Vec3& eb, Real prune2) {
-    const Real g = detail::boxes_gap(p, ea, eb, std::sqrt(prune2));
+  static Real squared_gap(const proxima::detail::BoxPairFrame& p, const Vec3& ea, const Vec3& eb, Real prune2) {
+    const Real g = proxima::detail::boxes_gap(p, ea, eb, std::sqrt(prune2));
     return g * g;
   }
   Real lower_bound2(std::uint32_t ia, const Mapped& b, Real prune2) const {

@@ -55,19 +55,13 @@
 #include <vector>
 
 #include "shapes/convex_hull_data.hpp"
+#include "shapes/double_vector.hpp"
 
 namespace proxima {
 
 namespace {
 
-using D3 = std::array<double, 3>;
-
-D3 sub(const D3& a, const D3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-double dot(const D3& a, const D3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-D3 cross(const D3& a, const D3& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-double norm(const D3& a) { return std::sqrt(dot(a, a)); }
+using detail::D3;
 
 // Relative width below which a cloud counts as flat: the resolution of Real, so that the
 // float and double builds reject what they cannot represent as a solid.
@@ -245,7 +239,7 @@ QhullOutcome run_qhull(const std::vector<D3>& pts, double post_merge_radius) {
       if (id < 0) return fail("a facet vertex is not an input point");
     }
     const D3 n{facet->normal[0], facet->normal[1], facet->normal[2]};
-    const double nl = norm(n);
+    const double nl = detail::norm(n);
     if (!(nl > 0.5)) return fail("a facet without a valid plane");
     out.loops.push_back(std::move(loop));
     out.normals.push_back({n[0] / nl, n[1] / nl, n[2] / nl});
@@ -256,13 +250,13 @@ QhullOutcome run_qhull(const std::vector<D3>& pts, double post_merge_radius) {
 // Coordinates of the loop's points in the plane of unit normal n, (u, w, n) right-handed.
 std::vector<std::array<double, 2>> project_loop(const std::vector<int>& loop, const D3& n, const std::vector<D3>& pts) {
   const D3 helper = std::abs(n[0]) < 0.6 ? D3{1, 0, 0} : (std::abs(n[1]) < 0.6 ? D3{0, 1, 0} : D3{0, 0, 1});
-  D3 u = cross(helper, n);
-  const double ul = norm(u);
+  D3 u = detail::cross(helper, n);
+  const double ul = detail::norm(u);
   u = {u[0] / ul, u[1] / ul, u[2] / ul};
-  const D3 w = cross(n, u);
+  const D3 w = detail::cross(n, u);
   std::vector<std::array<double, 2>> q;
   q.reserve(loop.size());
-  for (int id : loop) q.push_back({dot(pts[id], u), dot(pts[id], w)});
+  for (int id : loop) q.push_back({detail::dot(pts[id], u), detail::dot(pts[id], w)});
   return q;
 }
 
@@ -338,11 +332,11 @@ std::string orient_and_simplify(QhullOutcome& hull, const std::vector<D3>& pts, 
     D3 a{0, 0, 0};
     const D3& o = pts[loop[0]];
     for (std::size_t k = 1; k + 1 < loop.size(); ++k) {
-      const D3 t = cross(sub(pts[loop[k]], o), sub(pts[loop[k + 1]], o));
+      const D3 t = detail::cross(detail::sub(pts[loop[k]], o), detail::sub(pts[loop[k + 1]], o));
       a = {a[0] + t[0], a[1] + t[1], a[2] + t[2]};
     }
-    along[f] = dot(a, hull.normals[f]);
-    area[f] = norm(a);
+    along[f] = detail::dot(a, hull.normals[f]);
+    area[f] = detail::norm(a);
     total += along[f];
   }
   const bool flip = total < 0;
@@ -437,19 +431,19 @@ std::string assemble(std::span<const Vec3> points, const QhullOutcome& hull, det
     for (int a = 0; a < 3; ++a) c[a] /= double(plane_ids.size());
     D3 n{0, 0, 0};
     for (std::size_t k = 0; k < plane_ids.size(); ++k) {
-      const D3 p = sub(vd[remap[plane_ids[k]]], c);
-      const D3 q = sub(vd[remap[plane_ids[(k + 1) % plane_ids.size()]]], c);
-      const D3 pq = cross(p, q);
+      const D3 p = detail::sub(vd[remap[plane_ids[k]]], c);
+      const D3 q = detail::sub(vd[remap[plane_ids[(k + 1) % plane_ids.size()]]], c);
+      const D3 pq = detail::cross(p, q);
       for (int a = 0; a < 3; ++a) n[a] += pq[a];
     }
-    const double nl = norm(n);
+    const double nl = detail::norm(n);
     if (!(nl > 0)) return std::string("a merged facet has zero area");
     n = {n[0] / nl, n[1] / nl, n[2] / nl};
     double offset = -std::numeric_limits<double>::max();
     double lowest = std::numeric_limits<double>::max();
     for (int id : plane_ids) {
-      offset = std::max(offset, dot(n, vd[remap[id]]));
-      lowest = std::min(lowest, dot(n, vd[remap[id]]));
+      offset = std::max(offset, detail::dot(n, vd[remap[id]]));
+      lowest = std::min(lowest, detail::dot(n, vd[remap[id]]));
     }
     for (int id : ids) data.face_indices.push_back(remap[id]);
     planarity = std::max(planarity, offset - lowest);
@@ -457,10 +451,11 @@ std::string assemble(std::span<const Vec3> points, const QhullOutcome& hull, det
     // facet whose outline folded over would not).
     D3 area{0, 0, 0};
     for (std::size_t k = 1; k + 1 < ids.size(); ++k) {
-      const D3 t = cross(sub(vd[remap[ids[k]]], vd[remap[ids[0]]]), sub(vd[remap[ids[k + 1]]], vd[remap[ids[0]]]));
+      const D3 t = detail::cross(detail::sub(vd[remap[ids[k]]], vd[remap[ids[0]]]),
+                                 detail::sub(vd[remap[ids[k + 1]]], vd[remap[ids[0]]]));
       area = {area[0] + t[0], area[1] + t[1], area[2] + t[2]};
     }
-    if (dot(area, n) < -1e-6 * norm(area)) return std::string("a face is inverted");
+    if (detail::dot(area, n) < -1e-6 * detail::norm(area)) return std::string("a face is inverted");
     face.normal = Vec3(Real(n[0]), Real(n[1]), Real(n[2]));
     face.offset = Real(offset);
     data.faces.push_back(face);
@@ -634,25 +629,25 @@ Result<ConvexHull> ConvexHull::create(std::span<const Vec3> points) {
     if (pts[i][axis] < pts[i0][axis]) i0 = i;
     if (pts[i][axis] > pts[i1][axis]) i1 = i;
   }
-  const D3 line = sub(pts[i1], pts[i0]);
-  const double line_len = norm(line);  // >= 1 - rounding: the longest axis spans the box
+  const D3 line = detail::sub(pts[i1], pts[i0]);
+  const double line_len = detail::norm(line);  // >= 1 - rounding: the longest axis spans the box
   std::size_t i2 = i0;
   double best = 0;
   for (std::size_t i = 0; i < pts.size(); ++i) {
-    const double d = norm(cross(sub(pts[i], pts[i0]), line)) / line_len;
+    const double d = detail::norm(detail::cross(detail::sub(pts[i], pts[i0]), line)) / line_len;
     if (d > best) {
       best = d;
       i2 = i;
     }
   }
   if (!(best > flat)) return degenerate("all points are collinear (within tolerance)");
-  D3 plane_n = cross(line, sub(pts[i2], pts[i0]));
-  const double pn = norm(plane_n);
+  D3 plane_n = detail::cross(line, detail::sub(pts[i2], pts[i0]));
+  const double pn = detail::norm(plane_n);
   plane_n = {plane_n[0] / pn, plane_n[1] / pn, plane_n[2] / pn};
   double thickness_lo = 0;
   double thickness_hi = 0;
   for (const D3& p : pts) {
-    const double d = dot(sub(p, pts[i0]), plane_n);
+    const double d = detail::dot(detail::sub(p, pts[i0]), plane_n);
     thickness_lo = std::min(thickness_lo, d);
     thickness_hi = std::max(thickness_hi, d);
   }
@@ -726,14 +721,14 @@ Result<ConvexHull> ConvexHull::create(std::span<const Vec3> points) {
     const D3 n{double(f.normal.x), double(f.normal.y), double(f.normal.z)};
     double off = -std::numeric_limits<double>::max();
     for (std::uint32_t k = 0; k < f.index_count; ++k)
-      off = std::max(off, dot(n, sub(vd[data->face_indices[f.first_index + k]], ref)));
+      off = std::max(off, detail::dot(n, detail::sub(vd[data->face_indices[f.first_index + k]], ref)));
     data->shifted_offsets.push_back(Real(off));
   }
   // Faces are visited breadth-first over shared edges, each descent warm-started from
   // its neighbour's answer (nearby normals have nearby deepest vertices): O(F) overall.
   double width = std::numeric_limits<double>::max();
   std::vector<D3> shifted(vd.size());
-  for (std::size_t i = 0; i < vd.size(); ++i) shifted[i] = sub(vd[i], ref);
+  for (std::size_t i = 0; i < vd.size(); ++i) shifted[i] = detail::sub(vd[i], ref);
   const std::size_t nf = data->faces.size();
   std::vector<std::uint32_t> face_offsets(nf + 1, 0);
   for (const HullEdge& e : data->edges) {
@@ -761,7 +756,7 @@ Result<ConvexHull> ConvexHull::create(std::span<const Vec3> points) {
     // Deepest vertex below the face: steepest descent of n . v over the face mates,
     // relative to the box centre.
     std::uint32_t cur = start_of[fi];
-    double cur_d = dot(n, shifted[cur]);
+    double cur_d = detail::dot(n, shifted[cur]);
     for (bool moved = true; moved;) {
       moved = false;
       const std::uint32_t begin = data->climb_offsets[cur];
@@ -769,7 +764,7 @@ Result<ConvexHull> ConvexHull::create(std::span<const Vec3> points) {
       std::uint32_t next = cur;
       for (std::uint32_t k = begin; k < end; ++k) {
         const std::uint32_t nb = data->climb_neighbors[k];
-        const double d = dot(n, shifted[nb]);
+        const double d = detail::dot(n, shifted[nb]);
         if (d < cur_d) {
           cur_d = d;
           next = nb;

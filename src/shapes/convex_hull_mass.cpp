@@ -18,11 +18,11 @@
 #include <array>
 
 #include "shapes/convex_hull_data.hpp"
+#include "shapes/double_vector.hpp"
 
 namespace proxima::detail {
 
 bool compute_hull_mass(HullData& data) {
-  using D3 = std::array<double, 3>;
   const std::size_t nv = data.vertices.size();
   if (nv < 4) return false;
   D3 r{0, 0, 0};

@@ -36,20 +36,14 @@
 #include <utility>
 #include <vector>
 
+#include "shapes/double_vector.hpp"
+
 namespace proxima {
 namespace {
 
-using D3 = std::array<double, 3>;
+using detail::D3;
 
 constexpr std::uint32_t kNone = 0xffffffffu;
-
-D3 to_d3(const Vec3& v) { return {double(v.x), double(v.y), double(v.z)}; }
-D3 sub(const D3& a, const D3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-D3 cross(const D3& a, const D3& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-double dot(const D3& a, const D3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-double length(const D3& a) { return std::sqrt(dot(a, a)); }
 
 std::optional<Error> validate_mesh(const IndexedMesh& mesh) {
   if (mesh.triangles.empty()) return make_error(ErrorCode::TooFew, "triangles", "the mesh has no triangle");
@@ -76,11 +70,12 @@ std::optional<Error> validate_mesh(const IndexedMesh& mesh) {
 /// longest edge squared.
 bool is_degenerate(const IndexedMesh& mesh, const TriangleIndices& t) {
   if (t[0] == t[1] || t[1] == t[2] || t[2] == t[0]) return true;
-  const D3 a = to_d3(mesh.vertices[t[0]]);
-  const D3 b = to_d3(mesh.vertices[t[1]]);
-  const D3 c = to_d3(mesh.vertices[t[2]]);
-  const double longest = std::max({length(sub(b, a)), length(sub(c, b)), length(sub(a, c))});
-  const double twice_area = length(cross(sub(b, a), sub(c, a)));
+  const D3 a = detail::to_d3(mesh.vertices[t[0]]);
+  const D3 b = detail::to_d3(mesh.vertices[t[1]]);
+  const D3 c = detail::to_d3(mesh.vertices[t[2]]);
+  const double longest =
+      std::max({detail::norm(detail::sub(b, a)), detail::norm(detail::sub(c, b)), detail::norm(detail::sub(a, c))});
+  const double twice_area = detail::norm(detail::cross(detail::sub(b, a), detail::sub(c, a)));
   return !(twice_area > double(kRelativeTolerance) * longest * longest);
 }
 
@@ -165,13 +160,13 @@ MeshReport analyse(const IndexedMesh& mesh) {
   double volume6 = 0;
   double area2 = 0;
   if (!tris.empty()) {
-    const D3 o = to_d3(mesh.vertices[tris[0][0]]);
+    const D3 o = detail::to_d3(mesh.vertices[tris[0][0]]);
     for (const TriangleIndices& t : tris) {
-      const D3 a = sub(to_d3(mesh.vertices[t[0]]), o);
-      const D3 b = sub(to_d3(mesh.vertices[t[1]]), o);
-      const D3 c = sub(to_d3(mesh.vertices[t[2]]), o);
-      volume6 += dot(a, cross(b, c));
-      area2 += length(cross(sub(b, a), sub(c, a)));
+      const D3 a = detail::sub(detail::to_d3(mesh.vertices[t[0]]), o);
+      const D3 b = detail::sub(detail::to_d3(mesh.vertices[t[1]]), o);
+      const D3 c = detail::sub(detail::to_d3(mesh.vertices[t[2]]), o);
+      volume6 += detail::dot(a, detail::cross(b, c));
+      area2 += detail::norm(detail::cross(detail::sub(b, a), detail::sub(c, a)));
     }
   }
   r.volume = static_cast<Real>(volume6 / 6.0);
@@ -208,7 +203,7 @@ std::vector<std::uint32_t> weld(const std::vector<Vec3>& v, double distance) {
   }
 
   // Grid cells keyed by clamped integer coordinates (clamping keeps neighbours adjacent).
-  D3 lo = to_d3(v[0]);
+  D3 lo = detail::to_d3(v[0]);
   D3 hi = lo;
   for (const Vec3& p : v) {
     for (int a = 0; a < 3; ++a) {
@@ -248,7 +243,7 @@ std::vector<std::uint32_t> weld(const std::vector<Vec3>& v, double distance) {
   const double d2 = distance * distance;
   for (std::uint32_t i = 0; i < n; ++i) {
     const Cell& c = cells[i];
-    const D3 p = to_d3(v[i]);
+    const D3 p = detail::to_d3(v[i]);
     std::uint32_t best = i;
     // Cells (x, y, z - 1..z + 1) are one contiguous key range (z is the low field).
     for (std::int64_t dx = -1; dx <= 1; ++dx) {
@@ -259,9 +254,9 @@ std::vector<std::uint32_t> weld(const std::vector<Vec3>& v, double distance) {
         for (; it != sorted_keys.end() && *it <= k_hi; ++it) {
           const std::uint32_t j = order[static_cast<std::size_t>(it - sorted_keys.begin())];
           if (j >= best || rep[j] != j) continue;
-          const D3 q = to_d3(v[j]);
-          const D3 d = sub(p, q);
-          if (dot(d, d) <= d2) best = j;
+          const D3 q = detail::to_d3(v[j]);
+          const D3 d = detail::sub(p, q);
+          if (detail::dot(d, d) <= d2) best = j;
         }
       }
     }
@@ -330,12 +325,12 @@ std::size_t orient(IndexedMesh& mesh) {
     bool invert = 2 * count > patch.size();  // open patch: keep the majority winding
     if (closed) {
       double volume6 = 0;
-      const D3 o = to_d3(mesh.vertices[tris[seed][0]]);
+      const D3 o = detail::to_d3(mesh.vertices[tris[seed][0]]);
       for (std::uint32_t t : patch) {
-        const D3 a = sub(to_d3(mesh.vertices[tris[t][0]]), o);
-        const D3 b = sub(to_d3(mesh.vertices[tris[t][1]]), o);
-        const D3 c = sub(to_d3(mesh.vertices[tris[t][2]]), o);
-        const double v = dot(a, cross(b, c));
+        const D3 a = detail::sub(detail::to_d3(mesh.vertices[tris[t][0]]), o);
+        const D3 b = detail::sub(detail::to_d3(mesh.vertices[tris[t][1]]), o);
+        const D3 c = detail::sub(detail::to_d3(mesh.vertices[tris[t][2]]), o);
+        const double v = detail::dot(a, detail::cross(b, c));
         volume6 += flip[t] ? -v : v;
       }
       if (volume6 != 0) invert = volume6 < 0;
@@ -374,7 +369,7 @@ Result<RepairedMesh> repair_mesh(const IndexedMesh& input, const MeshRepairOptio
   // 2. Weld.
   double distance = double(options.weld_distance);
   if (distance < 0) {
-    D3 lo = to_d3(mesh.vertices.empty() ? Vec3(0) : mesh.vertices[0]);
+    D3 lo = detail::to_d3(mesh.vertices.empty() ? Vec3(0) : mesh.vertices[0]);
     D3 hi = lo;
     for (const Vec3& p : mesh.vertices) {
       for (int a = 0; a < 3; ++a) {
@@ -382,7 +377,7 @@ Result<RepairedMesh> repair_mesh(const IndexedMesh& input, const MeshRepairOptio
         hi[a] = std::max(hi[a], double(p[a]));
       }
     }
-    distance = double(kRelativeTolerance) * length(sub(hi, lo));
+    distance = double(kRelativeTolerance) * detail::norm(detail::sub(hi, lo));
   }
   const std::vector<std::uint32_t> rep = weld(mesh.vertices, distance);
   std::vector<bool> welded_away(mesh.vertices.size(), false);

@@ -31,6 +31,10 @@ elseif(MODE STREQUAL "fetchcontent")
     endif()
   endif()
   list(APPEND extra "-DPROXIMA_CONSUMER_NO_EXCEPTIONS=ON")
+  # The library in unity batches (cmake/ProximaUnity.cmake), as CI builds it: they must
+  # compile in a subproject, with clang and without exceptions too, and they compile the
+  # library in about a third of the time.
+  list(APPEND extra "-DPROXIMA_UNITY_BUILD=ON")
 endif()
 
 set(build_type Release)

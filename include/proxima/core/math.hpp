@@ -51,6 +51,8 @@ inline constexpr Quat kIdentityQuat{Real(1), Real(0), Real(0), Real(0)};
 /// Largest finite Real, used where a bound is unbounded (a half-space's box) so that
 /// arithmetic on it never produces inf - inf = NaN.
 inline constexpr Real kRealMax = std::numeric_limits<Real>::max();
+/// Positive infinity of Real (an unbounded distance, time or interval end).
+inline constexpr Real kRealInfinity = std::numeric_limits<Real>::infinity();
 
 /// Pi in Real precision.
 inline constexpr Real kPi = Real(3.14159265358979323846);
