@@ -559,8 +559,19 @@ void polish(const Ladder<A, B>& l, epa::Outcome& ep, SupportA& sa, SupportB& sb,
   const Real epa_gap = glm::length((ep.point_a - ep.point_b) - ep.depth * ep.normal);
   if (ep.status == epa::Status::Converged && ep.gap <= target && epa_gap <= l.setup.tolerance) return;
   // From the normal of EPA's least upper bound (its nearest face's normal may be worse).
-  const epa::Refinement f = epa::refine(sa, sb, ep.upper_normal, scale, std::clamp(l.request.max_iterations, 1, 96));
+  const int cap = std::clamp(l.request.max_iterations, 1, 96);
+  epa::Refinement f = epa::refine(sa, sb, ep.upper_normal, scale, cap);
   ep.iterations += f.iterations;
+  // Stopped at its cap, EPA's polytope is coarse, and the support distance of a curved D can
+  // have several local minima (two concentric ellipsoids: one per principal direction); a
+  // refinement descends to the one nearest its start. From the normals of the polytope's
+  // other nearest faces too, the least converged depth is kept (two ellipsoids 14 deep:
+  // 0.018 too deep from the upper bound's normal alone).
+  for (int k = 0; k < ep.other_count; ++k) {
+    const epa::Refinement g = epa::refine(sa, sb, ep.other_normals[static_cast<std::size_t>(k)], scale, cap);
+    ep.iterations += g.iterations;
+    if (g.converged && (!f.converged || g.depth < f.depth)) f = g;
+  }
   // Unconverged, EPA's own answer stands (at its cap: the nearest face, a lower bound).
   if (!f.converged || !(f.depth <= ep.depth + ep.gap + kSqrtEpsilon * scale)) return;
   // A converged EPA keeps its own answer where the refined witnesses could not be placed

@@ -12,6 +12,7 @@
 #include <cstring>
 #include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "gjk_reference.hpp"
@@ -695,6 +696,64 @@ TEST(GenericStages, ConvergedEpaWithWitnessesOffTheRelationRefines) {
   const Transform pose = at(Vec3(-20));
   const Real tol = (sizeof(Real) == 4 ? Real(1e-3) : Real(1e-6)) * Real(25);
   expect_right_in_both_orders(a, pose, b, pose, {}, tol);
+}
+
+// Support distance of an ellipsoid with semi-axes `semi` turned by `rotation` along the
+// unit world direction n, in double: |S R^T n|.
+double ellipsoid_support_distance(const Vec3& semi, const Quat& rotation, const glm::dvec3& n) {
+  const glm::dvec3 local = glm::conjugate(glm::dquat(rotation)) * n;
+  const glm::dvec3 scaled(double(semi.x) * local.x, double(semi.y) * local.y, double(semi.z) * local.z);
+  return glm::length(scaled);
+}
+
+// Mutation finding (fuzz/corpus/narrowphase_pairs/regression_ellipsoids_concentric_deep_swap):
+// two concentric ellipsoids, 14 deep, answered 13.991 in one order and 13.9735 in the other.
+// EPA stopped at its cap and the refinement from its least upper bound's normal descended to a
+// second local minimum of D's support distance (along about x; the least is along about y).
+// The refinement now starts from the capped polytope's other nearest faces too. Reference:
+// for shapes symmetric about one centre the depth is the least over directions n of
+// h_A(n) + h_B(n), found here on a grid of directions refined around its best point.
+TEST(GenericStages, CappedEpaRefinesFromItsOtherNearestFacesToTheLeastDepth) {
+  const Vec3 semi_a(Real(0.223611906), Real(2.50413013), Real(2.06575179));
+  const Vec3 semi_b(Real(13.7530432), Real(11.9272022), Real(11.9272022));
+  const Ellipsoid a = Ellipsoid::create(semi_a).value();
+  const Ellipsoid b = Ellipsoid::create(semi_b).value();
+  const Transform pa{Vec3(Real(16.5490189)), Quat(Real(0.5), Real(0.5), Real(0.5), Real(0.5))};
+  const Transform pb{Vec3(Real(16.5490189)),
+                     glm::normalize(Quat(Real(0.520795107), Real(0.49287343), Real(0.49287343), Real(0.49287343)))};
+  const auto sum = [&](double theta, double phi) {
+    const glm::dvec3 n(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta));
+    return ellipsoid_support_distance(semi_a, pa.rotation, n) + ellipsoid_support_distance(semi_b, pb.rotation, n);
+  };
+  const double pi = 3.141592653589793;
+  double best = 1e300, best_theta = 0, best_phi = 0;
+  for (int i = 0; i <= 180; ++i) {
+    for (int j = 0; j < 360; ++j) {
+      const double v = sum(pi * i / 180, pi * j / 180);
+      if (v < best) {
+        best = v;
+        best_theta = pi * i / 180;
+        best_phi = pi * j / 180;
+      }
+    }
+  }
+  for (double step = pi / 180; step > 1e-9; step /= 2) {
+    for (bool moved = true; moved;) {
+      moved = false;
+      for (const auto& [dt, dp] : {std::pair{step, 0.0}, {-step, 0.0}, {0.0, step}, {0.0, -step}}) {
+        const double v = sum(best_theta + dt, best_phi + dp);
+        if (v < best) {
+          best = v;
+          best_theta += dt;
+          best_phi += dp;
+          moved = true;
+        }
+      }
+    }
+  }
+  const double tol = 1e-4 * 14;
+  EXPECT_NEAR(-double(narrow::generic_distance(a, pa, b, pb, {}, nullptr).signed_distance), best, tol);
+  EXPECT_NEAR(-double(narrow::generic_distance(b, pb, a, pa, {}, nullptr).signed_distance), best, tol);
 }
 
 }  // namespace test_generic_stages

@@ -67,6 +67,11 @@ struct Outcome {
   Real gap = Real(0);                      ///< least support distance seen minus depth: a bound on the depth error
   Vec3 upper_normal{Real(0), Real(0), Real(1)};  ///< unit normal along which that least support distance was seen
   int iterations = 0;  ///< expansion steps, each one support query (at most Settings::max_iterations)
+  /// Status MaxIterations only: unit normals of the polytope's faces nearest the origin after
+  /// the nearest, at least 30° from `normal` and from each other (nearest first), where a
+  /// refinement may start: on a curved D the support distance can have several local minima.
+  std::array<Vec3, 4> other_normals{};
+  int other_count = 0;  ///< entries of other_normals in use
 };
 
 namespace detail {
@@ -402,6 +407,25 @@ inline Vec3 nearest_point_coordinates(const Polytope& p, const Face& f) {
   return lam;
 }
 
+/// At the cap: the normals of the faces nearest the origin, each at least 30° from the answer's
+/// normal and from those taken before (Outcome::other_normals), nearest first.
+inline void collect_other_normals(const Polytope& p, Outcome& r) {
+  const Real cos30 = Real(0.8660254);
+  while (r.other_count < static_cast<int>(r.other_normals.size())) {
+    int best = -1;
+    for (int i = 0; i < p.nf; ++i) {
+      const Face& f = p.faces[static_cast<std::size_t>(i)];
+      if (!f.alive || (best >= 0 && !(f.d < p.faces[static_cast<std::size_t>(best)].d))) continue;
+      bool apart = glm::dot(f.n, r.normal) < cos30;
+      for (int k = 0; k < r.other_count && apart; ++k)
+        apart = glm::dot(f.n, r.other_normals[static_cast<std::size_t>(k)]) < cos30;
+      if (apart) best = i;
+    }
+    if (best < 0) return;
+    r.other_normals[static_cast<std::size_t>(r.other_count++)] = p.faces[static_cast<std::size_t>(best)].n;
+  }
+}
+
 /// Step 3: the answer from the nearest face: depth and normal, and witnesses from the
 /// coordinates of the origin's projection applied to A's and B's support points: clamped
 /// and normalised when the projection is inside the face within rounding, else those of
@@ -436,6 +460,7 @@ inline Outcome extract_answer(const Polytope& p, const Face& nearest, Status sta
   r.iterations = iterations;
   r.gap = upper.distance - nearest.d;
   r.upper_normal = std::isfinite(upper.distance) ? upper.normal : f.n;
+  if (status == Status::MaxIterations) collect_other_normals(p, r);
   return r;
 }
 
