@@ -710,7 +710,9 @@ double ellipsoid_support_distance(const Vec3& semi, const Quat& rotation, const 
 // two concentric ellipsoids, 14 deep, answered 13.991 in one order and 13.9735 in the other.
 // EPA stopped at its cap and the refinement from its least upper bound's normal descended to a
 // second local minimum of D's support distance (along about x; the least is along about y).
-// The refinement now starts from the capped polytope's other nearest faces too. Reference:
+// The refinement now starts from the capped polytope's other nearest faces too (up to eight:
+// four were not enough for the same pair under Nesterov GJK, the second finding,
+// regression_ellipsoids_concentric_deep_swap_options). Reference:
 // for shapes symmetric about one centre the depth is the least over directions n of
 // h_A(n) + h_B(n), found here on a grid of directions refined around its best point.
 TEST(GenericStages, CappedEpaRefinesFromItsOtherNearestFacesToTheLeastDepth) {
@@ -752,8 +754,12 @@ TEST(GenericStages, CappedEpaRefinesFromItsOtherNearestFacesToTheLeastDepth) {
     }
   }
   const double tol = 1e-4 * 14;
-  EXPECT_NEAR(-double(narrow::generic_distance(a, pa, b, pb, {}, nullptr).signed_distance), best, tol);
-  EXPECT_NEAR(-double(narrow::generic_distance(b, pb, a, pa, {}, nullptr).signed_distance), best, tol);
+  PairRequest nesterov;  // the second finding: the same pair under Nesterov GJK
+  nesterov.gjk = gjk::Variant::Nesterov;
+  for (const PairRequest& request : {PairRequest{}, nesterov}) {
+    EXPECT_NEAR(-double(narrow::generic_distance(a, pa, b, pb, request, nullptr).signed_distance), best, tol);
+    EXPECT_NEAR(-double(narrow::generic_distance(b, pb, a, pa, request, nullptr).signed_distance), best, tol);
+  }
 }
 
 }  // namespace test_generic_stages

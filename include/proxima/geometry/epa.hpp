@@ -68,9 +68,9 @@ struct Outcome {
   Vec3 upper_normal{Real(0), Real(0), Real(1)};  ///< unit normal along which that least support distance was seen
   int iterations = 0;  ///< expansion steps, each one support query (at most Settings::max_iterations)
   /// Status MaxIterations only: unit normals of the polytope's faces nearest the origin after
-  /// the nearest, at least 30° from `normal` and from each other (nearest first), where a
+  /// the nearest, up to eight, at least 30° from `normal` and from each other (nearest first), where a
   /// refinement may start: on a curved D the support distance can have several local minima.
-  std::array<Vec3, 4> other_normals{};
+  std::array<Vec3, 8> other_normals{};
   int other_count = 0;  ///< entries of other_normals in use
 };
 
