@@ -36,9 +36,12 @@
 ///         direction finds a normal along which D's support distance is within reach of 0;
 ///      f. GjkCoreContact: GJK's core contact (depth r_A + r_B along the best axis known),
 ///         status Degenerate;
-///   5. an answer whose witnesses stay off point_b = point_a + d n after a Nesterov GJK run:
-///      steps 2-4 again from plain GJK, the answer closer to the relation kept;
-///   6. tolerance from resolve_tolerance (size of the pair), outputs in the world frame,
+///   5. a side's core curved (cylinder, cone, ellipsoid): the answer's normal refined on D's
+///      support function to the precision of the arithmetic (epa::refine), the signed
+///      distance taken along it (refine_to_precision);
+///   6. an answer whose witnesses stay off point_b = point_a + d n after a Nesterov GJK run:
+///      steps 2-5 again from plain GJK, the answer closer to the relation kept;
+///   7. tolerance from resolve_tolerance (size of the pair), outputs in the world frame,
 ///      cache written back.
 /// pair_intersect runs GJK in boolean mode with early exit on a separating axis.
 
@@ -252,6 +255,18 @@ struct Ladder {
   /// size. NaN when not set.
   Real core_touch = std::numeric_limits<Real>::quiet_NaN();
 };
+
+/// True for the shapes whose core has a curved support (no vertex answers it near most
+/// directions): cylinder, cone, ellipsoid. Spheres and capsules are rounded points and
+/// segments.
+template <class S>
+inline constexpr bool kCurvedCore =
+    std::is_same_v<S, Cylinder> || std::is_same_v<S, Cone> || std::is_same_v<S, Ellipsoid>;
+
+/// True when a side's core is curved: the pair's answer is refined to the precision of the
+/// arithmetic (refine_to_precision).
+template <class A, class B>
+inline constexpr bool kCurvedCorePair = kCurvedCore<A> || kCurvedCore<B>;
 
 /// True when both shapes are polytopes (the SAT applies).
 template <class A, class B>
@@ -557,7 +572,10 @@ void polish(const Ladder<A, B>& l, epa::Outcome& ep, SupportA& sa, SupportB& sb,
   // rounding still refines where they are off it (a cone's apex and a point of a sliver hull
   // 0.067 apart across the normal, EPA's gap 0).
   const Real epa_gap = glm::length((ep.point_a - ep.point_b) - ep.depth * ep.normal);
-  if (ep.status == epa::Status::Converged && ep.gap <= target && epa_gap <= l.setup.tolerance) return;
+  // EPA's normal on a curved core is a face normal of its polytope, off by about
+  // sqrt(gap / curvature) even where its gap is within rounding: refined always there.
+  if (!kCurvedCorePair<A, B> && ep.status == epa::Status::Converged && ep.gap <= target && epa_gap <= l.setup.tolerance)
+    return;
   // From the normal of EPA's least upper bound (its nearest face's normal may be worse).
   const int cap = std::clamp(l.request.max_iterations, 1, 96);
   epa::Refinement f = epa::refine(sa, sb, ep.upper_normal, scale, cap);
@@ -791,10 +809,10 @@ void gjk_core_contact(Ladder<A, B>& l, const Vec3& n) {
   l.ans.stage = GenericStage::GjkCoreContact;
 }
 
-/// The ladder (see the file comment): GJK on the cores, then the stages in order until one
-/// answers. A's-frame answer with the stage that gave it.
+/// The ladder's stages (see the file comment): GJK on the cores, then the stages in order
+/// until one answers. A's-frame answer with the stage that gave it.
 template <class A, class B>
-LocalAnswer climb_ladder(const A& a, const B& b, PairSetup<A, B>& setup, const PairRequest& request) {
+LocalAnswer run_stages(const A& a, const B& b, PairSetup<A, B>& setup, const PairRequest& request) {
   Ladder<A, B> l(a, b, setup, request);
   widen_open_polytope_gjk(l);
   if (sat_at_gjk_cap(l) || core_closest(l) || projected_distance(l)) return l.ans;
@@ -813,6 +831,71 @@ LocalAnswer climb_ladder(const A& a, const B& b, PairSetup<A, B>& setup, const P
   const Vec3 n = unit_or(-l.core.v, setup.axis);
   if (!core_refinement(l, n)) gjk_core_contact(l, n);
   return l.ans;
+}
+
+/// Step 5 (a side's core curved): the answer's normal refined on D's support function
+/// (epa::refine) to the precision of the arithmetic, and the signed distance taken along it,
+/// -(h(n) + r_A + r_B), so that the overlap of the two shapes along the reported normal is
+/// the reported depth (minus the distance) to rounding. The stages place normals from GJK's
+/// v, EPA's faces, closest points or projections, which on a curved side are off by about
+/// sqrt(rounding / curvature): 3e-8 rad in double, the distance then 2e-9 of the size from
+/// the gap along the normal. Kept when the refinement settled near the stage's answer (see
+/// below), converged or not: its support
+/// distance is a bound the stage's normal gave no better (an upper bound of a depth, a lower
+/// bound of a distance), and it is the overlap along the normal it reports.
+template <class A, class B>
+void refine_to_precision(const B& b, PairSetup<A, B>& setup, const PairRequest& request, LocalAnswer& ans) {
+  if constexpr (kCurvedCorePair<A, B>) {
+    if (ans.stage == GenericStage::NotRun || ans.status == PairStatus::Degenerate ||
+        ans.status == PairStatus::MaxIterations)
+      return;
+    const epa::Refinement f = epa::refine(setup.support_a, setup.support_b, ans.normal, setup.scale,
+                                          std::clamp(request.max_iterations, 1, 96));
+    ans.iterations += f.iterations;
+    const Real sd = -(f.depth + setup.radius_a + setup.radius_b);
+    // A polish, not another minimum: within sqrt(eps) of the size of the stage's answer.
+    // Beyond half the boolean query's band of it (boolean_band: intersect trusts GJK outside
+    // it, so a larger move would split the touching rule) only for a gap whose refined
+    // witnesses meet the line along its normal (a point of each shape with a - b = h n: the
+    // distance both ways). A refinement stopped on a kink of a box against a cone's rim had
+    // moved a touching pair 1e-8 deep; a float cone touching a cylinder turned "penetrating
+    // by 1.9e-7", so a cast moving it apart hit at t = 0.
+    const Real moved = std::abs(sd - ans.signed_distance);
+    const bool met = f.witness_gap <= setup.tolerance;
+    const bool certified = met && sd > Real(0) && ans.signed_distance > Real(0);
+    if (!(moved <= kSqrtEpsilon * setup.scale) || (!certified && !(moved <= Real(0.5) * boolean_band(setup.tolerance))))
+      return;
+    // The refinement's witnesses where its feature search met the line along the normal;
+    // else (a cap's disc, whose rim the tangent-plane search approaches linearly) the stage's
+    // witness on A and B's placed along the refined normal, when that lies on B within
+    // sqrt(eps) of the size (a descent stopped along a cone's rim crease had turned the
+    // normal by 2e-5: B's point left B by 1.5e-5; the stage's answer stands there).
+    if (met) {
+      ans.point_a = f.support_a + setup.radius_a * f.normal;
+    } else {
+      const MappedSupport<CoreSupport<B>>& to_b = setup.support_b;
+      const Vec3 on_b = ans.point_a + sd * f.normal;
+      const Real off = b.closest_point(to_b.rotation_t * (on_b - to_b.translation)).signed_distance;
+      if (!(std::abs(off) <= kSqrtEpsilon * setup.scale)) return;
+    }
+    ans.signed_distance = sd;
+    ans.normal = f.normal;
+    ans.point_b = ans.point_a + sd * f.normal;
+    ans.status = status_from_distance(sd, setup.tolerance);
+  } else {
+    (void)b;
+    (void)setup;
+    (void)request;
+    (void)ans;
+  }
+}
+
+/// The ladder: its stages, then the refinement to precision of a curved pair's answer.
+template <class A, class B>
+LocalAnswer climb_ladder(const A& a, const B& b, PairSetup<A, B>& setup, const PairRequest& request) {
+  LocalAnswer ans = run_stages(a, b, setup, request);
+  refine_to_precision(b, setup, request, ans);
+  return ans;
 }
 
 /// The ladder's answer; where its witnesses stay off point_b = point_a + d n beyond the

@@ -2,7 +2,8 @@
 // Long double references for the narrow-phase pair tests: support functions of every shape
 // written from their definitions (not the library's support code), the overlap of two placed
 // shapes along a direction, its minimum over directions (the penetration depth, or minus the
-// distance) by dense Fibonacci sampling refined by a pattern search, and core distances of
+// distance) by dense Fibonacci sampling refined by a pattern search or, near a given
+// direction, by Newton's method on the sphere, and core distances of
 // points and segments to segments, boxes and triangles by nested golden-section searches.
 #include <proxima/core/transform.hpp>
 #include <proxima/narrowphase/contact.hpp>
@@ -10,6 +11,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <type_traits>
+#include <variant>
 #include <vector>
 
 #include "geometry/long_double_reference.hpp"
@@ -138,6 +142,91 @@ LD min_overlap(const A& a, const Transform& pa, const B& b, const Transform& pb,
     result = std::min(result, fu);
   }
   return result;
+}
+
+// overlap_along for two convex shapes held in Shapes (half-spaces, meshes and compounds have
+// no bounded support: NaN). The offset between the poses enters as one exact difference, so
+// that shapes far from the origin keep the precision of their size: n . (p_A - p_B) plus the
+// local supports.
+inline LD overlap_along_shapes(const Shape& a, const Transform& pa, const Shape& b, const Transform& pb,
+                               const LVec& n) {
+  const auto local_support = [](const Shape& s, const Transform& pose, const LVec& u) {
+    return std::visit(
+        [&](const auto& shape) -> LD {
+          using S = std::decay_t<decltype(shape)>;
+          if constexpr (std::is_same_v<S, HalfSpace> || std::is_same_v<S, TriangleMesh> || std::is_same_v<S, Compound>)
+            return std::numeric_limits<LD>::quiet_NaN();
+          else
+            return support_local(shape, LPose(pose).dir_local(u));
+        },
+        s);
+  };
+  return local_support(a, pa, n) + local_support(b, pb, -n) + glm::dot(n, ld(pa.position) - ld(pb.position));
+}
+
+// A local minimum of a function f of unit directions (the overlap along them), by Newton's
+// method on the sphere in long double with central differences (gradient over 1e-6 rad,
+// Hessian over 1e-4 rad). `smooth`: the Hessian over 1e-3 rad agrees within 1 % (no crease
+// of f within reach, where differences measure the crease, not a curvature); `curvature`:
+// the Hessian's least eigenvalue there (how well the minimum pins the direction).
+struct DirectionMinimum {
+  LVec normal;       // unit
+  LD value = 0;      // f there
+  LD curvature = 0;  // least eigenvalue of f's Hessian on the sphere
+  bool smooth = false;
+  bool converged = false;
+};
+
+template <class F>
+DirectionMinimum minimize_over_directions(F f, LVec n, LD scale) {
+  DirectionMinimum r;
+  n /= lnorm(n);
+  for (int it = 0; it < 40; ++it) {
+    const LVec t1 = glm::cross(n, std::abs(n.x) < 0.6L ? LVec(1, 0, 0) : LVec(0, 1, 0)) /
+                    lnorm(glm::cross(n, std::abs(n.x) < 0.6L ? LVec(1, 0, 0) : LVec(0, 1, 0)));
+    const LVec t2 = glm::cross(n, t1);
+    const auto at = [&](LD u, LD v) {
+      const LVec m = n + u * t1 + v * t2;
+      return f(m / lnorm(m));
+    };
+    const LD d = 1e-6L, e = 1e-4L, w = 1e-3L;
+    const LD f0 = at(0, 0);
+    const LD g1 = (at(d, 0) - at(-d, 0)) / (2 * d);
+    const LD g2 = (at(0, d) - at(0, -d)) / (2 * d);
+    const LD h11 = (at(e, 0) - 2 * f0 + at(-e, 0)) / (e * e);
+    const LD h22 = (at(0, e) - 2 * f0 + at(0, -e)) / (e * e);
+    const LD h12 = (at(e, e) - at(e, -e) - at(-e, e) + at(-e, -e)) / (4 * e * e);
+    const LD k11 = (at(w, 0) - 2 * f0 + at(-w, 0)) / (w * w);
+    const LD k22 = (at(0, w) - 2 * f0 + at(0, -w)) / (w * w);
+    const LD floor = 1e-3L * scale;
+    r.smooth = std::abs(k11 - h11) <= 1e-2L * (std::abs(h11) + floor) &&
+               std::abs(k22 - h22) <= 1e-2L * (std::abs(h22) + floor);
+    const LD tr = 0.5L * (h11 + h22);
+    const LD disc = std::sqrt(0.25L * (h11 - h22) * (h11 - h22) + h12 * h12);
+    r.curvature = tr - disc;
+    r.normal = n;
+    r.value = f0;
+    const LD det = h11 * h22 - h12 * h12;
+    const LD grad = std::sqrt(g1 * g1 + g2 * g2);
+    if (!(r.curvature > 0) || !(det > 0)) return r;
+    LD s1 = -(h22 * g1 - h12 * g2) / det;
+    LD s2 = -(h11 * g2 - h12 * g1) / det;
+    const LD len = std::sqrt(s1 * s1 + s2 * s2);
+    if (len > 0.1L) s1 *= 0.1L / len, s2 *= 0.1L / len;
+    const LVec m = (n + s1 * t1 + s2 * t2) / lnorm(n + s1 * t1 + s2 * t2);
+    if (f(m) > f0 + 1e-17L * scale) {
+      r.converged = grad < 1e-13L * scale;
+      return r;
+    }
+    n = m;
+    if (len < 1e-15L) {
+      r.converged = true;
+      r.normal = n;
+      r.value = f(n);
+      return r;
+    }
+  }
+  return r;
 }
 
 // Squared distance of point p to the solid box [-h, h].

@@ -15,10 +15,16 @@
 ///   2. a trust-region step (Nocedal, Wright, Numerical Optimization, 2006, ch. 4): the
 ///      Newton step on the Hessian shifted to positive definite (Levenberg-Marquardt),
 ///      clipped to the radius; after a failed Newton step, a plain gradient step;
-///   3. keep the trial normal only when it lowers h beyond rounding (then widen the radius);
-///      else try the gradient, then shrink the radius; stop at a Newton step that predicts
-///      no gain beyond rounding or when no step within reach can gain more than a settle
-///      threshold (a kink of h, where D has an edge or a ruled side);
+///   3. keep the trial normal when it lowers h beyond rounding (then widen the radius), or,
+///      within rounding of h, when it halves h's slope (near the minimum h's change
+///      is lost to rounding before the normal is exact); else try the gradient, then shrink
+///      the radius; stop at a slope within rounding, at a Newton step that predicts no gain
+///      and cuts no slope, or when no step within reach can gain more than a settle
+///      threshold (a kink of h, where D has an edge or a ruled side). A Newton step near the minimum that fails both
+///      tests has its Hessian estimated again with differences 16 times closer (down to eta / 256: the differences had
+///      crossed a crease); a descent that stops with the slope above rounding looks for the slope's zero along the
+///      gradient's great circle (slope_search, regula falsi on the slope, which needs no difference of h), and goes on
+///      from there;
 ///   3b. where it settled on a crease of h (D's support along n an edge of direction e that
 ///      the line along n misses: the descent's steps across the crease zigzag and shrink to
 ///      the settle threshold short of the minimum), the minimum along the crease: on the
@@ -33,12 +39,15 @@
 ///      ellipsoid of radius 13.7: the minimum 4 degrees along the crease, the descent 0.0014
 ///      above it after 96 steps in double; in float settled by rounding 8e-4 above it, its
 ///      witnesses 0.075 off the line along n);
+///   3c. where one side's support along the settled n is a face (three of its feature points
+///      not collinear: a box's face, a cylinder's cap), that face's normal from those points,
+///      the exact minimum of that kink of h, when h there is no higher (snap_to_face);
 ///   4. witnesses: where D's support along n is a face or an edge, a small GJK in the plane
 ///      across n (Gilbert, Johnson, Keerthi, IEEE J. Robotics and Automation 1988) over
 ///      supports tipped by sqrt(eps) finds the feature's point nearest the line along n; its
 ///      convex weights give points of A and B, moved to obey support_a - support_b = depth n.
-/// Each kept step lowers h, so the answer is an upper bound of the depth no worse than the
-/// start. Header-only, templated on the support functors: no virtual call, no allocation,
+/// No kept step raises h beyond rounding, so the answer is an upper bound of the depth no
+/// worse than the start. Header-only, templated on the support functors: no virtual call, no allocation,
 /// never NaN (a start of zero length uses +z). O(max_steps x 3 support queries).
 
 #include <proxima/core/math.hpp>
@@ -205,10 +214,17 @@ struct Descent {
   TangentModel model;        ///< the model at `at` (valid when `fresh`)
   Real radius = Real(0.25);  ///< trust radius (radians)
   bool fresh = false;        ///< the model belongs to `at`
+  Real eta = Real(0);        ///< the Hessian's difference step (radians; RefineTolerances::eta, or closer)
   bool steepest = false;     ///< the next trial is a gradient step (the Newton one failed)
   bool converged = false;    ///< stopped at a minimum (within rounding) or a settled kink
   int queries = 0;           ///< support-pair queries made
 };
+
+/// The length of h's gradient at a sample: the part of D's support across the normal.
+inline Real slope(const SupportSample& s) {
+  const Vec3 across = s.p - s.h * s.n;
+  return std::sqrt(glm::dot(across, across));
+}
 
 /// Step 3: takes the trial sample when it lowers h beyond rounding (a flat stretch of h
 /// stays put), else falls back from Newton to gradient to a smaller radius. True when the
@@ -219,10 +235,32 @@ inline bool accept_or_shrink(Descent& d, const SupportSample& trial, const Tange
     d.at = trial;
     d.fresh = false;
     d.steepest = false;
+    d.eta = tol.eta;
     d.radius = std::min(Real(0.5), std::max(d.radius, Real(2) * step.len));
     return false;
   }
+  // Near a smooth minimum h changes by rounding only (its error there is quadratic in the
+  // normal's), while its slope still shows how far off the normal is: a step within rounding
+  // of h that halves the slope is kept (in float the Hessian by differences over 0.02 rad is
+  // good to about 40 %, and Newton's steps cut the slope by about 2.4). Stopping on h alone
+  // left normals about sqrt(flat / curvature) off (3e-8 rad in double, 7e-4 in float).
+  if (trial.h <= d.at.h + tol.flat && slope(trial) < Real(0.5) * slope(d.at)) {
+    d.at = trial;
+    d.fresh = false;
+    d.steepest = false;
+    d.eta = tol.eta;
+    return false;
+  }
   if (step.newton_exact && !d.steepest) {
+    // A Newton step near the minimum that neither lowers h nor halves the slope: the
+    // Hessian's differences may have crossed a crease within eta of the sample (a box edge
+    // 0.02 rad from a float sample: the model 150 times too stiff along it); again with the
+    // differences 16 times closer, down to eta / 256.
+    if (d.eta > tol.eta * Real(1.0 / 256.0)) {
+      d.eta *= Real(1.0 / 16.0);
+      d.fresh = false;
+      return false;
+    }
     d.converged = true;
     return true;
   }
@@ -239,6 +277,76 @@ inline bool accept_or_shrink(Descent& d, const SupportSample& trial, const Tange
   return false;
 }
 
+/// Step 3a: the descent stopped with h's slope still above rounding, where h's change over
+/// the remaining distance is below it (in float a normal 7e-4 rad off changes h by 2 ulps)
+/// and the Newton model could not tell (its Hessian by differences crossed a crease): the
+/// zero of the slope along the great circle downhill from the sample, n(th) = cos th n +
+/// sin th u, whose slope is (cos th u - sin th n) . s_D(n(th)) and needs no difference of
+/// h. Doubling steps from `theta0` bracket the zero, regula falsi (Illinois) closes it, at
+/// most `budget` support pairs. Takes the probe of least slope when it halves the sample's
+/// and h does not rise beyond rounding (at a kink of h the slope jumps and is not halved).
+template <class SupportA, class SupportB>
+bool slope_search(SupportA& support_a, SupportB& support_b, Descent& d, Real theta0, const RefineTolerances& tol,
+                  int budget) {
+  const Vec3 n = d.at.n;
+  const Vec3 across = d.at.p - d.at.h * n;
+  const Real g = std::sqrt(glm::dot(across, across));
+  if (!(g > Real(0)) || !std::isfinite(g)) return false;
+  const Vec3 u = -across / g;
+  auto probe = [&](Real th) {
+    ++d.queries;
+    return sample(support_a, support_b, unit(std::cos(th) * n + std::sin(th) * u));
+  };
+  auto slope_along = [&](Real th, const SupportSample& x) {
+    return glm::dot(std::cos(th) * u - std::sin(th) * n, x.p);
+  };
+  SupportSample best = d.at;
+  auto consider = [&](const SupportSample& x) {
+    if (x.h <= d.at.h + tol.flat && slope(x) < slope(best)) best = x;
+  };
+  Real lo = Real(0);
+  Real s_lo = -g;
+  Real hi = std::clamp(theta0, kEpsilon, Real(0.125));
+  Real s_hi = Real(0);
+  for (;; hi *= Real(2)) {
+    if (budget-- <= 0 || hi > Real(0.5)) return false;
+    const SupportSample x = probe(hi);
+    consider(x);
+    s_hi = slope_along(hi, x);
+    if (!(s_hi < Real(0))) break;
+    lo = hi;
+    s_lo = s_hi;
+  }
+  int side = 0;
+  while (budget-- > 0 && (hi - lo) * tol.scale > tol.flat) {
+    Real th = (lo * s_hi - hi * s_lo) / (s_hi - s_lo);
+    if (!(th > lo && th < hi)) th = Real(0.5) * (lo + hi);
+    const SupportSample x = probe(th);
+    consider(x);
+    const Real st = slope_along(th, x);
+    if (st < Real(0)) {
+      lo = th;
+      s_lo = st;
+      if (side < 0) s_hi *= Real(0.5);
+      side = -1;
+    } else {
+      hi = th;
+      s_hi = st;
+      if (side > 0) s_lo *= Real(0.5);
+      side = 1;
+    }
+    if (std::abs(st) <= tol.flat) break;
+  }
+  if (!(slope(best) < Real(0.5) * g)) return false;
+  d.at = best;
+  d.fresh = false;
+  d.eta = tol.eta;
+  d.steepest = false;
+  d.converged = false;
+  d.radius = Real(0.25);
+  return true;
+}
+
 /// Steps 1-3: the trust-region Newton descent of h from `start`, at most `max_steps` trials.
 template <class SupportA, class SupportB>
 Descent descend(SupportA& support_a, SupportB& support_b, const SupportSample& start, const RefineTolerances& tol,
@@ -246,6 +354,8 @@ Descent descend(SupportA& support_a, SupportB& support_b, const SupportSample& s
   Descent d;
   d.at = start;
   d.queries = 1;
+  d.eta = tol.eta;
+  int searches = 4;
   for (int step = 0; step < max_steps; ++step) {
     if (!d.fresh) {
       d.model = gradient_at(d.at);
@@ -253,14 +363,18 @@ Descent descend(SupportA& support_a, SupportB& support_b, const SupportSample& s
         d.converged = true;
         break;
       }
-      estimate_hessian(support_a, support_b, d.at, tol.eta, d.model, d.queries);
+      estimate_hessian(support_a, support_b, d.at, d.eta, d.model, d.queries);
       d.fresh = true;
     }
     const TangentStep s = trust_region_step(d.model, d.radius, d.steepest, tol.flat);
     const Vec3 n_try = unit(d.at.n + s.d1 * d.model.basis.t1 + s.d2 * d.model.basis.t2);
     const SupportSample trial = sample(support_a, support_b, n_try);
     ++d.queries;
-    if (accept_or_shrink(d, trial, s, tol)) break;
+    if (!accept_or_shrink(d, trial, s, tol)) continue;
+    // Stopped with the slope above rounding: its zero along the gradient, then on.
+    const Real g = slope(d.at);
+    if (g > tol.flat && searches-- > 0 && slope_search(support_a, support_b, d, g / tol.scale, tol, 32)) continue;
+    break;
   }
   return d;
 }
@@ -520,6 +634,42 @@ bool follow_ridge(SupportA& support_a, SupportB& support_b, Descent& d, const Ve
   return true;
 }
 
+/// The unit normal of the plane through three points, oriented along `towards`; zero when
+/// they are (nearly) collinear.
+inline Vec3 plane_normal(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec3& towards, Real scale) {
+  const Vec3 m = glm::cross(p1 - p0, p2 - p0);
+  const Real mm = glm::dot(m, m);
+  if (!(mm > Real(64) * kEpsilon * scale * scale * scale * scale) || !std::isfinite(mm)) return Vec3(Real(0));
+  const Vec3 u = m / std::sqrt(mm);
+  return glm::dot(u, towards) < Real(0) ? -u : u;
+}
+
+/// Step 3c: the descent settled at a kink of h where one side's support along n is a face (a
+/// box's face, a cylinder's cap against a curved point): there the minimum is that face's
+/// normal exactly, which a descent only approaches to its settle threshold (a box corner in a
+/// cylinder: 4e-11 above the depth in double). The face normal from three of that side's
+/// support points of the feature (a polytope's vertices, a cap's rim points: exact to
+/// rounding, where D's points also carry the other side's motion over the tipped normals) is
+/// taken when h there is no higher than at the sample beyond rounding.
+template <class SupportA, class SupportB>
+bool snap_to_face(SupportA& support_a, SupportB& support_b, Descent& d, TangentPoints& feature,
+                  const RefineTolerances& tol, int& queries) {
+  if (feature.count != 3) return false;
+  const Vec3 na = plane_normal(feature.pa[0], feature.pa[1], feature.pa[2], d.at.n, tol.scale);
+  const Vec3 nb = plane_normal(feature.pb[0], feature.pb[1], feature.pb[2], -d.at.n, tol.scale);
+  bool moved = false;
+  for (const Vec3& n : {na, -nb}) {
+    if (!(glm::dot(n, n) > Real(0))) continue;
+    const SupportSample x = sample(support_a, support_b, n);
+    ++queries;
+    if (!(x.h <= d.at.h + tol.flat) || (moved && !(x.h < d.at.h))) continue;
+    d.at = x;
+    moved = true;
+  }
+  if (moved) feature = feature_points(support_a, support_b, d.at, tol.scale, queries);
+  return moved;
+}
+
 /// Step 4b: the witnesses: the feature points' weights (feature_points at `at`) applied to
 /// A's and B's support points, moved half each to obey support_a - support_b = h n.
 inline void tangent_witnesses(const TangentPoints& t, const SupportSample& at, Refinement& r) {
@@ -572,6 +722,7 @@ Refinement refine(SupportA& support_a, SupportB& support_b, const Vec3& start_no
     queries += d.queries;
     feature = rd::feature_points(support_a, support_b, d.at, tol.scale, queries);
   }
+  rd::snap_to_face(support_a, support_b, d, feature, tol, queries);
   Refinement r;
   r.iterations = queries;
   r.converged = d.converged;
