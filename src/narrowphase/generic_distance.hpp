@@ -840,9 +840,9 @@ LocalAnswer run_stages(const A& a, const B& b, PairSetup<A, B>& setup, const Pai
 /// v, EPA's faces, closest points or projections, which on a curved side are off by about
 /// sqrt(rounding / curvature): 3e-8 rad in double, the distance then 2e-9 of the size from
 /// the gap along the normal. Kept when the refinement settled near the stage's answer (see
-/// below), converged or not: its support
-/// distance is a bound the stage's normal gave no better (an upper bound of a depth, a lower
-/// bound of a distance), and it is the overlap along the normal it reports.
+/// below), converged or not: its support distance is a bound the stage's normal gave no
+/// better (an upper bound of a depth, a lower bound of a distance), and it is the overlap
+/// along the normal it reports.
 template <class A, class B>
 void refine_to_precision(const B& b, PairSetup<A, B>& setup, const PairRequest& request, LocalAnswer& ans) {
   if constexpr (kCurvedCorePair<A, B>) {
@@ -858,8 +858,7 @@ void refine_to_precision(const B& b, PairSetup<A, B>& setup, const PairRequest& 
     // it, so a larger move would split the touching rule) only for a gap whose refined
     // witnesses meet the line along its normal (a point of each shape with a - b = h n: the
     // distance both ways). A refinement stopped on a kink of a box against a cone's rim had
-    // moved a touching pair 1e-8 deep; a float cone touching a cylinder turned "penetrating
-    // by 1.9e-7", so a cast moving it apart hit at t = 0.
+    // moved a touching pair 1e-8 deep.
     const Real moved = std::abs(sd - ans.signed_distance);
     const bool met = f.witness_gap <= setup.tolerance;
     const bool certified = met && sd > Real(0) && ans.signed_distance > Real(0);

@@ -16,15 +16,16 @@
 ///      Newton step on the Hessian shifted to positive definite (Levenberg-Marquardt),
 ///      clipped to the radius; after a failed Newton step, a plain gradient step;
 ///   3. keep the trial normal when it lowers h beyond rounding (then widen the radius), or,
-///      within rounding of h, when it halves h's slope (near the minimum h's change
-///      is lost to rounding before the normal is exact); else try the gradient, then shrink
-///      the radius; stop at a slope within rounding, at a Newton step that predicts no gain
-///      and cuts no slope, or when no step within reach can gain more than a settle
-///      threshold (a kink of h, where D has an edge or a ruled side). A Newton step near the minimum that fails both
-///      tests has its Hessian estimated again with differences 16 times closer (down to eta / 256: the differences had
-///      crossed a crease); a descent that stops with the slope above rounding looks for the slope's zero along the
-///      gradient's great circle (slope_search, regula falsi on the slope, which needs no difference of h), and goes on
-///      from there;
+///      within rounding of h, when it halves h's slope (near the minimum h's change is lost
+///      to rounding before the normal is exact); else try the gradient, then shrink the
+///      radius; stop at a slope within rounding, at a Newton step that predicts no gain and
+///      cuts no slope, or when no step within reach can gain more than a settle threshold (a
+///      kink of h, where D has an edge or a ruled side). A Newton step near the minimum that
+///      fails both tests has its Hessian estimated again with differences 16 times closer
+///      (down to eta / 256: the differences had crossed a crease);
+///   3a. a descent that stops with the slope above rounding looks for the slope's zero along
+///      the gradient's great circle (slope_search: regula falsi on the slope, which needs no
+///      difference of h), and goes on from there;
 ///   3b. where it settled on a crease of h (D's support along n an edge of direction e that
 ///      the line along n misses: the descent's steps across the crease zigzag and shrink to
 ///      the settle threshold short of the minimum), the minimum along the crease: on the
@@ -47,8 +48,8 @@
 ///      supports tipped by sqrt(eps) finds the feature's point nearest the line along n; its
 ///      convex weights give points of A and B, moved to obey support_a - support_b = depth n.
 /// No kept step raises h beyond rounding, so the answer is an upper bound of the depth no
-/// worse than the start. Header-only, templated on the support functors: no virtual call, no allocation,
-/// never NaN (a start of zero length uses +z). O(max_steps x 3 support queries).
+/// worse than the start. Header-only, templated on the support functors: no virtual call, no
+/// allocation, never NaN (a start of zero length uses +z). O(max_steps x 3 support queries).
 
 #include <proxima/core/math.hpp>
 #include <proxima/core/tolerance.hpp>
@@ -220,10 +221,13 @@ struct Descent {
   int queries = 0;           ///< support-pair queries made
 };
 
-/// The length of h's gradient at a sample: the part of D's support across the normal.
+/// h's gradient at a sample: the part of D's support across the normal.
+inline Vec3 across(const SupportSample& s) { return s.p - s.h * s.n; }
+
+/// The length of h's gradient at a sample.
 inline Real slope(const SupportSample& s) {
-  const Vec3 across = s.p - s.h * s.n;
-  return std::sqrt(glm::dot(across, across));
+  const Vec3 g = across(s);
+  return std::sqrt(glm::dot(g, g));
 }
 
 /// Step 3: takes the trial sample when it lowers h beyond rounding (a flat stretch of h
@@ -289,10 +293,9 @@ template <class SupportA, class SupportB>
 bool slope_search(SupportA& support_a, SupportB& support_b, Descent& d, Real theta0, const RefineTolerances& tol,
                   int budget) {
   const Vec3 n = d.at.n;
-  const Vec3 across = d.at.p - d.at.h * n;
-  const Real g = std::sqrt(glm::dot(across, across));
+  const Real g = slope(d.at);
   if (!(g > Real(0)) || !std::isfinite(g)) return false;
-  const Vec3 u = -across / g;
+  const Vec3 u = -across(d.at) / g;
   auto probe = [&](Real th) {
     ++d.queries;
     return sample(support_a, support_b, unit(std::cos(th) * n + std::sin(th) * u));
@@ -729,7 +732,7 @@ Refinement refine(SupportA& support_a, SupportB& support_b, const Vec3& start_no
   r.improved = d.at.h < start.h;
   r.depth = d.at.h;
   r.normal = d.at.n;
-  r.tangential = d.at.p - d.at.h * d.at.n;
+  r.tangential = rd::across(d.at);
   rd::tangent_witnesses(feature, d.at, r);
   return r;
 }
@@ -748,7 +751,7 @@ Refinement witnesses_along(SupportA& support_a, SupportB& support_b, const Vec3&
   r.iterations = 1;
   r.depth = at.h;
   r.normal = n;
-  r.tangential = at.p - at.h * n;
+  r.tangential = rd::across(at);
   const rd::TangentPoints feature =
       rd::feature_points(support_a, support_b, at, rd::refine_tolerances(length_scale).scale, r.iterations);
   rd::tangent_witnesses(feature, at, r);
