@@ -1,8 +1,9 @@
-// The closed-form curved pairs (sphere-cylinder, sphere-cone, sphere-ellipsoid) against the
-// generic GJK / EPA path they replaced, on the same seeded poses: 4,096 pairs per shape kind
-// (a sphere of radius 0.2..1 and a cylinder or cone of radius and half length 0.2..1.5, or an
-// ellipsoid of radii 0.2..1.5, B's centre
-// within 1.8 of A's, so that about half overlap), each query kind through the public entry
+// The closed-form curved pairs (sphere-cylinder, sphere-cone, sphere-ellipsoid, cylinders with
+// parallel axes) against the generic GJK / EPA path they replaced, on the same seeded poses:
+// 4,096 pairs per shape kind (a sphere of radius 0.2..1 and a cylinder or cone of radius and
+// half length 0.2..1.5, or an ellipsoid of radii 0.2..1.5, or two such cylinders, the second
+// turned about its axis, B's centre within 1.8 of A's, so that about half overlap), each query
+// kind through the public entry
 // (`intersect`, `distance`, `collide`: the closed form) and through narrow::generic_distance
 // / generic_intersect (GJK, EPA on overlaps, its refinement). Reports ns per query and the
 // share of overlapping pairs.
@@ -25,10 +26,11 @@ namespace {
 using proxima::Real;
 using proxima::Transform;
 
-/// One pair of the benchmark: the sphere (A) and the curved shape (B) with their poses.
-template <class B>
+/// One pair of the benchmark: a sphere or cylinder (A) and the curved shape (B) with their
+/// poses.
+template <class A, class B>
 struct CurvedPair {
-  proxima::Sphere a;
+  A a;
   Transform pose_a;
   B b;
   Transform pose_b;
@@ -49,9 +51,9 @@ proxima::Ellipsoid random_curved<proxima::Ellipsoid>(proxima::test::Random& rng)
 }
 
 template <class B>
-std::vector<CurvedPair<B>> make_pairs(std::uint64_t seed) {
+std::vector<CurvedPair<proxima::Sphere, B>> make_pairs(std::uint64_t seed) {
   proxima::test::Random rng(seed);
-  std::vector<CurvedPair<B>> pairs;
+  std::vector<CurvedPair<proxima::Sphere, B>> pairs;
   for (int i = 0; i < 4096; ++i) {
     const proxima::Sphere a = proxima::Sphere::create(rng.uniform(Real(0.2), Real(1))).value();
     const B b = random_curved<B>(rng);
@@ -62,16 +64,32 @@ std::vector<CurvedPair<B>> make_pairs(std::uint64_t seed) {
   return pairs;
 }
 
+/// Two cylinders with parallel axes: B has A's rotation turned about the axis.
+std::vector<CurvedPair<proxima::Cylinder, proxima::Cylinder>> make_parallel_cylinders(std::uint64_t seed) {
+  proxima::test::Random rng(seed);
+  std::vector<CurvedPair<proxima::Cylinder, proxima::Cylinder>> pairs;
+  const proxima::Vec3 z(Real(0), Real(0), Real(1));
+  for (int i = 0; i < 4096; ++i) {
+    const auto a = random_curved<proxima::Cylinder>(rng);
+    const auto b = random_curved<proxima::Cylinder>(rng);
+    const Transform pa = rng.pose(Real(0.9));
+    const Transform pb{pa.position + rng.in_ball(Real(1.8)),
+                       pa.rotation * glm::angleAxis(rng.uniform(Real(0), Real(6.283)), z)};
+    pairs.push_back({a, pa, b, pb});
+  }
+  return pairs;
+}
+
 enum class Query { Intersect, Distance, Collide };
 
 /// The closed form (public entry) or the generic path on every pair, in turn.
-template <class B>
-void run(benchmark::State& state, const std::vector<CurvedPair<B>>& pairs, Query query, bool generic) {
+template <class A, class B>
+void run(benchmark::State& state, const std::vector<CurvedPair<A, B>>& pairs, Query query, bool generic) {
   std::size_t i = 0;
   std::int64_t hits = 0;
   const proxima::PairRequest request{};
   for (auto _ : state) {
-    const CurvedPair<B>& p = pairs[i];
+    const CurvedPair<A, B>& p = pairs[i];
     i = (i + 1) % pairs.size();
     if (query == Query::Intersect) {
       const bool hit = generic ? proxima::narrow::generic_intersect(p.a, p.pose_a, p.b, p.pose_b, request, nullptr)
@@ -93,12 +111,11 @@ void run(benchmark::State& state, const std::vector<CurvedPair<B>>& pairs, Query
       benchmark::Counter(double(hits) / double(std::max<std::int64_t>(state.iterations(), 1)));
 }
 
-template <class B>
-void register_kind(const std::string& name, std::uint64_t seed) {
-  static const std::vector<CurvedPair<B>> pairs = make_pairs<B>(seed);
+template <class A, class B>
+void register_kind(const std::string& name, const std::vector<CurvedPair<A, B>>& pairs) {
   const auto add = [&](const std::string& label, Query q, bool generic) {
     benchmark::RegisterBenchmark(("Curved/" + name + "/" + label).c_str(),
-                                 [q, generic](benchmark::State& s) { run<B>(s, pairs, q, generic); });
+                                 [q, generic, &pairs](benchmark::State& s) { run(s, pairs, q, generic); });
   };
   add("Intersect/closed_form", Query::Intersect, false);
   add("Intersect/gjk", Query::Intersect, true);
@@ -108,9 +125,14 @@ void register_kind(const std::string& name, std::uint64_t seed) {
 }
 
 bool register_curved(const std::string& /*dir*/) {
-  register_kind<proxima::Cylinder>("SphereCylinder", 901);
-  register_kind<proxima::Cone>("SphereCone", 902);
-  register_kind<proxima::Ellipsoid>("SphereEllipsoid", 903);
+  static const auto cylinders = make_pairs<proxima::Cylinder>(901);
+  static const auto cones = make_pairs<proxima::Cone>(902);
+  static const auto ellipsoids = make_pairs<proxima::Ellipsoid>(903);
+  static const auto parallel = make_parallel_cylinders(904);
+  register_kind("SphereCylinder", cylinders);
+  register_kind("SphereCone", cones);
+  register_kind("SphereEllipsoid", ellipsoids);
+  register_kind("ParallelCylinders", parallel);
   return true;
 }
 

@@ -18,6 +18,8 @@
 //     other box and the edge pairs A_i, B_j whose axis separates the boxes by less than the
 //     best distance so far (the separation along an axis bounds every distance from below;
 //     the supporting edges along the separating side are the only candidates of a pair).
+//     The normal is the SAT axis or the closest points' direction, whichever the boxes are
+//     farther apart along, and the distance that gap (separated_answer).
 //  4. Manifold: a face axis unless an edge axis is clearly shallower (relative bias, so the
 //     choice is stable from frame to frame), A's face before B's. Face axis: the incident
 //     face's 4 corners are written in the reference face's 2D frame (u, v) with their gap
@@ -48,10 +50,6 @@ const Real kParallelSine2 = kParallelSine * kParallelSine;
 constexpr Real kEdgeRelative = Real(0.98);
 // B's face axis replaces A's only when its separation exceeds kFaceRelative * A's.
 constexpr Real kFaceRelative = Real(0.98);
-// Separated pairs take their normal from the closest points only when these are more than
-// kDirectionGap * tolerance apart; closer, their difference is mostly rounding and the
-// separating axis (whose separation is within that gap of the distance) gives the normal.
-constexpr Real kDirectionGap = Real(0.1);
 constexpr int kAxes = 15;
 constexpr int kNext[3] = {1, 2, 0};
 constexpr int kPrev[3] = {2, 0, 1};
@@ -206,7 +204,7 @@ Vec3 world_normal(const BoxPair& p, int k) {
   return to_world(p.ma, axis_normal(p, k));
 }
 
-struct SatResult {
+struct BoxSat {
   Real sep[kAxes];  // per axis; edges (6-14) only when edges_done, -infinity when skipped
   Real max_sep;     // over the computed axes (an edge axis must beat a face axis by the rounding)
   int max_axis;
@@ -217,7 +215,7 @@ struct SatResult {
 };
 
 // Separations along the 6 face axes, the best of A's and of B's, and the largest.
-void face_separations(const BoxPair& p, SatResult& s) {
+void face_separations(const BoxPair& p, BoxSat& s) {
   for (int i = 0; i < 3; ++i) {
     s.sep[i] = std::abs(p.t[i]) - (p.a[i] + p.b[0] * p.ar[i][0] + p.b[1] * p.ar[i][1] + p.b[2] * p.ar[i][2]);
   }
@@ -239,7 +237,7 @@ void face_separations(const BoxPair& p, SatResult& s) {
 // An axis whose separation cannot exceed `floor` is skipped (-infinity) without its square
 // root and division: with len = |A_i x B_j|, sep = e / len > floor is decided on e and
 // floor^2 len^2. `floor` = -infinity computes every axis (then edges_done).
-void edge_separations(const BoxPair& p, SatResult& s, Real floor = -kRealInfinity) {
+void edge_separations(const BoxPair& p, BoxSat& s, Real floor = -kRealInfinity) {
   const bool all = floor == -kRealInfinity;
   const Real floor2 = all ? Real(0) : floor * floor;  // (never infinity times a zero length)
   const bool below = floor < Real(0);
@@ -280,8 +278,8 @@ void edge_separations(const BoxPair& p, SatResult& s, Real floor = -kRealInfinit
 }
 
 // The full SAT (no early out).
-SatResult full_sat(const BoxPair& p) {
-  SatResult s;
+BoxSat full_sat(const BoxPair& p) {
+  BoxSat s;
   face_separations(p, s);
   edge_separations(p, s);
   return s;
@@ -362,7 +360,7 @@ struct ClosestFeatures {
 
 // Exact closest points of two separated boxes, in A's frame (step 3). `s` must come from a
 // full SAT run (edges_done).
-ClosestFeatures closest_features(const BoxPair& p, const SatResult& s) {
+ClosestFeatures closest_features(const BoxPair& p, const BoxSat& s) {
   ClosestFeatures best;
   const Vec3 av(p.a[0], p.a[1], p.a[2]);
   const Vec3 bv(p.b[0], p.b[1], p.b[2]);
@@ -411,6 +409,52 @@ ClosestFeatures closest_features(const BoxPair& p, const SatResult& s) {
     if (sp.distance_squared < best.d2) best = {sp.distance_squared, sp.on_a, sp.on_b};
   }
   return best;
+}
+
+// Gap of the boxes along the unit A-frame direction n (A to B): t . n less both supports, a
+// lower bound of their distance, equal to it along the distance's own normal.
+Real gap_along(const BoxPair& p, const Vec3& n) {
+  Real gap = p.t[0] * n.x + p.t[1] * n.y + p.t[2] * n.z;
+  gap -= p.a[0] * std::abs(n.x) + p.a[1] * std::abs(n.y) + p.a[2] * std::abs(n.z);
+  for (int j = 0; j < 3; ++j) gap -= p.b[j] * std::abs(glm::dot(b_axis(p, j), n));
+  return gap;
+}
+
+// A separated pair's answer in A's frame: the closest points, and as the normal whichever of
+// the SAT's axis, the points' direction and that direction taken across each box axis (the
+// edges' directions) the boxes are farther apart along, the distance being that gap (any
+// direction's gap is a lower bound of the distance). The axis is exact where a face or two
+// crossing edges are closest, the direction across an edge where a corner meets the edge's
+// inside, the points' direction where two corners are (its rounding, the points' over
+// their distance, then moves the gap only to second order); a short gap's direction is
+// mostly rounding, which tilted the normal and left the gap along it off the distance.
+struct SeparatedAnswer {
+  ClosestFeatures f;
+  Vec3 normal;  // unit, A's frame
+  Real distance = Real(0);
+};
+
+SeparatedAnswer separated_answer(const BoxPair& p, const BoxSat& s) {
+  SeparatedAnswer r{closest_features(p, s), axis_normal(p, s.max_axis), s.max_sep};
+  const auto consider = [&](const Vec3& direction) {
+    Vec3 unit;
+    Real len = Real(0);
+    if (!unit_and_length(direction, unit, len)) return;
+    const Real gap = gap_along(p, unit);
+    if (gap > r.distance) {
+      r.normal = unit;
+      r.distance = gap;
+    }
+  };
+  const Vec3 d = r.f.on_b - r.f.on_a;
+  consider(d);
+  for (int k = 0; k < 3; ++k) {
+    Vec3 a_edge(Real(0));
+    a_edge[k] = Real(1);
+    consider(across_direction(d, a_edge));
+    consider(across_direction(d, b_axis(p, k)));
+  }
+  return r;
 }
 
 // ---- Face clipping in the reference box's 2D face frame -------------------------------
@@ -822,15 +866,12 @@ ContactManifold& overlap_on_axis(const BoxPair& p, const Transform& pose_a, cons
 
 // Separated pairs within the contact distance: faces supporting the exact distance normal,
 // the reference being the box whose face is better aligned with it.
-ContactManifold& near_manifold(const BoxPair& p, const Transform& pose_a, const Transform& pose_b, const SatResult& s,
+ContactManifold& near_manifold(const BoxPair& p, const Transform& pose_a, const Transform& pose_b, const BoxSat& s,
                                const PairRequest& request, ContactManifold& m) {
-  const ClosestFeatures cf = closest_features(p, s);
-  const Real dist = std::sqrt(cf.d2);
-  Vec3 n_local = axis_normal(p, s.max_axis);
-  Vec3 unit;
-  Real len = Real(0);
-  if (dist > kDirectionGap * p.tol && unit_and_length(cf.on_b - cf.on_a, unit, len)) n_local = unit;
-  const Real sd = std::max(dist, s.max_sep);
+  const SeparatedAnswer sa = separated_answer(p, s);
+  const ClosestFeatures& cf = sa.f;
+  const Vec3 n_local = sa.normal;
+  const Real sd = sa.distance;
   m.normal = to_world(p.ma, n_local);
   m.status = status_from_distance(sd, p.tol);
   const Vec3 world_a = pose_a.position + to_world(p.ma, cf.on_a);
@@ -886,36 +927,31 @@ bool pair_intersect(const Box& a, const Transform& pose_a, const Box& b, const T
   const Real limit = contact_reach(request.contact_distance, p.tol);  // the touching rule
   const int cached = cached_separating_axis(p, limit, cache);
   if (cached >= 0) return false;
-  SatResult s;
+  BoxSat s;
   face_separations(p, s);
   if (s.max_sep <= limit) edge_separations(p, s);
   store_cache(cache, p, s.max_axis, s.max_sep > limit);
   if (s.max_sep > limit) return false;
   if (s.max_sep <= Real(0)) return true;
-  // As pair_distance: max(|closest features|, max_sep) within the reach.
-  return std::sqrt(closest_features(p, s).d2) <= limit;
+  // As pair_distance: the gap along the separated answer's normal within the reach.
+  return separated_answer(p, s).distance <= limit;
 }
 
 DistanceResult pair_distance(const Box& a, const Transform& pose_a, const Box& b, const Transform& pose_b,
                              const PairRequest& request, PairCache* cache) {
   if (!poses_in_range(pose_a, pose_b)) return invalid_distance();
   const BoxPair p = make_pair(a, pose_a, b, pose_b, request);
-  const SatResult s = full_sat(p);
+  const BoxSat s = full_sat(p);
   store_cache(cache, p, s.max_axis, s.max_sep > Real(0));
   const Vec3 max_normal = axis_normal(p, s.max_axis);
   DistanceResult r;
   r.method = PairMethod::Sat;
   if (s.max_sep > Real(0)) {
-    const ClosestFeatures f = closest_features(p, s);
-    const Real dist = std::sqrt(f.d2);
-    Vec3 n = max_normal;
-    Vec3 unit;
-    Real len = Real(0);
-    if (dist > kDirectionGap * p.tol && unit_and_length(f.on_b - f.on_a, unit, len)) n = unit;
-    r.signed_distance = std::max(dist, s.max_sep);
-    r.point_a = pose_a.position + to_world(p.ma, f.on_a);
-    r.point_b = pose_a.position + to_world(p.ma, f.on_b);
-    r.normal = to_world(p.ma, n);
+    const SeparatedAnswer sa = separated_answer(p, s);
+    r.signed_distance = sa.distance;
+    r.point_a = pose_a.position + to_world(p.ma, sa.f.on_a);
+    r.point_b = pose_a.position + to_world(p.ma, sa.f.on_b);
+    r.normal = to_world(p.ma, sa.normal);
     r.status = status_from_distance(r.signed_distance, p.tol);
     r.tolerance = p.tol;
     return r;
@@ -963,7 +999,7 @@ ContactManifold pair_collide(const Box& a, const Transform& pose_a, const Box& b
     m.normal = world_normal(p, cached);
     return m;
   }
-  SatResult s;
+  BoxSat s;
   face_separations(p, s);
   if (s.max_sep <= limit) {
     // Only edge axes that may separate, be the largest or be preferred (below) count:

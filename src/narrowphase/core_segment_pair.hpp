@@ -7,10 +7,9 @@
 /// Steps (Ericson, Real-Time Collision Detection, 5.1.9):
 ///  1. closest points of the two segments (geometry::closest_points_segment_segment, robust
 ///     for parallel and zero-length segments);
-///  2. apart by more than the tolerance: normal = (on_b - on_a) / |on_b - on_a|, or the
-///     common normal dA x dB when both closest points are inside the cores, under
-///     sqrt(epsilon) of the scale apart, and the cores' directions give it more precisely
-///     than the short difference does;
+///  2. apart beyond rounding (offset_noise): the offset from A's closest point to B's from
+///     the cores' geometry (core_offset: the common normal dA x dB when both points are
+///     inside the cores, exactly across a core when one is), its length the core distance;
 ///  3. touching or crossing (where the direction of on_b - on_a is rounding noise): the
 ///     Minkowski difference of two segments is flat, so the exact core penetration is 0 along
 ///     the common normal dA x dB; parallel (collinear or coplanar) or zero-length cores take a
@@ -58,24 +57,29 @@ inline Vec3 orthogonal_to_core(const Vec3& d, const Vec3& fallback) {
   return n;
 }
 
-/// For cores with directions da, db whose closest points `sp` lie inside both, `length`
-/// apart: when that is under sqrt(epsilon) of the scale, the direction of the short
-/// difference of the two rounded points carries an error over sqrt(epsilon) (in float, along
-/// such a normal of capsule cores 2e-4 apart the capsules overlapped 2.8e-4 more than the
-/// depth), so `n` becomes the exact common normal dA x dB, oriented from A to B, where the
-/// directions determine it better (the sine of their angle times the shorter core exceeds
-/// the distance). Rarely reached; kept out of line.
-[[gnu::cold]] [[gnu::noinline]] inline void common_normal_of_close_cores(const Vec3& da, const Vec3& db,
-                                                                         const geometry::SegmentPair& sp, Real length,
-                                                                         Vec3& n) {
-  const Real la = glm::length(da);
-  const Real lb = glm::length(db);
-  if (!(la > Real(0)) || !(length < kSqrtEpsilon * std::max(std::max(la, lb), max_abs_component(sp.on_a)))) return;
-  Vec3 c;
-  Real lc = Real(0);
-  if (unit_and_length(glm::cross(da, db), c, lc) && lc > kSqrtEpsilon * la * lb && lc > length * std::max(la, lb)) {
-    n = glm::dot(c, sp.on_b - sp.on_a) < Real(0) ? -c : c;
+/// The offset from A's closest point to B's, from the cores' geometry rather than from the
+/// difference of the two rounded points alone (whose direction, over a short offset, tilts
+/// by their rounding over its length): both points inside their cores, the common normal
+/// dA x dB with the offset's length along it, where the directions give it more precisely
+/// (the sine of their angle times the longer core exceeds the offset); one inside, the
+/// offset taken exactly across that core (across_direction); else the difference (two
+/// ends: the gap is smooth in the direction there).
+inline Vec3 core_offset(const Vec3& da, const Vec3& db, const geometry::SegmentPair& sp) {
+  const Vec3 d = sp.on_b - sp.on_a;
+  const bool inside_a = sp.s > Real(0) && sp.s < Real(1);
+  const bool inside_b = sp.t > Real(0) && sp.t < Real(1);
+  if (inside_a && inside_b) {
+    // Squared: sine^2 la^2 lb^2 = |c|^2 against epsilon and against |d|^2 max(la^2, lb^2).
+    const Vec3 c = glm::cross(da, db);
+    const Real cc = glm::dot(c, c);
+    const Real la2 = glm::dot(da, da);
+    const Real lb2 = glm::dot(db, db);
+    if (cc > kEpsilon * la2 * lb2 && cc > glm::dot(d, d) * std::max(la2, lb2)) return (glm::dot(c, d) / cc) * c;
+    return across_direction(d, la2 >= lb2 ? da : db);
   }
+  if (inside_a) return across_direction(d, da);
+  if (inside_b) return across_direction(d, db);
+  return d;
 }
 
 /// Closest pair of cores a0a1 (radius ra) and b0b1 (radius rb), all in world. `fallback_a`
@@ -97,24 +101,18 @@ inline Vec3 orthogonal_to_core(const Vec3& d, const Vec3& fallback) {
   const geometry::SegmentPair sp = geometry::closest_points_segment_segment(a0, a1, b0, b1);
   cc.s = sp.s;
   cc.t = sp.t;
+  const Vec3 da = a1 - a0;
+  const Vec3 db = b1 - b0;
   Vec3 n;
   Real length = Real(0);
-  if (unit_and_length(sp.on_b - sp.on_a, n, length) && length > tolerance) {
-    // Closest points inside both cores and under sqrt(epsilon) of the scale apart: see
-    // common_normal_of_close_cores. The L1 norms bound the core lengths from above, so the
-    // test costs no square root, and the rare case is out of line.
-    if (sp.s > Real(0) && sp.s < Real(1) && sp.t > Real(0) && sp.t < Real(1)) {
-      const Vec3 da = a1 - a0;
-      const Vec3 db = b1 - b0;
-      const Real rough_scale = std::max(
-          std::max(std::abs(da.x) + std::abs(da.y) + std::abs(da.z), std::abs(db.x) + std::abs(db.y) + std::abs(db.z)),
-          max_abs_component(sp.on_a));
-      if (length < kSqrtEpsilon * rough_scale) common_normal_of_close_cores(da, db, sp, length, n);
-    }
-  } else {
+  // Beyond the tolerance the offset is far above the rounding; within it, its length is
+  // compared with the coordinates' rounding (the ends' magnitudes, found only then).
+  const bool apart =
+      unit_and_length(core_offset(da, db, sp), n, length) &&
+      (length > tolerance || length > offset_noise(std::max(std::max(max_abs_component(a0), max_abs_component(a1)),
+                                                            std::max(max_abs_component(b0), max_abs_component(b1)))));
+  if (!apart) {
     length = Real(0);
-    const Vec3 da = a1 - a0;
-    const Vec3 db = b1 - b0;
     const Vec3 c = glm::cross(da, db);
     Real lc = Real(0);
     const Real la = glm::length(da);

@@ -31,6 +31,7 @@
 #include "dispatch_rows.hpp"
 #include "pair_table.hpp"
 // Closed-form routines first, so that the generic templates below see them.
+#include "pairs_curved.hpp"
 #include "pairs_halfspace.hpp"
 #include "pairs_polyhedral.hpp"
 #include "pairs_rounded.hpp"

@@ -503,14 +503,55 @@ bool projected_distance(Ladder<A, B>& l) {
   }
 }
 
-/// Stage b': the cores are apart (beyond rounding): GJK's distance minus the radii.
+/// The normal of the feature of D holding GJK's closest point, from its final simplex `s`
+/// (`n`: -v / |v|, unit): a triangle's plane (it lies in D's supporting plane, so its normal
+/// is the face's), a segment's perpendicular through n (exact across the edge, the
+/// direction along which the gap has a kink), a vertex's n. v, a weighted sum of the
+/// simplex's points, carries their rounding over its length: the tilt of a short gap's
+/// normal.
+inline Vec3 simplex_feature_normal(const gjk::Simplex& s, const Vec3& n) {
+  Vec3 m = n;
+  if (s.size == 3) {
+    m = glm::cross(s.v[1].w - s.v[0].w, s.v[2].w - s.v[0].w);
+  } else if (s.size == 2) {
+    m = across_direction(n, s.v[1].w - s.v[0].w);
+  }
+  const Real len = glm::length(m);
+  if (!(len > Real(0)) || !std::isfinite(len)) return n;
+  m /= len;
+  return glm::dot(m, n) < Real(0) ? -m : m;
+}
+
+/// Stage b': the cores are apart (beyond rounding): GJK's distance minus the radii. Where
+/// both cores are polytopes the normal is that of D's feature holding the closest point
+/// (simplex_feature_normal) and the distance the gap along it, so that the overlap along
+/// the reported normal is the reported distance to rounding (a box 1.8e-6 from a hull had
+/// its normal tilted by v's rounding, the gap along it 74 ulps of the size off). Curved
+/// cores are refined instead (refine_to_precision).
 template <class A, class B>
 bool gjk_distance(Ladder<A, B>& l) {
   const gjk::Outcome& g = l.core;
   if (!cores_apart(l)) return false;
-  const Vec3 n = -g.v / g.distance;
+  Vec3 n = -g.v / g.distance;
+  Real core_distance = g.distance;
+  if constexpr (!kCurvedCorePair<A, B>) {
+    // The simplex lies in D's supporting plane along the feature's normal m, so the gap
+    // along m is the plane's distance from the origin, -w . m for any of its points. Kept
+    // where that agrees with |v| to rounding: a degenerate simplex (a needle hull's) gives
+    // a noisy m, and GJK's answer stands there.
+    const Vec3 m = simplex_feature_normal(g.simplex, n);
+    if (m != n) {
+      Real plane = Real(0);
+      for (int i = 0; i < g.simplex.size; ++i) plane -= glm::dot(g.simplex.v[static_cast<std::size_t>(i)].w, m);
+      plane /= Real(g.simplex.size);
+      if (std::abs(plane - g.distance) <= Real(16) * kEpsilon * l.setup.scale) {
+        n = m;
+        core_distance = plane;
+      }
+    }
+  }
   l.ans.normal = n;
-  l.ans.signed_distance = g.distance - l.radii;
+  l.ans.signed_distance = core_distance - l.radii;
   l.ans.point_a = g.point_a + l.setup.radius_a * n;
   l.ans.point_b = g.point_b - l.setup.radius_b * n;
   l.ans.method = PairMethod::Gjk;

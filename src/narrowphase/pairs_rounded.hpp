@@ -11,9 +11,11 @@
 /// form (deepest box face, separating-axis test of segment against box or triangle, common normal of crossing
 /// segments). All O(1), no allocation.
 ///
-/// Degenerate configurations get a deterministic normal, never NaN. Cores closer than the
-/// pair's tolerance (request.tolerance, else linear_tolerance of the pair's scale) count as
-/// touching, because the direction between their closest points is then rounding noise:
+/// Degenerate configurations get a deterministic normal, never NaN. Point and segment cores
+/// closer than their coordinates' rounding (offset_noise, rounded_common.hpp: 16 ulps of the
+/// pair's scale) count as touching, because the direction between their closest points is
+/// then noise; farther, the offset's length is the core distance, however far inside the
+/// tolerance (which sets the status only):
 ///  - sphere-sphere with coincident centres: A's local +x axis (in world);
 ///  - a sphere centre on a capsule's core: the capsule's local +x axis (perpendicular to it);
 ///  - crossing capsule cores or segments: the common normal of the axes, turned towards B's

@@ -35,15 +35,39 @@ void penetration_witness(DistanceResult& r, ClosestFn closest) {
   r.point_b = mid + r.signed_distance * r.normal;
 }
 
+/// Gap of two vertex sets along the unit direction `n` (A to B): the smallest projection of
+/// B's vertices less the largest of A's, a lower bound of the polytopes' distance, equal to
+/// it along the distance's own normal. Taken as the projection of the two supporting
+/// vertices' difference, so that its rounding is the gap's, not the coordinates' (the
+/// difference of two large projections had put a float mesh-triangle distance 20 ulps off).
+inline Real gap_along(const SmallPolytope& pa, const SmallPolytope& pb, const Vec3& n) {
+  int top_a = 0;
+  int low_b = 0;
+  for (int i = 1; i < pa.vertex_count; ++i) {
+    if (glm::dot(pa.vertices[i], n) > glm::dot(pa.vertices[top_a], n)) top_a = i;
+  }
+  for (int j = 1; j < pb.vertex_count; ++j) {
+    if (glm::dot(pb.vertices[j], n) < glm::dot(pb.vertices[low_b], n)) low_b = j;
+  }
+  return glm::dot(pb.vertices[low_b] - pa.vertices[top_a], n);
+}
+
 /// Distance result of a SAT pair (world frame, normal A to B) from its small-polytope SAT
-/// `s` and tolerance `tol`: overlapping, the SAT depth and normal with the witnesses of
-/// penetration_witness; separated, the exact closest points, their distance (at least the
-/// SAT's separation) and, above 1e-3 tol, their direction as the normal. `closest(shift,
-/// on_a, on_b)` fills the closest points of A and of B translated by `*shift` (nullptr: not
-/// translated) and returns their squared distance. The SAT axis is cached in A's frame.
+/// `s` over the polytopes `pa`, `pb` and tolerance `tol`: overlapping, the SAT depth and
+/// normal with the witnesses of penetration_witness; separated, the exact closest points,
+/// and as the normal whichever of the SAT's axis, the closest points' direction and that
+/// direction taken across each edge direction the polytopes are farther apart along, the
+/// distance being that gap (so the gap along the reported normal is the distance, to
+/// rounding; any direction's gap is a lower bound of the distance, so the largest is the
+/// best). The SAT axis is exact where a face or two crossing edges are closest, the points'
+/// direction across the edge where a vertex meets an edge's inside, the direction itself
+/// where two vertices are: the rounding of the points (over their distance) then moves the
+/// gap only to second order. `closest(shift, on_a, on_b)` fills the closest points of A and of B translated by
+/// `*shift` (nullptr: not translated) and returns their squared distance. The SAT axis is
+/// cached in A's frame.
 template <class ClosestFn>
-DistanceResult sat_distance_result(const SmallSat& s, const Transform& pose_a, Real tol, PairCache* cache,
-                                   ClosestFn closest) {
+DistanceResult sat_distance_result(const SmallSat& s, const SmallPolytope& pa, const SmallPolytope& pb,
+                                   const Transform& pose_a, Real tol, PairCache* cache, ClosestFn closest) {
   DistanceResult r;
   r.method = PairMethod::Sat;
   r.normal = s.normal;
@@ -52,11 +76,22 @@ DistanceResult sat_distance_result(const SmallSat& s, const Transform& pose_a, R
     cache->valid = true;
   }
   if (s.separation > Real(0)) {
-    const Real dist = std::sqrt(closest(nullptr, r.point_a, r.point_b));
-    Vec3 unit;
-    Real len = Real(0);
-    if (dist > tol * Real(1e-3) && unit_and_length(r.point_b - r.point_a, unit, len)) r.normal = unit;
-    r.signed_distance = std::max(dist, s.separation);
+    static_cast<void>(closest(nullptr, r.point_a, r.point_b));
+    r.signed_distance = s.separation;
+    const auto consider = [&](const Vec3& direction) {
+      Vec3 unit;
+      Real len = Real(0);
+      if (!unit_and_length(direction, unit, len)) return;
+      const Real gap = gap_along(pa, pb, unit);
+      if (gap > r.signed_distance) {
+        r.signed_distance = gap;
+        r.normal = unit;
+      }
+    };
+    const Vec3 d = r.point_b - r.point_a;
+    consider(d);
+    for (int k = 0; k < pa.edge_count; ++k) consider(across_direction(d, pa.edges[k]));
+    for (int k = 0; k < pb.edge_count; ++k) consider(across_direction(d, pb.edges[k]));
   } else {
     r.signed_distance = s.separation;
     penetration_witness(
@@ -73,8 +108,8 @@ DistanceResult sat_distance_result(const SmallSat& s, const Transform& pose_a, R
 /// (`closest` is not called): the witness would not enter the manifold.
 template <class A, class B, class ClosestFn>
 ContactManifold sat_collide_result(const A& a, const Transform& pose_a, const B& b, const Transform& pose_b,
-                                   const SmallSat& s, Real tol, const PairRequest& request, PairCache* cache,
-                                   ClosestFn closest) {
+                                   const SmallSat& s, const SmallPolytope& pa, const SmallPolytope& pb, Real tol,
+                                   const PairRequest& request, PairCache* cache, ClosestFn closest) {
   if (s.separation <= Real(0) && s.separation <= request.contact_distance && request.max_contacts >= 2) {
     const SupportingFace fa = supporting_face(a, pose_a, s.normal);
     const SupportingFace fb = supporting_face(b, pose_b, -s.normal);
@@ -91,7 +126,8 @@ ContactManifold sat_collide_result(const A& a, const Transform& pose_a, const B&
       return m;
     }
   }
-  ContactManifold m = manifold_of(a, pose_a, b, pose_b, sat_distance_result(s, pose_a, tol, cache, closest), request);
+  ContactManifold m =
+      manifold_of(a, pose_a, b, pose_b, sat_distance_result(s, pa, pb, pose_a, tol, cache, closest), request);
   m.method = PairMethod::Sat;
   return m;
 }

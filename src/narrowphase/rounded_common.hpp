@@ -26,8 +26,17 @@ inline Vec3 unit_or(const Vec3& v, const Vec3& fallback, Real& length) {
   return fallback;
 }
 
-/// Largest |coordinate| of two positions and `size`: the scale of a pair for tolerances.
-inline Real pair_scale(const Transform& pose_a, const Transform& pose_b, Real size) {
+/// Core offsets no longer than this are rounding noise: 16 units in the last place of the
+/// pair's coordinates (`scale`, as pair_scale). Closer cores are taken as touching (core
+/// distance 0, along a normal from the shapes' geometry); a longer offset is the core
+/// distance, however far inside the tolerance, which sets the status, never the distance
+/// (snapping every offset within the tolerance to 0 had taken capsules 0.08 apart, far from
+/// the origin in float, for touching cores: 68 ulps of the pair's size off).
+inline Real offset_noise(Real scale) { return Real(16) * kEpsilon * scale; }
+
+/// Largest |coordinate| of two positions and `size`: the scale of a pair for tolerances
+/// (always inlined, as unit_and_length).
+[[gnu::always_inline]] inline Real pair_scale(const Transform& pose_a, const Transform& pose_b, Real size) {
   return std::max({max_abs_component(pose_a.position), max_abs_component(pose_b.position), size});
 }
 

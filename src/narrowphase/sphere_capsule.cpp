@@ -2,9 +2,10 @@
 //
 // Steps:
 //  1. the capsule's core segment in world; the closest point q of it to the sphere centre c;
-//  2. signed distance |q - c| - both radii, normal (q - c) / |q - c| (A to B); a centre on
-//     the core (within the pair's tolerance, where the direction of q - c is rounding noise)
-//     takes the capsule's local +x axis (perpendicular to the core);
+//  2. signed distance |q - c| - both radii, normal (q - c) / |q - c| (A to B), q - c taken
+//     exactly across the core where q is inside it (across_direction); a centre on the core
+//     (to rounding, offset_noise, where the direction of q - c is noise) takes the capsule's
+//     local +x axis (perpendicular to the core);
 //  3. witnesses: c and q pushed out along the normal by their radii.
 // Manifold: that single point; feature id: sphere surface against the capsule's bottom end
 // (vertex 0), top end (vertex 1) or side (edge 0). intersect compares the squared distance of
@@ -30,13 +31,16 @@ SphereCapsule sphere_capsule(const Sphere& a, const Transform& pose_a, const Cap
   const Vec3 p0 = pose_b.apply(b.bottom());
   const Vec3 p1 = pose_b.apply(b.top());
   const geometry::SegmentPoint q = geometry::closest_point_segment(c, p0, p1);
-  const Real tol =
-      resolve_tolerance(request, detail::pair_scale(pose_a, pose_b, a.radius() + b.radius() + b.half_length()));
+  const Real scale = detail::pair_scale(pose_a, pose_b, a.radius() + b.radius() + b.half_length());
+  const Real tol = resolve_tolerance(request, scale);
+  const Vec3 across = pose_b.apply_vector(Vec3(Real(1), Real(0), Real(0)));
+  // Inside the core the offset is exactly across it (the core's support has a kink there).
+  const Vec3 offset = q.t > Real(0) && q.t < Real(1) ? across_direction(q.point - c, p1 - p0) : q.point - c;
   Real length = Real(0);
-  Vec3 n = detail::unit_or(q.point - c, pose_b.apply_vector(Vec3(Real(1), Real(0), Real(0))), length);
-  if (!(length > tol)) {
-    // Centre on the core (within tolerance): the direction of q - c is rounding noise.
-    n = pose_b.apply_vector(Vec3(Real(1), Real(0), Real(0)));
+  Vec3 n = detail::unit_or(offset, across, length);
+  if (!(length > detail::offset_noise(scale))) {
+    // Centre on the core (to rounding): the direction of q - c is noise.
+    n = across;
     length = Real(0);
   }
   return {detail::rounded_result(c, q.point, n, length, a.radius(), b.radius(), tol), q.t};

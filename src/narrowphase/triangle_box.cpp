@@ -7,7 +7,9 @@
 //     largest separation <= 0 is minus the exact penetration depth.
 //  2. Separated: the exact distance is the smallest over the 12 box edges against the
 //     triangle and the 3 triangle vertices against the box (every closest feature pair of a
-//     box and a triangle involves one of them).
+//     box and a triangle involves one of them). The normal is the SAT axis or the closest
+//     points' direction, whichever the two are farther apart along, and the distance that
+//     gap (sat_distance_result): a short gap's direction is mostly rounding.
 //  3. Witnesses of a penetration: the closest features of the triangle and the box moved
 //     out by the depth along the normal (they touch there; polytope_pair_common.hpp), right
 //     for face, edge-edge and in-plane axes alike.
@@ -109,7 +111,7 @@ DistanceResult pair_distance(const Triangle& a, const Transform& pose_a, const B
                              const PairRequest& request, PairCache* cache) {
   if (!poses_in_range(pose_a, pose_b)) return invalid_distance();
   const TriangleBoxSat sat(a, pose_a, b, pose_b, request);
-  return sat_distance_result(sat.s, pose_a, sat.tol, cache, sat.closest(b, pose_b));
+  return sat_distance_result(sat.s, sat.pa, sat.pb, pose_a, sat.tol, cache, sat.closest(b, pose_b));
 }
 
 bool triangle_box_separated_beyond(const Triangle& a, const Transform& pose_a, const Box& b, const Transform& pose_b,
@@ -146,14 +148,16 @@ bool pair_intersect(const Triangle& a, const Transform& pose_a, const Box& b, co
     }
     return false;
   }
-  return in_contact(sat_distance_result(sat.s, pose_a, sat.tol, cache, sat.closest(b, pose_b)), request);
+  return in_contact(sat_distance_result(sat.s, sat.pa, sat.pb, pose_a, sat.tol, cache, sat.closest(b, pose_b)),
+                    request);
 }
 
 ContactManifold pair_collide(const Triangle& a, const Transform& pose_a, const Box& b, const Transform& pose_b,
                              const PairRequest& request, PairCache* cache) {
   if (!poses_in_range(pose_a, pose_b)) return invalid_manifold();
   const TriangleBoxSat sat(a, pose_a, b, pose_b, request);
-  return sat_collide_result(a, pose_a, b, pose_b, sat.s, sat.tol, request, cache, sat.closest(b, pose_b));
+  return sat_collide_result(a, pose_a, b, pose_b, sat.s, sat.pa, sat.pb, sat.tol, request, cache,
+                            sat.closest(b, pose_b));
 }
 
 }  // namespace proxima::narrow

@@ -8,8 +8,8 @@
 //     from the closest feature's geometry (feature_offset: height over the plane along the
 //     unit normal, plus the offset beyond an edge along its in-plane normal), not from the
 //     difference of the nearby points c and q, whose rounding tilts a short offset;
-//  3. a centre on the triangle (within the pair's tolerance, where the direction of c - q is
-//     rounding noise) takes the triangle's normal (b - a) x (c - a) turned to the centre's side
+//  3. a centre on the triangle (to rounding, offset_noise, where the direction of c - q is
+//     noise) takes the triangle's normal (b - a) x (c - a) turned to the centre's side
 //     (+normal when exactly in the plane), depth r.
 // Manifold: that single point; feature id: triangle vertex / edge / face against the sphere
 // surface.
@@ -59,13 +59,14 @@ TriangleSphere triangle_sphere(const Triangle& a, const Transform& pose_a, const
   const Vec3 c = pose_a.inverse_apply(pose_b.position);
   const geometry::TrianglePoint q = geometry::closest_point_triangle(c, a.a(), a.b(), a.c());
   const Real size = geometry::detail::magnitude({a.a(), a.b(), a.c()});
-  const Real tol = resolve_tolerance(request, detail::pair_scale(pose_a, pose_b, size + b.radius()));
+  const Real scale = detail::pair_scale(pose_a, pose_b, size + b.radius());
+  const Real tol = resolve_tolerance(request, scale);
   Real length = Real(0);
   const Vec3 offset = feature_offset(a, q.feature, c, q.point);
   Vec3 n = detail::unit_or(offset, a.normal(), length);
   const Vec3 on_triangle = c - offset;
-  if (!(length > tol)) {
-    // Centre on the triangle (within tolerance): the normal, turned to the centre's side.
+  if (!(length > detail::offset_noise(scale))) {
+    // Centre on the triangle (to rounding): the normal, turned to the centre's side.
     n = glm::dot(c - a.a(), a.normal()) < Real(0) ? -a.normal() : a.normal();
     length = Real(0);
   }

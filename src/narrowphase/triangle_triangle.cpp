@@ -5,7 +5,9 @@
 //  1. SAT over both normals, the in-plane edge normals of both (which separate coplanar
 //     pairs) and the 9 edge-pair cross products (small_polytope_sat.hpp); the largest
 //     separation <= 0 is minus the exact penetration depth.
-//  2. Separated: the exact closest points (geometry::closest_points_triangle_triangle).
+//  2. Separated: the exact closest points (geometry::closest_points_triangle_triangle); the
+//     normal is the SAT axis or their direction, whichever the triangles are farther apart
+//     along, and the distance that gap (polytope_pair_common.hpp).
 //  3. Witnesses of a penetration: the closest points of A and of B moved out by the depth
 //     along the normal (they touch there; polytope_pair_common.hpp), right for face,
 //     edge-edge and in-plane axes alike.
@@ -33,7 +35,7 @@ DistanceResult pair_distance(const Triangle& a, const Transform& pose_a, const T
     scale = std::max({scale, max_abs_component(pa.vertices[i]), max_abs_component(pb.vertices[i])});
   }
   const Real tol = resolve_tolerance(request, scale);
-  return sat_distance_result(s, pose_a, tol, cache, [&](const Vec3* shift, Vec3& on_a, Vec3& on_b) {
+  return sat_distance_result(s, pa, pb, pose_a, tol, cache, [&](const Vec3* shift, Vec3& on_a, Vec3& on_b) {
     std::array<Vec3, 3> q{pb.vertices[0], pb.vertices[1], pb.vertices[2]};
     if (shift != nullptr) {
       for (Vec3& v : q) v += *shift;

@@ -22,8 +22,6 @@ using validate::is_unit;
 
 namespace {
 
-constexpr std::uint32_t kNone = ObjectHandle::kNoObject;
-
 std::optional<Error> check_filter(const CollisionFilter& filter, const std::string& field) {
   if (filter.layer == 0)
     return make_error(ErrorCode::InvalidArgument, field + ".layer", "has no bits: it would never collide");
@@ -152,7 +150,7 @@ void CollisionWorld::Impl::reinsert_proxy(std::uint32_t r) {
 }
 
 void CollisionWorld::Impl::propagate_pose(std::uint32_t i) {
-  for (std::uint32_t c = slots[i].first_child; c != kNone; c = slots[c].next_sibling) {
+  for (std::uint32_t c = slots[i].first_child; c != kNoSlot; c = slots[c].next_sibling) {
     slots[c].pose = slots[i].pose * local_poses.at(c);
     refresh_box(c);
     mark_moved(c);
@@ -277,12 +275,12 @@ namespace {
 /// Unlinks object i from its parent's child list (no-op for a root).
 void unlink_from_parent(CollisionWorld::Impl& w, std::uint32_t i) {
   const std::uint32_t p = w.slots[i].parent;
-  if (p == kNone) return;
+  if (p == kNoSlot) return;
   std::uint32_t* link = &w.slots[p].first_child;
   while (*link != i) link = &w.slots[*link].next_sibling;
   *link = w.slots[i].next_sibling;
-  w.slots[i].parent = kNone;
-  w.slots[i].next_sibling = kNone;
+  w.slots[i].parent = kNoSlot;
+  w.slots[i].next_sibling = kNoSlot;
   w.local_poses.erase(i);
 }
 
@@ -331,7 +329,7 @@ namespace {
 void place(CollisionWorld::Impl& w, std::uint32_t i, const Transform& pose) {
   ObjectSlot& s = w.slots[i];
   s.pose = pose;
-  if (s.parent != kNone) w.local_poses[i] = relative(w.slots[s.parent].pose, pose);
+  if (s.parent != kNoSlot) w.local_poses[i] = relative(w.slots[s.parent].pose, pose);
   w.refresh_box(i);
   w.mark_moved(i);
   w.propagate_pose(i);
@@ -372,7 +370,9 @@ namespace {
 /// every entry applied in order on the calling thread (attached ones through place(), which
 /// carries their trees); the moved trees' roots into w.move_roots.
 void place_all(CollisionWorld::Impl& w, std::span<const ObjectMove> moves, Executor& executor) {
-  const auto simple = [&](std::uint32_t i) { return w.slots[i].parent == kNone && w.slots[i].first_child == kNone; };
+  const auto simple = [&](std::uint32_t i) {
+    return w.slots[i].parent == kNoSlot && w.slots[i].first_child == kNoSlot;
+  };
   std::vector<Aabb>& boxes = w.move_boxes;
   boxes.resize(moves.size());
   const Real pad = w.settings.contact_distance * Real(0.5);
@@ -429,7 +429,7 @@ std::optional<Error> CollisionWorld::set_geometry(ObjectHandle object, const Sha
   if (auto e = check_not_in_pre_contact(w)) return e;
   ObjectSlot* s = w.find(object);
   if (s == nullptr) return stale("object");
-  if (auto e = check_geometry(geometry, s->kind, s->parent != kNone, "geometry")) return e;
+  if (auto e = check_geometry(geometry, s->kind, s->parent != kNoSlot, "geometry")) return e;
   s->geometry = geometry;
   s->geometry_changed = true;
   measure_geometry(*s);
@@ -457,7 +457,7 @@ std::optional<Error> CollisionWorld::set_kind(ObjectHandle object, ObjectKind ki
   if (auto e = check_not_in_pre_contact(w)) return e;
   ObjectSlot* s = w.find(object);
   if (s == nullptr) return stale("object");
-  if (s->parent != kNone)
+  if (s->parent != kNoSlot)
     return make_error(ErrorCode::InvalidArgument, "kind", "an attached object takes the kind of its tree's root");
   std::optional<Error> bad;
   w.for_each_member(object.index, [&](std::uint32_t m) {
@@ -493,7 +493,7 @@ std::optional<Error> CollisionWorld::attach(ObjectHandle object, ObjectHandle pa
   const std::uint32_t i = object.index;
   const std::uint32_t old_root = w.slots[i].root;
   if (!parent.is_set()) {  // detach, keeping the world pose
-    if (w.slots[i].parent == kNone) return std::nullopt;
+    if (w.slots[i].parent == kNoSlot) return std::nullopt;
     unlink_from_parent(w, i);
     w.for_each_member(i, [&](std::uint32_t m) { w.slots[m].root = i; });
     w.reinsert_proxy(old_root);
@@ -501,7 +501,7 @@ std::optional<Error> CollisionWorld::attach(ObjectHandle object, ObjectHandle pa
     return std::nullopt;
   }
   if (w.find(parent) == nullptr) return stale("parent");
-  for (std::uint32_t a = parent.index; a != kNone; a = w.slots[a].parent)
+  for (std::uint32_t a = parent.index; a != kNoSlot; a = w.slots[a].parent)
     if (a == i)
       return make_error(ErrorCode::InvalidArgument, "parent", "is the object itself or one of its descendants");
   if (auto e = check_pose(local_pose, "local_pose")) return e;
@@ -512,7 +512,7 @@ std::optional<Error> CollisionWorld::attach(ObjectHandle object, ObjectHandle pa
   });
   if (bad) return bad;
 
-  if (w.slots[i].parent == kNone)
+  if (w.slots[i].parent == kNoSlot)
     w.broadphase->remove(i);
   else
     unlink_from_parent(w, i);
@@ -584,7 +584,7 @@ std::optional<ObjectDesc> CollisionWorld::object(ObjectHandle object) const {
   d.sensor = s->sensor;
   d.ccd = s->ccd;
   d.user_data = s->user_data;
-  if (s->parent != kNone) {
+  if (s->parent != kNoSlot) {
     d.parent = impl_->slots[s->parent].handle(s->parent);
     d.local_pose = impl_->local_poses.at(object.index);
   }

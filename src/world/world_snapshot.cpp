@@ -38,7 +38,6 @@ namespace {
 using Impl = CollisionWorld::Impl;
 constexpr char kMagic[] = "PROXWRLD";
 constexpr std::uint32_t kVersion = 1;
-constexpr std::uint32_t kNone = ObjectHandle::kNoObject;
 
 // ---- writing -----------------------------------------------------------------------------
 
@@ -103,7 +102,7 @@ class Writer : public SnapshotWriter, public RealSequence<Writer> {
   /// Writes the reference number of already-written shared data (true), or marks it new.
   bool shared(const void* data) {
     const auto [it, fresh] = written_.emplace(data, static_cast<std::uint32_t>(written_.size()));
-    u32(fresh ? kNone : it->second);
+    u32(fresh ? kNoSlot : it->second);
     return !fresh;
   }
 
@@ -174,7 +173,7 @@ std::optional<Error> CollisionWorld::save(std::ostream& out) const {
     w.u32(static_cast<std::uint32_t>(o.filter.group));
     w.u64(o.user_data);
     for (std::uint32_t link : {o.parent, o.first_child, o.next_sibling, o.root}) w.u32(link);
-    if (o.parent != kNone) w.pose(m.local_poses.at(i));
+    if (o.parent != kNoSlot) w.pose(m.local_poses.at(i));
     w.u8(static_cast<std::uint8_t>(o.kind));
     w.u8(static_cast<std::uint8_t>(o.ccd));
     w.u8(static_cast<std::uint8_t>((o.sensor ? 1 : 0) | (o.moved ? 2 : 0) | (o.geometry_changed ? 4 : 0)));
@@ -242,9 +241,9 @@ class Reader : public SnapshotReader {
     return t;
   }
   /// A geometry (field names the object for errors); `hull_ref` gets the shared-hull number
-  /// of a top-level hull (kNone otherwise).
+  /// of a top-level hull (kNoSlot otherwise).
   Shape geometry(const std::string& field, std::uint32_t& hull_ref, int depth = 0) {
-    hull_ref = kNone;
+    hull_ref = kNoSlot;
     const std::uint8_t tag = u8();
     if (!ok()) return *Point::create();
     if (tag >= kShapeTypeCount || depth > 32) {
@@ -302,17 +301,17 @@ class Reader : public SnapshotReader {
     return *r;
   }
 
-  /// A reference to shared data already read, or kNone for new data.
+  /// A reference to shared data already read, or kNoSlot for new data.
   std::uint32_t reference(const std::string& field) {
     const std::uint32_t ref = u32();
-    if (ok() && ref != kNone && ref >= shared_.size()) fail(field, "refers to shared geometry not yet read");
+    if (ok() && ref != kNoSlot && ref >= shared_.size()) fail(field, "refers to shared geometry not yet read");
     return ref;
   }
 
   Shape hull(const std::string& field, std::uint32_t& hull_ref) {
     const std::uint32_t ref = reference(field);
     if (!ok()) return *Point::create();
-    if (ref != kNone) {
+    if (ref != kNoSlot) {
       if (!std::holds_alternative<ConvexHull>(shared_[ref])) fail(field, "refers to shared geometry of another kind");
       hull_ref = ref;
       return shared_[ref];
@@ -339,7 +338,7 @@ class Reader : public SnapshotReader {
   Shape mesh(const std::string& field) {
     const std::uint32_t ref = reference(field);
     if (!ok()) return *Point::create();
-    if (ref != kNone) {
+    if (ref != kNoSlot) {
       if (!std::holds_alternative<TriangleMesh>(shared_[ref])) fail(field, "refers to shared geometry of another kind");
       return shared_[ref];
     }
@@ -450,21 +449,21 @@ bool links_consistent(const Impl& m) {
   for (std::uint32_t i = 0; i < n; ++i) {
     const ObjectSlot& s = m.slots[i];
     if (!s.alive) continue;
-    if (s.parent != kNone && !live(s.parent)) return false;
+    if (s.parent != kNoSlot && !live(s.parent)) return false;
     std::uint32_t top = i;
-    for (std::uint32_t steps = 0; m.slots[top].parent != kNone; ++steps) {
+    for (std::uint32_t steps = 0; m.slots[top].parent != kNoSlot; ++steps) {
       if (steps > n) return false;  // a cycle
       top = m.slots[top].parent;
     }
     if (s.root != top) return false;
     std::uint32_t children = 0;
-    for (std::uint32_t c = s.first_child; c != kNone; c = m.slots[c].next_sibling) {
+    for (std::uint32_t c = s.first_child; c != kNoSlot; c = m.slots[c].next_sibling) {
       if (!live(c) || m.slots[c].parent != i || ++children > n) return false;
       ++seen_as_child[c];
     }
   }
   for (std::uint32_t i = 0; i < n; ++i)
-    if (live(i) && (m.slots[i].parent != kNone) != (seen_as_child[i] == 1)) return false;
+    if (live(i) && (m.slots[i].parent != kNoSlot) != (seen_as_child[i] == 1)) return false;
   return true;
 }
 
@@ -483,7 +482,7 @@ Result<CollisionWorld> CollisionWorld::load(std::istream& in) {
     ObjectSlot s;
     s.generation = r.u32();
     s.alive = r.u8() != 0;
-    hull_refs.push_back(kNone);
+    hull_refs.push_back(kNoSlot);
     if (s.alive) {
       const std::string field = "snapshot.objects[" + std::to_string(i) + "]";
       s.geometry = r.geometry(field + ".geometry", hull_refs.back());
@@ -497,7 +496,7 @@ Result<CollisionWorld> CollisionWorld::load(std::istream& in) {
       s.first_child = r.u32();
       s.next_sibling = r.u32();
       s.root = r.u32();
-      if (s.parent != kNone) m.local_poses[i] = r.pose();
+      if (s.parent != kNoSlot) m.local_poses[i] = r.pose();
       const std::uint8_t kind = r.u8(), ccd = r.u8(), bits = r.u8();
       if (kind > 1 || ccd > 2) r.fail(field, "unknown kind or continuous-detection mode");
       s.kind = static_cast<ObjectKind>(kind);
@@ -510,7 +509,7 @@ Result<CollisionWorld> CollisionWorld::load(std::istream& in) {
       if (r.ok() && (!poses_ok || s.filter.layer == 0 || s.filter.mask == 0))
         r.fail(field, "a pose that is not finite and unit, or a filter with no bits");
       if (r.ok() && std::holds_alternative<HalfSpace>(s.geometry) &&
-          (s.kind != ObjectKind::Static || s.parent != kNone))
+          (s.kind != ObjectKind::Static || s.parent != kNoSlot))
         r.fail(field, "a half-space that is not a static, unattached object");
       ++m.live;
     }
@@ -589,9 +588,9 @@ Result<CollisionWorld> CollisionWorld::load(std::istream& in) {
     m.refresh_box(i);
   }
   for (std::uint32_t i = 0; i < slot_count; ++i)
-    if (m.slots[i].alive && m.slots[i].parent == kNone) m.reinsert_proxy(i);
+    if (m.slots[i].alive && m.slots[i].parent == kNoSlot) m.reinsert_proxy(i);
   auto remap = [&](std::uint32_t slot, std::uint32_t& hint) {
-    if (hull_refs[slot] == kNone) return;
+    if (hull_refs[slot] == kNoSlot) return;
     const std::vector<std::uint32_t>& order = r.hull_order(hull_refs[slot]);
     if (hint < order.size()) hint = order[hint];
   };

@@ -21,6 +21,9 @@
 
 namespace proxima {
 
+/// A slot index naming no object: no parent, no first child, no next sibling.
+inline constexpr std::uint32_t kNoSlot = ObjectHandle::kNoObject;
+
 /// One object (or a free slot: alive false).
 struct ObjectSlot {
   Shape geometry = *Point::create();

@@ -74,8 +74,10 @@ inline Real max_abs_component(const Vec3& v) { return std::max({std::abs(v.x), s
 
 /// Splits `v` into a unit vector and its length without overflow or underflow (v is
 /// divided by its largest component before the square root). Returns false, leaving
-/// `unit` and `length` untouched, when v is zero or not finite.
-inline bool unit_and_length(const Vec3& v, Vec3& unit, Real& length) {
+/// `unit` and `length` untouched, when v is zero or not finite. Always inlined: every closed
+/// form calls it once, and in a large translation unit GCC's growth limits had left it a
+/// call (25 more instructions on a sphere pair's distance of about 350).
+[[gnu::always_inline]] inline bool unit_and_length(const Vec3& v, Vec3& unit, Real& length) {
   if (!is_finite(v)) return false;
   const Real m = max_abs_component(v);
   if (!(m > Real(0))) return false;
@@ -84,6 +86,18 @@ inline bool unit_and_length(const Vec3& v, Vec3& unit, Real& length) {
   unit = w / l;
   length = m * l;
   return true;
+}
+
+/// The part of `v` across the direction `d` (any length): v less its component along d,
+/// taken out twice (one pass leaves a rounding residue along d, of the size of v's rounding
+/// over |v|). `v` itself when d is zero or not finite. The normal of a point's offset from
+/// its closest point inside a segment: exact across the segment, along which the segment's
+/// support has a kink, so that a tilt there would move the gap to first order.
+inline Vec3 across_direction(const Vec3& v, const Vec3& d) {
+  const Real dd = glm::dot(d, d);
+  if (!(dd > Real(0)) || !std::isfinite(dd)) return v;
+  const Vec3 once = v - (glm::dot(v, d) / dd) * d;
+  return once - (glm::dot(once, d) / dd) * d;
 }
 
 /// Component-wise minimum / maximum of two vectors.
