@@ -895,16 +895,22 @@ void refine_to_precision(const B& b, PairSetup<A, B>& setup, const PairRequest& 
     ans.iterations += f.iterations;
     const Real sd = -(f.depth + setup.radius_a + setup.radius_b);
     // A polish, not another minimum: within sqrt(eps) of the size of the stage's answer.
-    // Beyond half the boolean query's band of it (boolean_band: intersect trusts GJK outside
-    // it, so a larger move would split the touching rule) only for a gap whose refined
-    // witnesses meet the line along its normal (a point of each shape with a - b = h n: the
-    // distance both ways). A refinement stopped on a kink of a box against a cone's rim had
-    // moved a touching pair 1e-8 deep.
+    // Near the contact threshold, beyond half the boolean query's band of it (boolean_band:
+    // intersect trusts GJK outside it, so a larger move would split the touching rule) only
+    // for a gap whose refined witnesses meet the line along its normal (a point of each shape
+    // with a - b = h n: the distance both ways); a refinement stopped on a kink of a box
+    // against a cone's rim had moved a touching pair 1e-8 deep. Where both answers lie on
+    // the same side of the threshold beyond the band, no query's decision can change, and
+    // the refined answer is the overlap along its own normal (a box 0.04 deep in a cylinder:
+    // EPA's lower bound 5e-11 short, the refinement, stopped on a kink, 6e-13 over).
     const Real moved = std::abs(sd - ans.signed_distance);
     const bool met = f.witness_gap <= setup.tolerance;
     const bool certified = met && sd > Real(0) && ans.signed_distance > Real(0);
-    if (!(moved <= kSqrtEpsilon * setup.scale) || (!certified && !(moved <= Real(0.5) * boolean_band(setup.tolerance))))
-      return;
+    const Real reach = contact_reach(request.contact_distance, setup.tolerance);
+    const Real band = boolean_band(setup.tolerance);
+    const bool clear = (sd > reach + band && ans.signed_distance > reach + band) ||
+                       (sd < reach - band && ans.signed_distance < reach - band);
+    if (!(moved <= kSqrtEpsilon * setup.scale) || (!certified && !clear && !(moved <= Real(0.5) * band))) return;
     // The refinement's witnesses where its feature search met the line along the normal;
     // else (a cap's disc, whose rim the tangent-plane search approaches linearly) the stage's
     // witness on A and B's placed along the refined normal, when that lies on B within
