@@ -436,24 +436,13 @@ struct SeparatedAnswer {
 
 SeparatedAnswer separated_answer(const BoxPair& p, const BoxSat& s) {
   SeparatedAnswer r{closest_features(p, s), axis_normal(p, s.max_axis), s.max_sep};
-  const auto consider = [&](const Vec3& direction) {
-    Vec3 unit;
-    Real len = Real(0);
-    if (!unit_and_length(direction, unit, len)) return;
-    const Real gap = gap_along(p, unit);
-    if (gap > r.distance) {
-      r.normal = unit;
-      r.distance = gap;
-    }
-  };
-  const Vec3 d = r.f.on_b - r.f.on_a;
-  consider(d);
-  for (int k = 0; k < 3; ++k) {
-    Vec3 a_edge(Real(0));
-    a_edge[k] = Real(1);
-    consider(across_direction(d, a_edge));
-    consider(across_direction(d, b_axis(p, k)));
-  }
+  // The edge directions, A's and B's axes in turn.
+  const Vec3 x(Real(1), Real(0), Real(0));
+  const Vec3 y(Real(0), Real(1), Real(0));
+  const Vec3 z(Real(0), Real(0), Real(1));
+  const std::array<Vec3, 6> edges{x, b_axis(p, 0), y, b_axis(p, 1), z, b_axis(p, 2)};
+  widest_gap_direction(
+      r.f.on_b - r.f.on_a, edges, [&](const Vec3& n) { return gap_along(p, n); }, r.normal, r.distance);
   return r;
 }
 

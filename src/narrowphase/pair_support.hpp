@@ -42,6 +42,28 @@ inline bool poses_in_range(const Transform& pose_a, const Transform& pose_b) {
 }
 
 /// The defined answer for poses out of range: separated by +infinity, status InvalidInput.
+/// Separated polytopes: the closest points' offset `d` (A to B) or that offset taken across
+/// one of the `edges` directions, whichever the shapes are farther apart along by `gap`
+/// (gap(unit direction) -> the gap along it, a lower bound of the distance), replaces
+/// `normal` and `distance` when it beats them (the caller starts them at the SAT's axis and
+/// separation). Any direction's gap bounds the distance from below, so the largest is the
+/// best; across an edge the direction is exact where a vertex meets the edge's inside.
+template <class GapFn, class Edges>
+void widest_gap_direction(const Vec3& d, const Edges& edges, GapFn gap, Vec3& normal, Real& distance) {
+  const auto consider = [&](const Vec3& direction) {
+    Vec3 unit;
+    Real len = Real(0);
+    if (!unit_and_length(direction, unit, len)) return;
+    const Real g = gap(unit);
+    if (g > distance) {
+      distance = g;
+      normal = unit;
+    }
+  };
+  consider(d);
+  for (const Vec3& e : edges) consider(across_direction(d, e));
+}
+
 inline DistanceResult invalid_distance() {
   DistanceResult r;
   r.signed_distance = std::numeric_limits<Real>::infinity();

@@ -11,7 +11,9 @@
 /// flat shape). Taking the deepest clipped point instead is only right for face axes.
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <span>
 
 #include "pair_support.hpp"
 #include "pairs_polyhedral.hpp"
@@ -62,9 +64,9 @@ inline Real gap_along(const SmallPolytope& pa, const SmallPolytope& pb, const Ve
 /// best). The SAT axis is exact where a face or two crossing edges are closest, the points'
 /// direction across the edge where a vertex meets an edge's inside, the direction itself
 /// where two vertices are: the rounding of the points (over their distance) then moves the
-/// gap only to second order. `closest(shift, on_a, on_b)` fills the closest points of A and of B translated by
-/// `*shift` (nullptr: not translated) and returns their squared distance. The SAT axis is
-/// cached in A's frame.
+/// gap only to second order (widest_gap_direction). `closest(shift, on_a, on_b)` fills the
+/// closest points of A and of B translated by `*shift` (nullptr: not translated) and returns
+/// their squared distance. The SAT axis is cached in A's frame.
 template <class ClosestFn>
 DistanceResult sat_distance_result(const SmallSat& s, const SmallPolytope& pa, const SmallPolytope& pb,
                                    const Transform& pose_a, Real tol, PairCache* cache, ClosestFn closest) {
@@ -78,20 +80,13 @@ DistanceResult sat_distance_result(const SmallSat& s, const SmallPolytope& pa, c
   if (s.separation > Real(0)) {
     static_cast<void>(closest(nullptr, r.point_a, r.point_b));
     r.signed_distance = s.separation;
-    const auto consider = [&](const Vec3& direction) {
-      Vec3 unit;
-      Real len = Real(0);
-      if (!unit_and_length(direction, unit, len)) return;
-      const Real gap = gap_along(pa, pb, unit);
-      if (gap > r.signed_distance) {
-        r.signed_distance = gap;
-        r.normal = unit;
-      }
-    };
+    const auto gap = [&](const Vec3& n) { return gap_along(pa, pb, n); };
     const Vec3 d = r.point_b - r.point_a;
-    consider(d);
-    for (int k = 0; k < pa.edge_count; ++k) consider(across_direction(d, pa.edges[k]));
-    for (int k = 0; k < pb.edge_count; ++k) consider(across_direction(d, pb.edges[k]));
+    std::array<Vec3, 6> edges{};  // A's edge directions, then B's
+    std::size_t count = 0;
+    for (int k = 0; k < pa.edge_count; ++k) edges[count++] = pa.edges[k];
+    for (int k = 0; k < pb.edge_count; ++k) edges[count++] = pb.edges[k];
+    widest_gap_direction(d, std::span<const Vec3>(edges.data(), count), gap, r.normal, r.signed_distance);
   } else {
     r.signed_distance = s.separation;
     penetration_witness(
