@@ -65,8 +65,8 @@ inline Real gap_along(const SmallPolytope& pa, const SmallPolytope& pb, const Ve
 /// direction across the edge where a vertex meets an edge's inside, the direction itself
 /// where two vertices are: the rounding of the points (over their distance) then moves the
 /// gap only to second order (widest_gap_direction). `closest(shift, on_a, on_b)` fills the
-/// closest points of A and of B translated by `*shift` (nullptr: not translated) and returns
-/// their squared distance. The SAT axis is cached in A's frame.
+/// closest points of A and of B translated by `*shift` (nullptr: not translated). The SAT
+/// axis is cached in A's frame.
 template <class ClosestFn>
 DistanceResult sat_distance_result(const SmallSat& s, const SmallPolytope& pa, const SmallPolytope& pb,
                                    const Transform& pose_a, Real tol, PairCache* cache, ClosestFn closest) {
@@ -78,7 +78,7 @@ DistanceResult sat_distance_result(const SmallSat& s, const SmallPolytope& pa, c
     cache->valid = true;
   }
   if (s.separation > Real(0)) {
-    static_cast<void>(closest(nullptr, r.point_a, r.point_b));
+    closest(nullptr, r.point_a, r.point_b);
     r.signed_distance = s.separation;
     const auto gap = [&](const Vec3& n) { return gap_along(pa, pb, n); };
     const Vec3 d = r.point_b - r.point_a;
@@ -89,8 +89,7 @@ DistanceResult sat_distance_result(const SmallSat& s, const SmallPolytope& pa, c
     widest_gap_direction(d, std::span<const Vec3>(edges.data(), count), gap, r.normal, r.signed_distance);
   } else {
     r.signed_distance = s.separation;
-    penetration_witness(
-        r, [&](const Vec3& shift, Vec3& on_a, Vec3& on_b) { static_cast<void>(closest(&shift, on_a, on_b)); });
+    penetration_witness(r, [&](const Vec3& shift, Vec3& on_a, Vec3& on_b) { closest(&shift, on_a, on_b); });
   }
   r.status = status_from_distance(r.signed_distance, tol);
   r.tolerance = tol;

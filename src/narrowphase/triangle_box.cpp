@@ -45,8 +45,8 @@ void box_polytope(const Box& b, const Transform& pose, SmallPolytope& p) {
 
 // Exact closest points of a triangle (world vertices t) and a box (corners c, pose with
 // position `centre` and axes m): every closest pair involves a box edge against the
-// triangle or a triangle vertex against the box. Returns the squared distance.
-Real closest_triangle_box(const std::array<Vec3, 8>& c, const Vec3* t, const Vec3& centre, const Mat3& m,
+// triangle or a triangle vertex against the box.
+void closest_triangle_box(const std::array<Vec3, 8>& c, const Vec3* t, const Vec3& centre, const Mat3& m,
                           const Vec3& half_extents, Vec3& on_tri, Vec3& on_box) {
   Real best = std::numeric_limits<Real>::infinity();
   for (int k = 0; k < 8; ++k) {
@@ -70,7 +70,6 @@ Real closest_triangle_box(const std::array<Vec3, 8>& c, const Vec3* t, const Vec
       on_box = q;
     }
   }
-  return best;
 }
 
 // The pair's polytopes, SAT, tolerance and closest-features function (shared by
@@ -96,11 +95,12 @@ struct TriangleBoxSat {
     return [this, &b, &pose_b](const Vec3* shift, Vec3& on_a, Vec3& on_b) {
       const Mat3 m = pose_b.rotation_matrix();
       if (shift == nullptr) {
-        return closest_triangle_box(pb.vertices, pa.vertices.data(), pose_b.position, m, b.half_extents(), on_a, on_b);
+        closest_triangle_box(pb.vertices, pa.vertices.data(), pose_b.position, m, b.half_extents(), on_a, on_b);
+        return;
       }
       std::array<Vec3, 8> moved;
       for (std::size_t k = 0; k < 8; ++k) moved[k] = pb.vertices[k] + *shift;
-      return closest_triangle_box(moved, pa.vertices.data(), pose_b.position + *shift, m, b.half_extents(), on_a, on_b);
+      closest_triangle_box(moved, pa.vertices.data(), pose_b.position + *shift, m, b.half_extents(), on_a, on_b);
     };
   }
 };

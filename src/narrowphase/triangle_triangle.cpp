@@ -44,7 +44,6 @@ DistanceResult pair_distance(const Triangle& a, const Transform& pose_a, const T
         geometry::closest_points_triangle_triangle(pa.vertices[0], pa.vertices[1], pa.vertices[2], q[0], q[1], q[2]);
     on_a = cp.on_a;
     on_b = cp.on_b;
-    return cp.distance_squared;
   });
 }
 

@@ -42,6 +42,32 @@ inline std::vector<ShapeType> all_shape_types() {
   return t;
 }
 
+/// An ordered pair of shape types: the parameter of the suites run once per pair.
+struct TypePair {
+  ShapeType a;
+  ShapeType b;
+};
+
+/// A per-pair test's name, "<a>_<b>".
+inline std::string type_pair_name(const testing::TestParamInfo<TypePair>& info) {
+  return std::string(to_string(info.param.a)) + "_" + to_string(info.param.b);
+}
+
+/// Every ordered pair of the first `count` shape types (ShapeType order) that `keep(a, b)`
+/// accepts.
+template <class Keep>
+std::vector<TypePair> type_pairs(int count, Keep keep) {
+  std::vector<TypePair> pairs;
+  for (int i = 0; i < count; ++i) {
+    for (int j = 0; j < count; ++j) {
+      const auto a = static_cast<ShapeType>(i);
+      const auto b = static_cast<ShapeType>(j);
+      if (keep(a, b)) pairs.push_back({a, b});
+    }
+  }
+  return pairs;
+}
+
 /// narrow::mesh_mesh_collide_all into a vector (appended).
 inline void mesh_mesh_contacts(const TriangleMesh& a, const Transform& pose_a, const TriangleMesh& b,
                                const Transform& pose_b, const PairRequest& request, std::vector<ContactPoint>& out,

@@ -25,24 +25,13 @@
 namespace proxima {
 namespace test_exactness {
 
-struct PairParam {
-  ShapeType a;
-  ShapeType b;
-};
-
-std::string pair_name(const testing::TestParamInfo<PairParam>& info) {
-  return std::string(to_string(info.param.a)) + "_" + to_string(info.param.b);
-}
+using test::TypePair;
 
 /// Every ordered pair of bounded convex shape types (half-spaces have no bounded support).
-std::vector<PairParam> bounded_pairs() {
-  std::vector<PairParam> pairs;
-  for (ShapeType a : test::all_shape_types()) {
-    for (ShapeType b : test::all_shape_types()) {
-      if (a != ShapeType::HalfSpace && b != ShapeType::HalfSpace) pairs.push_back({a, b});
-    }
-  }
-  return pairs;
+std::vector<TypePair> bounded_pairs() {
+  return test::type_pairs(kConvexShapeTypeCount, [](ShapeType a, ShapeType b) {
+    return a != ShapeType::HalfSpace && b != ShapeType::HalfSpace;
+  });
 }
 
 constexpr double kUlpsAllowed = test::kFloatBuild ? 64.0 : 8.0;
@@ -61,7 +50,7 @@ struct Case {
 
 /// Draws case `i` of a pair: sizes log-uniform in [1e-3, 1e3], both shapes moved by one
 /// offset up to 1e4 (half the cases near the origin).
-Case draw(test::Random& rng, const PairParam& p, int i) {
+Case draw(test::Random& rng, const TypePair& p, int i) {
   Case c;
   const Real s = test::log_uniform(rng, Real(1e-3), Real(1e3));
   const Vec3 offset = i % 2 == 0 ? Vec3(Real(0)) : rng.in_ball(Real(1e4));
@@ -85,7 +74,7 @@ std::string describe(const Case& c) {
   return o.str();
 }
 
-class Exactness : public testing::TestWithParam<PairParam> {};
+class Exactness : public testing::TestWithParam<TypePair> {};
 
 #ifdef NDEBUG
 constexpr int kCases = 200;
@@ -93,12 +82,10 @@ constexpr int kCases = 200;
 constexpr int kCases = 40;
 #endif
 
-std::uint64_t seed_of(const PairParam& p) {
-  return 0xe4ac7ull ^ (std::uint64_t(p.a) * 977u + std::uint64_t(p.b) * 31u);
-}
+std::uint64_t seed_of(const TypePair& p) { return 0xe4ac7ull ^ (std::uint64_t(p.a) * 977u + std::uint64_t(p.b) * 31u); }
 
 TEST_P(Exactness, OverlapAlongTheNormalIsTheSignedDistance) {
-  const PairParam p = GetParam();
+  const TypePair p = GetParam();
   test::Random rng(seed_of(p));
   const int cases = test::sweep_size(kCases);
   double worst = 0;
@@ -121,7 +108,7 @@ TEST_P(Exactness, OverlapAlongTheNormalIsTheSignedDistance) {
 }
 
 TEST_P(Exactness, NormalIsTheLongDoubleMinimumsWhereThatIsPinned) {
-  const PairParam p = GetParam();
+  const TypePair p = GetParam();
   test::Random rng(seed_of(p) + 1);
   const int cases = test::sweep_size(kCases);
   int pinned = 0;
@@ -149,7 +136,7 @@ TEST_P(Exactness, NormalIsTheLongDoubleMinimumsWhereThatIsPinned) {
   EXPECT_LE(worst, 1.0) << pinned << " pinned cases; worst (angle over allowed): " << worst_case;
 }
 
-INSTANTIATE_TEST_SUITE_P(BoundedPairs, Exactness, testing::ValuesIn(bounded_pairs()), pair_name);
+INSTANTIATE_TEST_SUITE_P(BoundedPairs, Exactness, testing::ValuesIn(bounded_pairs()), test::type_pair_name);
 
 }  // namespace test_exactness
 }  // namespace proxima

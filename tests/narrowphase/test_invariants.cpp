@@ -16,24 +16,13 @@
 namespace proxima {
 namespace test_invariants {
 
-struct PairParam {
-  ShapeType a;
-  ShapeType b;
-};
+using test::TypePair;
 
-std::string pair_name(const testing::TestParamInfo<PairParam>& info) {
-  return std::string(to_string(info.param.a)) + "_" + to_string(info.param.b);
+std::vector<TypePair> all_pairs() {
+  return test::type_pairs(kConvexShapeTypeCount, [](ShapeType, ShapeType) { return true; });
 }
 
-std::vector<PairParam> all_pairs() {
-  std::vector<PairParam> pairs;
-  for (ShapeType a : test::all_shape_types()) {
-    for (ShapeType b : test::all_shape_types()) pairs.push_back({a, b});
-  }
-  return pairs;
-}
-
-class Invariants : public testing::TestWithParam<PairParam> {};
+class Invariants : public testing::TestWithParam<TypePair> {};
 
 // Cases per pair: several hundred in release, fewer in unoptimised builds.
 #ifdef NDEBUG
@@ -43,7 +32,7 @@ constexpr int kCases = 60;
 #endif
 
 TEST_P(Invariants, ConventionHoldsAtRandomPoses) {
-  const PairParam p = GetParam();
+  const TypePair p = GetParam();
   const std::uint64_t seed = 0x9e3779b97f4a7c15ull ^ (std::uint64_t(p.a) * 131u + std::uint64_t(p.b));
   test::Random rng(seed);
   test::PairChecker checker;
@@ -70,7 +59,7 @@ TEST_P(Invariants, ConventionHoldsAtRandomPoses) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(AllPairs, Invariants, testing::ValuesIn(all_pairs()), pair_name);
+INSTANTIATE_TEST_SUITE_P(AllPairs, Invariants, testing::ValuesIn(all_pairs()), test::type_pair_name);
 
 // Named cases of the sweep above that the sanitizer build (clang) drew while the sweep's
 // random draws were still arguments of one call, evaluated left to right there (seed, case

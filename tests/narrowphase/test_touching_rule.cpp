@@ -25,28 +25,14 @@
 namespace proxima {
 namespace test_touching_rule {
 
-struct TypePair {
-  ShapeType a;
-  ShapeType b;
-};
-
-std::string type_pair_name(const testing::TestParamInfo<TypePair>& info) {
-  return std::string(to_string(info.param.a)) + "_" + to_string(info.param.b);
-}
+using test::TypePair;
 
 // Every ordered pair of shape types except two half-spaces (only their boolean answer means
 // anything).
 std::vector<TypePair> every_pair() {
-  std::vector<TypePair> pairs;
-  for (int i = 0; i < kShapeTypeCount; ++i) {
-    for (int j = 0; j < kShapeTypeCount; ++j) {
-      const auto a = static_cast<ShapeType>(i);
-      const auto b = static_cast<ShapeType>(j);
-      if (a == ShapeType::HalfSpace && b == ShapeType::HalfSpace) continue;
-      pairs.push_back({a, b});
-    }
-  }
-  return pairs;
+  return test::type_pairs(kShapeTypeCount, [](ShapeType a, ShapeType b) {
+    return !(a == ShapeType::HalfSpace && b == ShapeType::HalfSpace);
+  });
 }
 
 // A random shape of any type: test::random_shape for the convex kinds, an icosphere or torus
@@ -159,7 +145,7 @@ TEST_P(TouchingRule, IntersectDistanceCollideAgreeNearContact) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(EveryPair, TouchingRule, testing::ValuesIn(every_pair()), type_pair_name);
+INSTANTIATE_TEST_SUITE_P(EveryPair, TouchingRule, testing::ValuesIn(every_pair()), test::type_pair_name);
 
 // The case: a sphere and a box 9.5e-7 apart. In float that is within the pair's
 // tolerance: touching, so every query calls it a hit, and collide gives one contact of depth
