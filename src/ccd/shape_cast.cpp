@@ -6,8 +6,9 @@
 //  2. Convex against convex: GJK ray casting on the cores with margin = radii + target
 //     (van den Bergen 2004, gjk_raycast.hpp). A hit at t = 0 is classified by the narrow
 //     phase's distance: overlap (depth, push-out normal), touching and moving in (hit at
-//     0), or touching and not moving in (no hit). A hit's distance is the cast's |v| less
-//     the radii (its witnesses along the advancing normal can miss a graze's gap).
+//     0: the gap measured a short step along the path has shrunk), or touching and not
+//     moving in (no hit). A hit's distance is the cast's |v| less the radii (its witnesses
+//     along the advancing normal can miss a graze's gap).
 //  3. Convex against a half-space: closed form on the deepest support point along the
 //     plane's normal.
 //  4. Against a mesh or a compound (in B's frame): nearest-first walk of its hierarchy,
@@ -78,13 +79,37 @@ CastResult at_start(const DistanceResult& d, CcdStatus status) {
   return r;
 }
 
+// Whether the translation moves touching shapes into each other: the contact normal says so
+// (the motion closes the gap along it by more than the tolerance; a slide along the contact
+// plane, rounding included, does not), and the gap measured along the path shrinks by more
+// than the distance's rounding (an eighth of a tolerance) at one of the steps where the
+// normal predicts a closing of 1, 16, 256, ... tolerances, up to the path's end. The normal
+// alone cannot say: where the contact is a vertex of the Minkowski difference (a cone's apex
+// on a cylinder's rim) every direction of its normal cone is a valid answer, and a motion can
+// close along one while the shapes part along another, or close ten times slower than the
+// normal predicts (a box's corner on another's edge). The first step sees a closing that
+// curvature soon undoes (a sphere pressed on a ridge while rolling off it), the longer ones
+// a slow closing, or one that the distance's own error hides at the first. The signed
+// distance of two convex shapes is convex in the translation's t: a gap that shrank at any
+// step is a motion moving in, and one that shrank at none is the start's deepest point.
+bool moves_in(const Cast& c, ShapeRef b, const Transform& pose_b, const DistanceResult& start) {
+  const Real closing = glm::dot(start.normal, c.s);
+  if (!(closing > c.tolerance)) return false;
+  for (Real predicted = c.tolerance;; predicted *= Real(16)) {
+    const Real step = std::min(Real(1), predicted / closing);
+    const Transform ahead{c.pose_a.position + step * c.s, c.pose_a.rotation};
+    if (distance(c.a, ahead, b, pose_b).signed_distance < start.signed_distance - Real(0.125) * c.tolerance) {
+      return true;
+    }
+    if (step == Real(1)) return false;
+  }
+}
+
 // A candidate within target + tolerance at t = 0: overlap, hit at 0 when moving in, else none.
 CastResult classify_start(const Cast& c, ShapeRef b, const Transform& pose_b) {
   const DistanceResult d = distance(c.a, c.pose_a, b, pose_b);
   if (d.signed_distance < -c.tolerance) return at_start(d, CcdStatus::InitiallyOverlapping);
-  // Moving in: the translation closes the gap along the normal by more than the tolerance
-  // (a slide along the contact plane, rounding included, is no hit).
-  if (d.signed_distance > c.target + c.tolerance || !(glm::dot(d.normal, c.s) > c.tolerance)) return no_hit();
+  if (d.signed_distance > c.target + c.tolerance || !moves_in(c, b, pose_b, d)) return no_hit();
   return at_start(d, CcdStatus::Hit);
 }
 
