@@ -34,10 +34,13 @@ Real capsule_pair_tolerance(const Capsule& a, const Transform& pose_a, const Cap
 // when the translation unit grew; 10 % of a capsule pair's distance).
 [[gnu::flatten]] detail::CoreSegmentPair capsule_capsule(const Capsule& a, const Transform& pose_a, const Capsule& b,
                                                          const Transform& pose_b, const PairRequest& request) {
-  const Vec3 x(Real(1), Real(0), Real(0));
-  return detail::core_segment_pair(pose_a.apply(a.bottom()), pose_a.apply(a.top()), pose_b.apply(b.bottom()),
-                                   pose_b.apply(b.top()), a.radius(), b.radius(), pose_a.apply_vector(x),
-                                   pose_b.apply_vector(x), pose_b.position - pose_a.position,
+  // The core's half axis rotated once: pose.apply(bottom()) is the centre less it, bit for
+  // bit (a rotation of -v is minus the rotation of v in floating point).
+  const Vec3 ha = pose_a.apply_vector(a.top());
+  const Vec3 hb = pose_b.apply_vector(b.top());
+  return detail::core_segment_pair(pose_a.position - ha, pose_a.position + ha, pose_b.position - hb,
+                                   pose_b.position + hb, a.radius(), b.radius(), pose_a.rotation, pose_b.rotation,
+                                   pose_b.position - pose_a.position,
                                    capsule_pair_tolerance(a, pose_a, b, pose_b, request));
 }
 
@@ -52,9 +55,11 @@ DistanceResult pair_distance(const Capsule& a, const Transform& pose_a, const Ca
 bool pair_intersect(const Capsule& a, const Transform& pose_a, const Capsule& b, const Transform& pose_b,
                     const PairRequest& request, PairCache* /*cache*/) {
   if (!poses_in_range(pose_a, pose_b)) return false;
+  const Vec3 ha = pose_a.apply_vector(a.top());
+  const Vec3 hb = pose_b.apply_vector(b.top());
   return detail::core_segments_within(
-      pose_a.apply(a.bottom()), pose_a.apply(a.top()), pose_b.apply(b.bottom()), pose_b.apply(b.top()), a.radius(),
-      b.radius(), request.contact_distance, capsule_pair_tolerance(a, pose_a, b, pose_b, request),
+      pose_a.position - ha, pose_a.position + ha, pose_b.position - hb, pose_b.position + hb, a.radius(), b.radius(),
+      request.contact_distance, capsule_pair_tolerance(a, pose_a, b, pose_b, request),
       [&] { return in_contact(pair_distance(a, pose_a, b, pose_b, request, nullptr), request); });
 }
 

@@ -26,9 +26,8 @@ Real segment_pair_tolerance(const Segment& a, const Transform& pose_a, const Seg
 
 detail::CoreSegmentPair segment_segment(const Segment& a, const Transform& pose_a, const Segment& b,
                                         const Transform& pose_b, const PairRequest& request) {
-  const Vec3 x(Real(1), Real(0), Real(0));
   return detail::core_segment_pair(pose_a.apply(a.a()), pose_a.apply(a.b()), pose_b.apply(b.a()), pose_b.apply(b.b()),
-                                   Real(0), Real(0), pose_a.apply_vector(x), pose_b.apply_vector(x),
+                                   Real(0), Real(0), pose_a.rotation, pose_b.rotation,
                                    pose_b.position - pose_a.position,
                                    segment_pair_tolerance(a, pose_a, b, pose_b, request));
 }
