@@ -44,31 +44,15 @@ bool parallel_cylinders(const Cylinder& a, const Transform& pose_a, const Cylind
   const Real R = ra + rb;
   const Real h = ha + hb;
   const Vec3 c = pose_a.inverse_apply(pose_b.position);
-  const Real rho = std::sqrt(c.x * c.x + c.y * c.y);
-  const Vec3 u = rho > Real(0) ? Vec3(c.x / rho, c.y / rho, Real(0)) : Vec3(Real(1), Real(0), Real(0));
-  const Real side = c.z >= Real(0) ? Real(1) : Real(-1);
-  const Vec3 axis(Real(0), Real(0), side);  // towards B's side
-  const Real over_side = rho - R;           // > 0: beyond the barrel
-  const Real over_cap = std::abs(c.z) - h;  // > 0: beyond the cap plane
+  const detail::CylinderRegion g = detail::cylinder_region(c, R, h);
   // The middle of the axial extents' overlap (along A's axis) and of the discs' along u.
   const Real mid_z = Real(0.5) * (std::max(-ha, c.z - hb) + std::min(ha, c.z + hb));
-  const Real mid_u = Real(0.5) * (std::max(-ra, rho - rb) + std::min(ra, rho + rb));
-  Vec3 n;
-  Vec3 on_a;
-  Real sd = Real(0);
-  if (over_side > Real(0) && over_cap > Real(0)) {
-    sd = std::sqrt(over_side * over_side + over_cap * over_cap);
-    n = (over_side / sd) * u + (over_cap / sd) * axis;
-    on_a = ra * u + ha * axis;
-  } else if (over_side > Real(0) || (over_cap <= Real(0) && over_side > over_cap)) {
-    sd = over_side;  // beside the barrel, or inside nearer to it
-    n = u;
-    on_a = ra * u + Vec3(Real(0), Real(0), mid_z);
-  } else {
-    sd = over_cap;  // over the cap, or inside nearer to it
-    n = axis;
-    on_a = mid_u * u + ha * axis;
-  }
+  const Real mid_u = Real(0.5) * (std::max(-ra, g.rho - rb) + std::min(ra, g.rho + rb));
+  const Real sd = g.distance;
+  const Vec3 n = g.normal;
+  const Vec3 on_a = g.kind == detail::CylinderRegion::kRim      ? ra * g.u + ha * g.axis
+                    : g.kind == detail::CylinderRegion::kBarrel ? ra * g.u + Vec3(Real(0), Real(0), mid_z)
+                                                                : mid_u * g.u + ha * g.axis;
   const Real scale = detail::pair_scale(pose_a, pose_b, std::max({ra, rb, ha, hb}));
   r.signed_distance = sd;
   r.normal = pose_a.apply_vector(n);

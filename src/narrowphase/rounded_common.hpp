@@ -1,8 +1,9 @@
 #pragma once
 /// @file rounded_common.hpp
 /// Private building blocks of the rounded pair routines (pairs_rounded.hpp): the result of
-/// two cores plus radii, the pair's scale for tolerances, segment-box closest points,
-/// clipping a segment to a polygon's prism and the feature ids of capsule and box features.
+/// two cores plus radii, the pair's scale for tolerances, a point's region against a
+/// cylinder, segment-box closest points, clipping a segment to a polygon's prism and the
+/// feature ids of capsule and box features.
 
 #include <proxima/core/math.hpp>
 #include <proxima/core/transform.hpp>
@@ -54,6 +55,44 @@ inline DistanceResult rounded_result(const Vec3& core_a, const Vec3& core_b, con
   r.method = PairMethod::Analytic;
   r.tolerance = tolerance;
   return r;
+}
+
+/// A point against a cylinder (the cylinder's frame: axis z, radius R, half length h), seen
+/// in the meridian half-plane through the point, where the cylinder is the rectangle
+/// [0, R] x [-h, h] of (rho, z).
+struct CylinderRegion {
+  enum Kind { kRim, kBarrel, kCap };
+  Kind kind = kBarrel;  ///< beyond a rim, beside the barrel, or over a cap (inside: the nearer of
+                        ///< barrel and cap, ties to the cap)
+  Real distance = 0;    ///< signed distance of the point to the cylinder (< 0 inside)
+  Vec3 normal;          ///< outward unit normal of the nearest feature, from the axis and u
+  Vec3 u;               ///< radial unit towards the point (x when it is on the axis)
+  Vec3 axis;            ///< unit axis towards the point's cap (+z when z >= 0)
+  Real rho = 0;         ///< the point's distance from the axis
+};
+
+/// The region of point c against the cylinder of radius R and half length h (CylinderRegion).
+inline CylinderRegion cylinder_region(const Vec3& c, Real R, Real h) {
+  CylinderRegion g;
+  g.rho = std::sqrt(c.x * c.x + c.y * c.y);
+  g.u = g.rho > Real(0) ? Vec3(c.x / g.rho, c.y / g.rho, Real(0)) : Vec3(Real(1), Real(0), Real(0));
+  g.axis = Vec3(Real(0), Real(0), c.z >= Real(0) ? Real(1) : Real(-1));
+  const Real over_side = g.rho - R;         // > 0: beyond the barrel
+  const Real over_cap = std::abs(c.z) - h;  // > 0: beyond the cap plane
+  if (over_side > Real(0) && over_cap > Real(0)) {
+    g.kind = CylinderRegion::kRim;
+    g.distance = std::sqrt(over_side * over_side + over_cap * over_cap);
+    g.normal = (over_side / g.distance) * g.u + (over_cap / g.distance) * g.axis;
+  } else if (over_side > Real(0) || (over_cap <= Real(0) && over_side > over_cap)) {
+    g.kind = CylinderRegion::kBarrel;
+    g.distance = over_side;
+    g.normal = g.u;
+  } else {
+    g.kind = CylinderRegion::kCap;
+    g.distance = over_cap;
+    g.normal = g.axis;
+  }
+  return g;
 }
 
 /// Closest points of segment p0p1 and the solid box [-h, h] (box frame).

@@ -37,31 +37,14 @@ SphereCylinder sphere_cylinder(const Sphere& a, const Transform& pose_a, const C
   const Real R = b.radius();
   const Real h = b.half_length();
   const Vec3 c = pose_b.inverse_apply(pose_a.position);
-  const Real rho = std::sqrt(c.x * c.x + c.y * c.y);
-  const Vec3 u = rho > Real(0) ? Vec3(c.x / rho, c.y / rho, Real(0)) : Vec3(Real(1), Real(0), Real(0));
-  const Real side = c.z >= Real(0) ? Real(1) : Real(-1);
-  const Vec3 axis(Real(0), Real(0), side);  // towards c's cap
-  const Real over_side = rho - R;           // > 0: beyond the barrel
-  const Real over_cap = std::abs(c.z) - h;  // > 0: beyond the cap plane
+  const detail::CylinderRegion g = detail::cylinder_region(c, R, h);
   const std::uint32_t cap = c.z >= Real(0) ? 1u : 0u;
-  Vec3 n_local;
-  Real core = Real(0);
-  FeatureKind kind = FeatureKind::Surface;
-  std::uint32_t index = 0;
-  if (over_side > Real(0) && over_cap > Real(0)) {
-    core = std::sqrt(over_side * over_side + over_cap * over_cap);
-    n_local = -(over_side / core) * u - (over_cap / core) * axis;
-    kind = FeatureKind::Edge;
-    index = cap;
-  } else if (over_side > Real(0) || (over_cap <= Real(0) && over_side > over_cap)) {
-    core = over_side;  // beside the barrel, or inside nearer to it
-    n_local = -u;
-  } else {
-    core = over_cap;  // over the cap, or inside nearer to it
-    n_local = -axis;
-    kind = FeatureKind::Face;
-    index = cap;
-  }
+  const Real core = g.distance;
+  const Vec3 n_local = -g.normal;
+  const FeatureKind kind = g.kind == detail::CylinderRegion::kRim   ? FeatureKind::Edge
+                           : g.kind == detail::CylinderRegion::kCap ? FeatureKind::Face
+                                                                    : FeatureKind::Surface;
+  const std::uint32_t index = g.kind == detail::CylinderRegion::kBarrel ? 0u : cap;
   const Vec3 q_local = c + core * n_local;
   const Real tol = resolve_tolerance(request, detail::pair_scale(pose_a, pose_b, a.radius() + std::max(R, h)));
   SphereCylinder sc;
