@@ -1,8 +1,9 @@
 // The closed-form curved pairs (sphere-cylinder, sphere-cone, sphere-ellipsoid, cylinders with
-// parallel axes) against the generic GJK / EPA path they replaced, on the same seeded poses:
+// parallel axes, coaxial cones) against the generic GJK / EPA path they replaced, on the same seeded poses:
 // 4,096 pairs per shape kind (a sphere of radius 0.2..1 and a cylinder or cone of radius and
 // half length 0.2..1.5, or an ellipsoid of radii 0.2..1.5, or two such cylinders, the second
-// turned about its axis, B's centre within 1.8 of A's, so that about half overlap), each query
+// turned about its axis, B's centre within 1.8 of A's, so that about half overlap; or two cones
+// on one axis, B turned about it and flipped every other pair), each query
 // kind through the public entry
 // (`intersect`, `distance`, `collide`: the closed form) and through narrow::generic_distance
 // / generic_intersect (GJK, EPA on overlaps, its refinement). Reports ns per query and the
@@ -80,6 +81,25 @@ std::vector<CurvedPair<proxima::Cylinder, proxima::Cylinder>> make_parallel_cyli
   return pairs;
 }
 
+/// Two coaxial cones: B on A's axis (1.8 reach either way), turned about it, flipped every
+/// other pair.
+std::vector<CurvedPair<proxima::Cone, proxima::Cone>> make_coaxial_cones(std::uint64_t seed) {
+  proxima::test::Random rng(seed);
+  std::vector<CurvedPair<proxima::Cone, proxima::Cone>> pairs;
+  const proxima::Vec3 x(Real(1), Real(0), Real(0));
+  const proxima::Vec3 z(Real(0), Real(0), Real(1));
+  for (int i = 0; i < 4096; ++i) {
+    const auto a = random_curved<proxima::Cone>(rng);
+    const auto b = random_curved<proxima::Cone>(rng);
+    const Transform pa = rng.pose(Real(0.9));
+    proxima::Quat q = pa.rotation * glm::angleAxis(rng.uniform(Real(0), Real(6.283)), z);
+    if (i % 2 == 1) q = q * glm::angleAxis(proxima::kPi, x);
+    const Real height = rng.uniform(Real(-1.8), Real(1.8)) * (a.half_length() + b.half_length());
+    pairs.push_back({a, pa, b, Transform{pa.apply(height * z), q}});
+  }
+  return pairs;
+}
+
 enum class Query { Intersect, Distance, Collide };
 
 /// The closed form (public entry) or the generic path on every pair, in turn.
@@ -129,10 +149,12 @@ bool register_curved(const std::string& /*dir*/) {
   static const auto cones = make_pairs<proxima::Cone>(902);
   static const auto ellipsoids = make_pairs<proxima::Ellipsoid>(903);
   static const auto parallel = make_parallel_cylinders(904);
+  static const auto coaxial = make_coaxial_cones(905);
   register_kind("SphereCylinder", cylinders);
   register_kind("SphereCone", cones);
   register_kind("SphereEllipsoid", ellipsoids);
   register_kind("ParallelCylinders", parallel);
+  register_kind("CoaxialCones", coaxial);
   return true;
 }
 

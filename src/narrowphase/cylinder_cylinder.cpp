@@ -17,10 +17,9 @@
 //     the signed distance along the normal (a point of B's surface by step 2).
 // Manifold: the supporting features along the normal, clipped (supporting_face_manifold.hpp).
 // intersect applies the touching rule (contact.hpp) to the parallel distance.
-#include "narrowphase/generic_distance.hpp"
+#include "narrowphase/closed_form_or_ladder.hpp"
 #include "narrowphase/pairs_curved.hpp"
 #include "narrowphase/rounded_common.hpp"
-#include "narrowphase/supporting_face_manifold.hpp"
 
 namespace proxima::narrow {
 
@@ -54,14 +53,7 @@ bool parallel_cylinders(const Cylinder& a, const Transform& pose_a, const Cylind
                     : g.kind == detail::CylinderRegion::kBarrel ? ra * g.u + Vec3(Real(0), Real(0), mid_z)
                                                                 : mid_u * g.u + ha * g.axis;
   const Real scale = detail::pair_scale(pose_a, pose_b, std::max({ra, rb, ha, hb}));
-  r.signed_distance = sd;
-  r.normal = pose_a.apply_vector(n);
-  r.point_a = pose_a.apply(on_a);
-  r.point_b = r.point_a + sd * r.normal;
-  r.tolerance = resolve_tolerance(request, scale);
-  r.status = status_from_distance(sd, r.tolerance);
-  r.method = PairMethod::Analytic;
-  r.iterations = 0;
+  r = detail::analytic_answer(pose_a, sd, n, on_a, request, scale);
   return true;
 }
 
@@ -69,24 +61,17 @@ bool parallel_cylinders(const Cylinder& a, const Transform& pose_a, const Cylind
 
 DistanceResult pair_distance(const Cylinder& a, const Transform& pose_a, const Cylinder& b, const Transform& pose_b,
                              const PairRequest& request, PairCache* cache) {
-  if (!poses_in_range(pose_a, pose_b)) return invalid_distance();
-  DistanceResult r;
-  if (parallel_cylinders(a, pose_a, b, pose_b, request, r)) return r;
-  return generic_distance(a, pose_a, b, pose_b, request, cache);
+  return detail::closed_form_or_ladder_distance(a, pose_a, b, pose_b, request, cache, parallel_cylinders);
 }
 
 bool pair_intersect(const Cylinder& a, const Transform& pose_a, const Cylinder& b, const Transform& pose_b,
                     const PairRequest& request, PairCache* cache) {
-  if (!poses_in_range(pose_a, pose_b)) return false;
-  DistanceResult r;
-  if (parallel_cylinders(a, pose_a, b, pose_b, request, r)) return in_contact(r, request);
-  return generic_intersect(a, pose_a, b, pose_b, request, cache);
+  return detail::closed_form_or_ladder_intersect(a, pose_a, b, pose_b, request, cache, parallel_cylinders);
 }
 
 ContactManifold pair_collide(const Cylinder& a, const Transform& pose_a, const Cylinder& b, const Transform& pose_b,
                              const PairRequest& request, PairCache* cache) {
-  if (!poses_in_range(pose_a, pose_b)) return invalid_manifold();
-  return manifold_of(a, pose_a, b, pose_b, pair_distance(a, pose_a, b, pose_b, request, cache), request);
+  return detail::closed_form_or_ladder_collide(a, pose_a, b, pose_b, request, cache, parallel_cylinders);
 }
 
 }  // namespace proxima::narrow

@@ -50,6 +50,7 @@
 #include <proxima/geometry/epa_refine.hpp>
 #include <proxima/geometry/gjk.hpp>
 #include <proxima/shapes/halfspace.hpp>
+#include <proxima/shapes/shape.hpp>
 
 #include <algorithm>
 #include <cmath>

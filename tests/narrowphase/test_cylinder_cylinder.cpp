@@ -16,7 +16,7 @@
 #include <sstream>
 #include <string>
 
-#include "narrowphase/generic_distance.hpp"
+#include "narrowphase/closed_form_check.hpp"
 #include "narrowphase/narrowphase_test_util.hpp"
 #include "narrowphase/pair_reference.hpp"
 #include "support/random.hpp"
@@ -27,8 +27,6 @@ namespace {
 
 using test::LD;
 using test::LVec;
-
-constexpr double kUlpsAllowed = test::kFloatBuild ? 64.0 : 8.0;
 
 /// B's pose: A's rotation turned about its own axis by `spin`, flipped end over end when
 /// `flip` (the axes stay parallel), its centre at `local` in A's frame.
@@ -103,32 +101,16 @@ TEST(CylinderCylinder, ParallelAxesMatchTheSupportFunctionReferences) {
     const Transform pb = parallel_pose(pa, rng.uniform(Real(0), Real(6.283)), i % 3 == 0, local);
     const DistanceResult d = distance(a, pa, b, pb);
     ASSERT_EQ(d.method, PairMethod::Analytic) << describe(a, pa, b, pb, d);
-    // The pair's size as test_exactness.cpp takes it: the shapes' and the positions'.
-    const Real size = std::max({test::shape_scale(Shape(a)), test::shape_scale(Shape(b)),
-                                max_abs_component(pa.position), max_abs_component(pb.position)});
-    // The overlap along the reported normal is the signed distance.
-    const LVec n = test::ld(d.normal) / test::lnorm(test::ld(d.normal));
-    const LD overlap = test::overlap_along(a, pa, b, pb, n);
-    const double ulps = double(std::abs(overlap + LD(d.signed_distance))) / (double(kEpsilon) * double(size));
+    const double ulps = test::check_closed_form_answer(
+        a, pa, b, pb, d,
+        [](const Cylinder& shape, const Transform& p, const Vec3& x) { return surface_distance(shape, p, x); },
+        describe(a, pa, b, pb, d));
     if (ulps > worst_ulps) {
       worst_ulps = ulps;
       worst_case = describe(a, pa, b, pb, d);
     }
-    // No direction overlaps less (the minimum over directions is minus the signed distance).
-    const LD searched = test::min_overlap(a, pa, b, pb);
-    EXPECT_GE(double(searched), double(-d.signed_distance) - kUlpsAllowed * double(kEpsilon) * double(size))
-        << describe(a, pa, b, pb, d);
-    // The witnesses lie on the surfaces, B's at A's plus the signed distance along the normal.
-    const LD on_surface = LD(32) * LD(kEpsilon) * LD(size);
-    EXPECT_LE(std::abs(surface_distance(a, pa, d.point_a)), on_surface) << describe(a, pa, b, pb, d);
-    EXPECT_LE(std::abs(surface_distance(b, pb, d.point_b)), on_surface) << describe(a, pa, b, pb, d);
-    // The generic ladder agrees to its own precision, and the three queries on touching.
-    const DistanceResult g = narrow::generic_distance(a, pa, b, pb, PairRequest{}, nullptr);
-    EXPECT_NEAR(g.signed_distance, d.signed_distance, Real(1e-4) * size) << describe(a, pa, b, pb, d);
-    EXPECT_EQ(intersect(a, pa, b, pb), in_contact(d, PairRequest{})) << describe(a, pa, b, pb, d);
-    EXPECT_EQ(collide(a, pa, b, pb).count > 0, in_contact(d, PairRequest{})) << describe(a, pa, b, pb, d);
   }
-  EXPECT_LE(worst_ulps, kUlpsAllowed) << "worst case: " << worst_case;
+  EXPECT_LE(worst_ulps, test::kClosedFormUlps) << "worst case: " << worst_case;
 }
 
 // Axes turned apart beyond rounding go to the generic ladder, which agrees with the closed
