@@ -284,7 +284,7 @@ void edge_separations(const BoxPair& p, BoxSat& s, Real floor = -kRealInfinity) 
   // |A_i x B_j|, so is its rounding; the margin is capped at the pair's rounding (a face
   // axis chosen over an edge axis that is better by less than that, a fixed 100 ulps, left
   // box-box depths up to 95 ulps deeper than the pair's).
-  if (s.edge_axis >= 0 && edge_sep > s.max_sep + edge_margin(p, s.edge_axis)) {
+  if (s.edge_axis >= 0 && edge_sep > s.max_sep && edge_sep > s.max_sep + edge_margin(p, s.edge_axis)) {
     s.max_sep = edge_sep;
     s.max_axis = s.edge_axis;
   }
