@@ -255,18 +255,23 @@ inline bool accept_or_shrink(Descent& d, const SupportSample& trial, const Tange
     d.eta = tol.eta;
     return false;
   }
-  if (step.newton_exact && !d.steepest) {
-    // A Newton step near the minimum that neither lowers h nor halves the slope: the
-    // Hessian's differences may have crossed a crease within eta of the sample (a box edge
-    // 0.02 rad from a float sample: the model 150 times too stiff along it); again with the
-    // differences 16 times closer, down to eta / 256.
+  if ((step.newton_exact || trial.h <= d.at.h + tol.flat) && !d.steepest) {
+    // A Newton step near the minimum (a full step predicting no gain, or one that left h
+    // within rounding) that neither lowers h nor halves the slope: the Hessian's differences
+    // may have crossed a crease within eta of the sample (a box edge 0.02 rad from a float
+    // sample: the model 150 times too stiff along it; a cylinder's rim in an ellipsoid: the
+    // model indefinite, its steps raising the slope ninefold, and the descent settled with
+    // the normal 3.8e-5 rad off); again with the differences 16 times closer, down to
+    // eta / 256.
     if (d.eta > tol.eta * Real(1.0 / 256.0)) {
       d.eta *= Real(1.0 / 16.0);
       d.fresh = false;
       return false;
     }
-    d.converged = true;
-    return true;
+    if (step.newton_exact) {
+      d.converged = true;
+      return true;
+    }
   }
   if (!d.steepest) {
     d.steepest = true;  // at a kink of h the Newton model misleads: try the plain gradient
