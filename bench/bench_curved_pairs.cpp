@@ -65,39 +65,42 @@ std::vector<CurvedPair<proxima::Sphere, B>> make_pairs(std::uint64_t seed) {
   return pairs;
 }
 
-/// Two cylinders with parallel axes: B has A's rotation turned about the axis.
-std::vector<CurvedPair<proxima::Cylinder, proxima::Cylinder>> make_parallel_cylinders(std::uint64_t seed) {
+/// 4,096 pairs of two shapes S, B placed against A by `place(rng, a, b, pose_a, i)`.
+template <class S, class Place>
+std::vector<CurvedPair<S, S>> make_placed_pairs(std::uint64_t seed, Place place) {
   proxima::test::Random rng(seed);
-  std::vector<CurvedPair<proxima::Cylinder, proxima::Cylinder>> pairs;
-  const proxima::Vec3 z(Real(0), Real(0), Real(1));
+  std::vector<CurvedPair<S, S>> pairs;
   for (int i = 0; i < 4096; ++i) {
-    const auto a = random_curved<proxima::Cylinder>(rng);
-    const auto b = random_curved<proxima::Cylinder>(rng);
+    const S a = random_curved<S>(rng);
+    const S b = random_curved<S>(rng);
     const Transform pa = rng.pose(Real(0.9));
-    const Transform pb{pa.position + rng.in_ball(Real(1.8)),
-                       pa.rotation * glm::angleAxis(rng.uniform(Real(0), Real(6.283)), z)};
-    pairs.push_back({a, pa, b, pb});
+    pairs.push_back({a, pa, b, place(rng, a, b, pa, i)});
   }
   return pairs;
+}
+
+const proxima::Vec3 kAxisX(Real(1), Real(0), Real(0));
+const proxima::Vec3 kAxisZ(Real(0), Real(0), Real(1));
+
+/// Two cylinders with parallel axes: B has A's rotation turned about the axis.
+std::vector<CurvedPair<proxima::Cylinder, proxima::Cylinder>> make_parallel_cylinders(std::uint64_t seed) {
+  return make_placed_pairs<proxima::Cylinder>(seed, [](proxima::test::Random& rng, const proxima::Cylinder&,
+                                                       const proxima::Cylinder&, const Transform& pa, int) {
+    const proxima::Vec3 offset = rng.in_ball(Real(1.8));
+    return Transform{pa.position + offset, pa.rotation * glm::angleAxis(rng.uniform(Real(0), Real(6.283)), kAxisZ)};
+  });
 }
 
 /// Two coaxial cones: B on A's axis (1.8 reach either way), turned about it, flipped every
 /// other pair.
 std::vector<CurvedPair<proxima::Cone, proxima::Cone>> make_coaxial_cones(std::uint64_t seed) {
-  proxima::test::Random rng(seed);
-  std::vector<CurvedPair<proxima::Cone, proxima::Cone>> pairs;
-  const proxima::Vec3 x(Real(1), Real(0), Real(0));
-  const proxima::Vec3 z(Real(0), Real(0), Real(1));
-  for (int i = 0; i < 4096; ++i) {
-    const auto a = random_curved<proxima::Cone>(rng);
-    const auto b = random_curved<proxima::Cone>(rng);
-    const Transform pa = rng.pose(Real(0.9));
-    proxima::Quat q = pa.rotation * glm::angleAxis(rng.uniform(Real(0), Real(6.283)), z);
-    if (i % 2 == 1) q = q * glm::angleAxis(proxima::kPi, x);
-    const Real height = rng.uniform(Real(-1.8), Real(1.8)) * (a.half_length() + b.half_length());
-    pairs.push_back({a, pa, b, Transform{pa.apply(height * z), q}});
-  }
-  return pairs;
+  return make_placed_pairs<proxima::Cone>(
+      seed, [](proxima::test::Random& rng, const proxima::Cone& a, const proxima::Cone& b, const Transform& pa, int i) {
+        proxima::Quat q = pa.rotation * glm::angleAxis(rng.uniform(Real(0), Real(6.283)), kAxisZ);
+        if (i % 2 == 1) q = q * glm::angleAxis(proxima::kPi, kAxisX);
+        const Real height = rng.uniform(Real(-1.8), Real(1.8)) * (a.half_length() + b.half_length());
+        return Transform{pa.apply(height * kAxisZ), q};
+      });
 }
 
 enum class Query { Intersect, Distance, Collide };

@@ -62,3 +62,20 @@ ContactManifold closed_form_or_ladder_collide(const A& a, const Transform& pose_
 }
 
 }  // namespace proxima::narrow::detail
+
+/// Defines pair_distance, pair_intersect and pair_collide of the curved pair (A, A)
+/// (pairs_curved.hpp) from its closed form `closed` (a function as closed_form_or_ladder_distance
+/// takes), the generic ladder elsewhere.
+#define PROXIMA_CLOSED_FORM_OR_LADDER(A, closed)                                                         \
+  DistanceResult pair_distance(const A& a, const Transform& pose_a, const A& b, const Transform& pose_b, \
+                               const PairRequest& request, PairCache* cache) {                           \
+    return detail::closed_form_or_ladder_distance(a, pose_a, b, pose_b, request, cache, closed);         \
+  }                                                                                                      \
+  bool pair_intersect(const A& a, const Transform& pose_a, const A& b, const Transform& pose_b,          \
+                      const PairRequest& request, PairCache* cache) {                                    \
+    return detail::closed_form_or_ladder_intersect(a, pose_a, b, pose_b, request, cache, closed);        \
+  }                                                                                                      \
+  ContactManifold pair_collide(const A& a, const Transform& pose_a, const A& b, const Transform& pose_b, \
+                               const PairRequest& request, PairCache* cache) {                           \
+    return detail::closed_form_or_ladder_collide(a, pose_a, b, pose_b, request, cache, closed);          \
+  }

@@ -152,19 +152,6 @@ bool coaxial_cones(const Cone& a, const Transform& pose_a, const Cone& b, const 
 
 }  // namespace
 
-DistanceResult pair_distance(const Cone& a, const Transform& pose_a, const Cone& b, const Transform& pose_b,
-                             const PairRequest& request, PairCache* cache) {
-  return detail::closed_form_or_ladder_distance(a, pose_a, b, pose_b, request, cache, coaxial_cones);
-}
-
-bool pair_intersect(const Cone& a, const Transform& pose_a, const Cone& b, const Transform& pose_b,
-                    const PairRequest& request, PairCache* cache) {
-  return detail::closed_form_or_ladder_intersect(a, pose_a, b, pose_b, request, cache, coaxial_cones);
-}
-
-ContactManifold pair_collide(const Cone& a, const Transform& pose_a, const Cone& b, const Transform& pose_b,
-                             const PairRequest& request, PairCache* cache) {
-  return detail::closed_form_or_ladder_collide(a, pose_a, b, pose_b, request, cache, coaxial_cones);
-}
+PROXIMA_CLOSED_FORM_OR_LADDER(Cone, coaxial_cones)
 
 }  // namespace proxima::narrow

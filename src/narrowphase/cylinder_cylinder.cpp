@@ -59,19 +59,6 @@ bool parallel_cylinders(const Cylinder& a, const Transform& pose_a, const Cylind
 
 }  // namespace
 
-DistanceResult pair_distance(const Cylinder& a, const Transform& pose_a, const Cylinder& b, const Transform& pose_b,
-                             const PairRequest& request, PairCache* cache) {
-  return detail::closed_form_or_ladder_distance(a, pose_a, b, pose_b, request, cache, parallel_cylinders);
-}
-
-bool pair_intersect(const Cylinder& a, const Transform& pose_a, const Cylinder& b, const Transform& pose_b,
-                    const PairRequest& request, PairCache* cache) {
-  return detail::closed_form_or_ladder_intersect(a, pose_a, b, pose_b, request, cache, parallel_cylinders);
-}
-
-ContactManifold pair_collide(const Cylinder& a, const Transform& pose_a, const Cylinder& b, const Transform& pose_b,
-                             const PairRequest& request, PairCache* cache) {
-  return detail::closed_form_or_ladder_collide(a, pose_a, b, pose_b, request, cache, parallel_cylinders);
-}
+PROXIMA_CLOSED_FORM_OR_LADDER(Cylinder, parallel_cylinders)
 
 }  // namespace proxima::narrow

@@ -42,6 +42,20 @@ inline bool poses_in_range(const Transform& pose_a, const Transform& pose_b) {
 }
 
 /// The defined answer for poses out of range: separated by +infinity, status InvalidInput.
+inline DistanceResult invalid_distance() {
+  DistanceResult r;
+  r.signed_distance = std::numeric_limits<Real>::infinity();
+  r.status = PairStatus::InvalidInput;
+  return r;
+}
+
+/// The defined answer for poses out of range: no contact, status InvalidInput.
+inline ContactManifold invalid_manifold() {
+  ContactManifold m;
+  m.status = PairStatus::InvalidInput;
+  return m;
+}
+
 /// Separated polytopes: the closest points' offset `d` (A to B) or that offset taken across
 /// one of the `edges` directions, whichever the shapes are farther apart along by `gap`
 /// (gap(unit direction) -> the gap along it, a lower bound of the distance), replaces
@@ -62,20 +76,6 @@ void widest_gap_direction(const Vec3& d, const Edges& edges, GapFn gap, Vec3& no
   };
   consider(d);
   for (const Vec3& e : edges) consider(across_direction(d, e));
-}
-
-inline DistanceResult invalid_distance() {
-  DistanceResult r;
-  r.signed_distance = std::numeric_limits<Real>::infinity();
-  r.status = PairStatus::InvalidInput;
-  return r;
-}
-
-/// The defined answer for poses out of range: no contact, status InvalidInput.
-inline ContactManifold invalid_manifold() {
-  ContactManifold m;
-  m.status = PairStatus::InvalidInput;
-  return m;
 }
 
 /// A one-point manifold from a distance result: empty when the pair is not in contact
@@ -146,3 +146,16 @@ template <class A, class B>
 inline constexpr bool kAnalyticPair = false;
 
 }  // namespace proxima::narrow
+
+/// Declares the three routines of the closed-form pair (A, B) under the contract above and
+/// marks it analytic (kAnalyticPair); used inside namespace proxima::narrow by the group
+/// headers, one line per pair.
+#define PROXIMA_ANALYTIC_PAIR(A, B)                                                                      \
+  bool pair_intersect(const A& a, const Transform& pose_a, const B& b, const Transform& pose_b,          \
+                      const PairRequest& request, PairCache* cache);                                     \
+  DistanceResult pair_distance(const A& a, const Transform& pose_a, const B& b, const Transform& pose_b, \
+                               const PairRequest& request, PairCache* cache);                            \
+  ContactManifold pair_collide(const A& a, const Transform& pose_a, const B& b, const Transform& pose_b, \
+                               const PairRequest& request, PairCache* cache);                            \
+  template <>                                                                                            \
+  inline constexpr bool kAnalyticPair<A, B> = true;

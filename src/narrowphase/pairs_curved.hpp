@@ -7,7 +7,11 @@
 /// Curved pairs with a closed form in the configurations users build most (stacked barrels,
 /// wheels side by side, stacked cones and nested ones): two cylinders whose axes are
 /// parallel, two cones on one axis. Other poses go to the generic ladder
-/// (generic_distance.hpp), whose answer these routines return unchanged.
+/// (generic_distance.hpp), whose answer these routines return unchanged (intersect: generic
+/// boolean GJK). Where the closed form applies, intersect is the touching rule (contact.hpp)
+/// on its distance; manifolds are the supporting features along the distance's normal,
+/// clipped (supporting_face_manifold.hpp). The three entry points of each pair come from
+/// closed_form_or_ladder.hpp.
 
 #include <proxima/shapes/shape.hpp>
 
@@ -15,38 +19,16 @@
 
 namespace proxima::narrow {
 
-/// Cylinder-cylinder signed distance: parallel axes (within 4 epsilon of sine), the exact
-/// distance of B's centre from the Minkowski difference, itself a cylinder (radius R_A + R_B,
-/// half length h_A + h_B), normal from A's axis and the radial direction; other poses the
-/// generic ladder. O(1) when parallel.
-DistanceResult pair_distance(const Cylinder& a, const Transform& pose_a, const Cylinder& b, const Transform& pose_b,
-                             const PairRequest& request, PairCache* cache);
-/// Cylinder-cylinder overlap: the touching rule on the parallel closed form, else generic
-/// boolean GJK.
-bool pair_intersect(const Cylinder& a, const Transform& pose_a, const Cylinder& b, const Transform& pose_b,
-                    const PairRequest& request, PairCache* cache);
-/// Cylinder-cylinder manifold: the supporting features along the distance's normal, clipped
-/// (two caps face to face give up to four points, two barrels side by side two).
-ContactManifold pair_collide(const Cylinder& a, const Transform& pose_a, const Cylinder& b, const Transform& pose_b,
-                             const PairRequest& request, PairCache* cache);
-template <>
-inline constexpr bool kAnalyticPair<Cylinder, Cylinder> = true;
-
-/// Cone-cone signed distance: coaxial cones (axes parallel or opposite within 4 epsilon of
-/// sine, B's centre on A's axis within the coordinates' rounding), the exact distance of the
-/// origin from the difference of the two cones' sections through the axis (two triangles),
-/// normal an edge normal of a section or a vertex direction of their difference, in A's
-/// xz-plane; other poses the generic ladder. O(1) when coaxial.
-DistanceResult pair_distance(const Cone& a, const Transform& pose_a, const Cone& b, const Transform& pose_b,
-                             const PairRequest& request, PairCache* cache);
-/// Cone-cone overlap: the touching rule on the coaxial closed form, else generic boolean GJK.
-bool pair_intersect(const Cone& a, const Transform& pose_a, const Cone& b, const Transform& pose_b,
-                    const PairRequest& request, PairCache* cache);
-/// Cone-cone manifold: the supporting features along the distance's normal, clipped (a base
-/// on a base gives up to four points).
-ContactManifold pair_collide(const Cone& a, const Transform& pose_a, const Cone& b, const Transform& pose_b,
-                             const PairRequest& request, PairCache* cache);
-template <>
-inline constexpr bool kAnalyticPair<Cone, Cone> = true;
+// Two cylinders with parallel axes (within 4 epsilon of sine): the exact distance of B's
+// centre from the Minkowski difference, itself a cylinder (radius R_A + R_B, half length
+// h_A + h_B), normal from A's axis and the radial direction. O(1) when parallel. Manifold:
+// two caps face to face give up to four points, two barrels side by side two.
+PROXIMA_ANALYTIC_PAIR(Cylinder, Cylinder)
+// Two coaxial cones (axes parallel or opposite within 4 epsilon of sine, B's centre on A's
+// axis within the coordinates' rounding): the exact distance of the origin from the
+// difference of the two cones' sections through the axis (two triangles), normal an edge
+// normal of a section or a vertex direction of their difference, in A's xz-plane. O(1) when
+// coaxial. Manifold: a base on a base gives up to four points.
+PROXIMA_ANALYTIC_PAIR(Cone, Cone)
 
 }  // namespace proxima::narrow

@@ -36,35 +36,22 @@
 
 #include "pair_support.hpp"
 
-/// Declares the three routines of the pair (A, HalfSpace) and marks it analytic.
-#define PROXIMA_HALFSPACE_PAIR(A)                                                                                \
-  bool pair_intersect(const A& a, const Transform& pose_a, const HalfSpace& b, const Transform& pose_b,          \
-                      const PairRequest& request, PairCache* cache);                                             \
-  DistanceResult pair_distance(const A& a, const Transform& pose_a, const HalfSpace& b, const Transform& pose_b, \
-                               const PairRequest& request, PairCache* cache);                                    \
-  ContactManifold pair_collide(const A& a, const Transform& pose_a, const HalfSpace& b, const Transform& pose_b, \
-                               const PairRequest& request, PairCache* cache);                                    \
-  template <>                                                                                                    \
-  inline constexpr bool kAnalyticPair<A, HalfSpace> = true;
-
 namespace proxima::narrow {
 
 /// Depth reported for two half-spaces whose normals are not anti-parallel (their overlap is
 /// unbounded): HalfSpace::kSupportExtent (1e5 in float, 1e10 in double), length units.
 inline constexpr Real kHalfSpacePairDepth = HalfSpace::kSupportExtent;
 
-PROXIMA_HALFSPACE_PAIR(Point)
-PROXIMA_HALFSPACE_PAIR(Segment)
-PROXIMA_HALFSPACE_PAIR(Triangle)
-PROXIMA_HALFSPACE_PAIR(Sphere)
-PROXIMA_HALFSPACE_PAIR(Capsule)
-PROXIMA_HALFSPACE_PAIR(Box)
-PROXIMA_HALFSPACE_PAIR(Cylinder)
-PROXIMA_HALFSPACE_PAIR(Cone)
-PROXIMA_HALFSPACE_PAIR(Ellipsoid)
-PROXIMA_HALFSPACE_PAIR(ConvexHull)
-PROXIMA_HALFSPACE_PAIR(HalfSpace)
+PROXIMA_ANALYTIC_PAIR(Point, HalfSpace)
+PROXIMA_ANALYTIC_PAIR(Segment, HalfSpace)
+PROXIMA_ANALYTIC_PAIR(Triangle, HalfSpace)
+PROXIMA_ANALYTIC_PAIR(Sphere, HalfSpace)
+PROXIMA_ANALYTIC_PAIR(Capsule, HalfSpace)
+PROXIMA_ANALYTIC_PAIR(Box, HalfSpace)
+PROXIMA_ANALYTIC_PAIR(Cylinder, HalfSpace)
+PROXIMA_ANALYTIC_PAIR(Cone, HalfSpace)
+PROXIMA_ANALYTIC_PAIR(Ellipsoid, HalfSpace)
+PROXIMA_ANALYTIC_PAIR(ConvexHull, HalfSpace)
+PROXIMA_ANALYTIC_PAIR(HalfSpace, HalfSpace)
 
 }  // namespace proxima::narrow
-
-#undef PROXIMA_HALFSPACE_PAIR

@@ -35,56 +35,43 @@
 
 #include "pair_support.hpp"
 
-/// Declares the three routines of the rounded pair (A, B) and marks it analytic.
-#define PROXIMA_ROUNDED_PAIR(A, B)                                                                       \
-  bool pair_intersect(const A& a, const Transform& pose_a, const B& b, const Transform& pose_b,          \
-                      const PairRequest& request, PairCache* cache);                                     \
-  DistanceResult pair_distance(const A& a, const Transform& pose_a, const B& b, const Transform& pose_b, \
-                               const PairRequest& request, PairCache* cache);                            \
-  ContactManifold pair_collide(const A& a, const Transform& pose_a, const B& b, const Transform& pose_b, \
-                               const PairRequest& request, PairCache* cache);                            \
-  template <>                                                                                            \
-  inline constexpr bool kAnalyticPair<A, B> = true;
-
 namespace proxima::narrow {
 
 // Two segments (no interior): segment-segment closest points, the capsule pair with radii 0.
 // Touching or crossing segments get distance 0 along a normal orthogonal to both (the common
 // normal, or for parallel segments a perpendicular from A's local +x axis). Manifold: two
 // points (the ends of the overlap) for parallel overlapping segments, else one.
-PROXIMA_ROUNDED_PAIR(Segment, Segment)
+PROXIMA_ANALYTIC_PAIR(Segment, Segment)
 // Triangle (two-sided, no thickness) against a sphere: closest point of the triangle to the
 // centre. Manifold: one point.
-PROXIMA_ROUNDED_PAIR(Triangle, Sphere)
+PROXIMA_ANALYTIC_PAIR(Triangle, Sphere)
 // Triangle against a capsule: segment-triangle closest points; segment-triangle SAT (triangle
 // normal, edge x axis, in-plane edge normals) when the core touches the triangle. Manifold: two
 // points (the core clipped to the triangle's prism) when the capsule lies along the triangle.
-PROXIMA_ROUNDED_PAIR(Triangle, Capsule)
+PROXIMA_ANALYTIC_PAIR(Triangle, Capsule)
 // Two spheres: centre to centre. Manifold: one point.
-PROXIMA_ROUNDED_PAIR(Sphere, Sphere)
+PROXIMA_ANALYTIC_PAIR(Sphere, Sphere)
 // Sphere against capsule: closest point of the core segment to the centre. Manifold: one point.
-PROXIMA_ROUNDED_PAIR(Sphere, Capsule)
+PROXIMA_ANALYTIC_PAIR(Sphere, Capsule)
 // Two capsules: segment-segment closest points. Manifold: two points (the ends of the overlap
 // of the cores) when the axes are parallel and overlap, else one.
-PROXIMA_ROUNDED_PAIR(Capsule, Capsule)
+PROXIMA_ANALYTIC_PAIR(Capsule, Capsule)
 // Sphere against box: closest point of the box to the centre; centre inside: the deepest
 // (nearest) face. Manifold: one point.
-PROXIMA_ROUNDED_PAIR(Sphere, Box)
+PROXIMA_ANALYTIC_PAIR(Sphere, Box)
 // Sphere against cylinder: closest point of the cylinder's meridian rectangle to the centre;
 // normals from the axis and the centre's radial direction. Manifold: one point.
-PROXIMA_ROUNDED_PAIR(Sphere, Cylinder)
+PROXIMA_ANALYTIC_PAIR(Sphere, Cylinder)
 // Sphere against cone: closest point of the cone's meridian triangle to the centre; normals
 // from the base and slant lines. Manifold: one point.
-PROXIMA_ROUNDED_PAIR(Sphere, Cone)
+PROXIMA_ANALYTIC_PAIR(Sphere, Cone)
 // Sphere against ellipsoid: the ellipsoid's closest point to the centre (Eberly's robust 1-D
 // root finder); the normal is the ellipsoid's gradient there. Manifold: one point.
-PROXIMA_ROUNDED_PAIR(Sphere, Ellipsoid)
+PROXIMA_ANALYTIC_PAIR(Sphere, Ellipsoid)
 // Capsule against box: exact segment-box closest points (piecewise quadratic minimisation);
 // segment-box SAT (3 face axes, 3 edge axes) when the core touches the box. Manifold: two
 // points (the core clipped to the face) when the contact normal is a face normal and both
 // ends of the clipped core lie within the contact distance.
-PROXIMA_ROUNDED_PAIR(Capsule, Box)
+PROXIMA_ANALYTIC_PAIR(Capsule, Box)
 
 }  // namespace proxima::narrow
-
-#undef PROXIMA_ROUNDED_PAIR

@@ -28,19 +28,22 @@ struct SphereCapsule {
 SphereCapsule sphere_capsule(const Sphere& a, const Transform& pose_a, const Capsule& b, const Transform& pose_b,
                              const PairRequest& request) {
   const Vec3 c = pose_a.position;
-  const Vec3 p0 = pose_b.apply(b.bottom());
-  const Vec3 p1 = pose_b.apply(b.top());
+  // The core's half axis rotated once: the ends are the centre less and plus it, bit for bit
+  // pose_b.apply(bottom()) and pose_b.apply(top()) (as capsule_capsule.cpp).
+  const Vec3 half = pose_b.apply_vector(b.top());
+  const Vec3 p0 = pose_b.position - half;
+  const Vec3 p1 = pose_b.position + half;
   const geometry::SegmentPoint q = geometry::closest_point_segment(c, p0, p1);
   const Real scale = detail::pair_scale(pose_a, pose_b, a.radius() + b.radius() + b.half_length());
   const Real tol = resolve_tolerance(request, scale);
-  const Vec3 across = pose_b.apply_vector(Vec3(Real(1), Real(0), Real(0)));
   // Inside the core the offset is exactly across it (the core's support has a kink there).
   const Vec3 offset = q.t > Real(0) && q.t < Real(1) ? across_direction(q.point - c, p1 - p0) : q.point - c;
+  Vec3 n;
   Real length = Real(0);
-  Vec3 n = detail::unit_or(offset, across, length);
-  if (!(length > detail::offset_noise(scale))) {
-    // Centre on the core (to rounding): the direction of q - c is noise.
-    n = across;
+  if (!unit_and_length(offset, n, length) || !(length > detail::offset_noise(scale))) {
+    // Centre on the core (to rounding): the direction of q - c is noise; the capsule's local
+    // +x axis, perpendicular to the core, rotated only here.
+    n = pose_b.apply_vector(Vec3(Real(1), Real(0), Real(0)));
     length = Real(0);
   }
   return {detail::rounded_result(c, q.point, n, length, a.radius(), b.radius(), tol), q.t};
