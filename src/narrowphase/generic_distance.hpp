@@ -53,6 +53,7 @@
 #include <proxima/shapes/shape.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -875,6 +876,38 @@ LocalAnswer run_stages(const A& a, const B& b, PairSetup<A, B>& setup, const Pai
   return l.ans;
 }
 
+/// Witnesses for a refined answer whose feature search did not meet the line along its
+/// normal n: a point of one shape whose partner, moved by the signed distance sd along n,
+/// lies on the other shape within sqrt(eps) of the size (closest_point). Candidates: the
+/// stage's witness on A (still right when the refinement barely turned the normal), A's
+/// support point along n, and B's along -n (where one side's support along n is a single
+/// point, as a cone's rim point against a segment across n, and the other's a whole edge or
+/// face, that point and its partner are the contact). The stage's witness when its partner
+/// is within the tolerance, else the candidate whose partner lies closest to the other
+/// surface, is written to `point_a`; false when none is within reach
+/// (a descent stopped along a cone's rim crease had turned the normal by 2e-5: every
+/// partner 1.5e-5 off; the stage's answer stands there).
+template <class A, class B>
+bool refined_partners(const A& a, const B& b, PairSetup<A, B>& setup, const Vec3& stage_a, Real sd, const Vec3& n,
+                      Vec3& point_a) {
+  const MappedSupport<CoreSupport<B>>& to_b = setup.support_b;
+  const auto off_b = [&](const Vec3& on_a) {
+    return std::abs(b.closest_point(to_b.rotation_t * (on_a + sd * n - to_b.translation)).signed_distance);
+  };
+  const Real stage_off = off_b(stage_a);
+  if (stage_off <= setup.tolerance) {
+    point_a = stage_a;
+    return true;
+  }
+  const Vec3 from_b = setup.support_b(-n) - (setup.radius_b + sd) * n;
+  const std::array<Vec3, 3> candidates{stage_a, setup.support_a(n) + setup.radius_a * n, from_b};
+  const std::array<Real, 3> off{stage_off, off_b(candidates[1]), std::abs(a.closest_point(from_b).signed_distance)};
+  const auto best = static_cast<std::size_t>(std::min_element(off.begin(), off.end()) - off.begin());
+  if (!(off[best] <= kSqrtEpsilon * setup.scale)) return false;
+  point_a = candidates[best];
+  return true;
+}
+
 /// Step 5 (a side's core curved): the answer's normal refined on D's support function
 /// (epa::refine) to the precision of the arithmetic, and the signed distance taken along it,
 /// -(h(n) + r_A + r_B), so that the overlap of the two shapes along the reported normal is
@@ -886,7 +919,7 @@ LocalAnswer run_stages(const A& a, const B& b, PairSetup<A, B>& setup, const Pai
 /// better (an upper bound of a depth, a lower bound of a distance), and it is the overlap
 /// along the normal it reports.
 template <class A, class B>
-void refine_to_precision(const B& b, PairSetup<A, B>& setup, const PairRequest& request, LocalAnswer& ans) {
+void refine_to_precision(const A& a, const B& b, PairSetup<A, B>& setup, const PairRequest& request, LocalAnswer& ans) {
   if constexpr (kCurvedCorePair<A, B>) {
     if (ans.stage == GenericStage::NotRun || ans.status == PairStatus::Degenerate ||
         ans.status == PairStatus::MaxIterations)
@@ -913,23 +946,17 @@ void refine_to_precision(const B& b, PairSetup<A, B>& setup, const PairRequest& 
                        (sd < reach - band && ans.signed_distance < reach - band);
     if (!(moved <= kSqrtEpsilon * setup.scale) || (!certified && !clear && !(moved <= Real(0.5) * band))) return;
     // The refinement's witnesses where its feature search met the line along the normal;
-    // else (a cap's disc, whose rim the tangent-plane search approaches linearly) the stage's
-    // witness on A and B's placed along the refined normal, when that lies on B within
-    // sqrt(eps) of the size (a descent stopped along a cone's rim crease had turned the
-    // normal by 2e-5: B's point left B by 1.5e-5; the stage's answer stands there).
-    if (met) {
-      ans.point_a = f.support_a + setup.radius_a * f.normal;
-    } else {
-      const MappedSupport<CoreSupport<B>>& to_b = setup.support_b;
-      const Vec3 on_b = ans.point_a + sd * f.normal;
-      const Real off = b.closest_point(to_b.rotation_t * (on_b - to_b.translation)).signed_distance;
-      if (!(std::abs(off) <= kSqrtEpsilon * setup.scale)) return;
-    }
+    // else (a cap's disc, whose rim the tangent-plane search approaches linearly) a partner
+    // pair placed along the refined normal (refined_partners).
+    Vec3 point_a = f.support_a + setup.radius_a * f.normal;
+    if (!met && !refined_partners(a, b, setup, ans.point_a, sd, f.normal, point_a)) return;
+    ans.point_a = point_a;
     ans.signed_distance = sd;
     ans.normal = f.normal;
-    ans.point_b = ans.point_a + sd * f.normal;
+    ans.point_b = point_a + sd * f.normal;
     ans.status = status_from_distance(sd, setup.tolerance);
   } else {
+    (void)a;
     (void)b;
     (void)setup;
     (void)request;
@@ -941,7 +968,7 @@ void refine_to_precision(const B& b, PairSetup<A, B>& setup, const PairRequest& 
 template <class A, class B>
 LocalAnswer climb_ladder(const A& a, const B& b, PairSetup<A, B>& setup, const PairRequest& request) {
   LocalAnswer ans = run_stages(a, b, setup, request);
-  refine_to_precision(b, setup, request, ans);
+  refine_to_precision(a, b, setup, request, ans);
   return ans;
 }
 
