@@ -169,6 +169,31 @@ TEST(TouchingRule, SphereNearBoxIsOneAnswerInEveryQuery) {
   }
 }
 
+// Sweep EveryPair/TouchingRule.IntersectDistanceCollideAgreeNearContact/triangle_cone at
+// 139 times its size, case 884 (double): a triangle 7.3e-14 from a cone (3.2 tolerances;
+// the long double gap along the answer's normal 7.29e-14), and intersect answered a hit:
+// boolean GJK ended on a sliver tetrahedron (edges 1.2 and 2.7e-5 long) whose origin depth
+// enclosed_depth computed as 2.9e-12, above the band (1.44e-12), where in long double the
+// origin lies 9.9e-13 outside one face. The depth now subtracts its faces' rounding.
+TEST(TouchingRule, SliverTetrahedronProvesNoOverlap) {
+  const auto v = [](double x, double y, double z) { return Vec3(Real(x), Real(y), Real(z)); };
+  const Shape a = Triangle::create(v(0.52452940948623494, 0.5429927750859973, 0.49020646637683685),
+                                   v(-0.27448580653725696, 0.019339924313958035, 0.6909858882518336),
+                                   v(-0.21739902626876484, 0.70859045292352296, -0.29665320345181878))
+                      .value();
+  const Shape b = Cone::create(Real(0.017170096502798604), Real(0.50547174151435648)).value();
+  const Transform pa{v(-0.09855034856200473, 0.1326429125870302, -0.33979061989833248),
+                     Quat(Real(-0.31885505959539001), Real(-0.43272527343740474), Real(0.43348599296942725),
+                          Real(0.72330504118128003))};
+  const Transform pb{v(0.25967484123915863, 0.28364688010002381, 0.64168103452590586),
+                     Quat(Real(0.78261253734606395), Real(-0.36827395361017035), Real(0.13839059556190769),
+                          Real(0.48243129515104038))};
+  const PairRequest request{};
+  const DistanceResult d = distance(a, pa, b, pb, request);
+  EXPECT_EQ(intersect(a, pa, b, pb, request), in_contact(d, request)) << "sd=" << d.signed_distance;
+  EXPECT_EQ(collide(a, pa, b, pb, request).count > 0, in_contact(d, request));
+}
+
 // The distance's accuracy near contact, with no reference needed: moving B along the pair's
 // normal by a small step changes a positive distance by exactly that step. For every convex
 // pair (half-spaces aside) at gaps 1e-3, 1e-5, 1e-7 and 0 of the pair's size, the change
