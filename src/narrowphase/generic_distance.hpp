@@ -731,15 +731,22 @@ inline Real relation_gap(const LocalAnswer& ans) {
   return glm::length(ans.point_b - (ans.point_a + ans.signed_distance * ans.normal));
 }
 
+/// How far a point given in A's frame lies from B's surface (|signed distance|, B's
+/// closest_point through the pair's relative pose).
+template <class A, class B>
+Real off_b_surface(const B& b, const PairSetup<A, B>& setup, const Vec3& p) {
+  const MappedSupport<CoreSupport<B>>& to_b = setup.support_b;
+  return std::abs(b.closest_point(to_b.rotation_t * (p - to_b.translation)).signed_distance);
+}
+
 /// Where the support features along EPA's normal do not meet the relation either (a small
 /// cone's apex against a sliver hull whose faces are not quite normal to it): one witness
 /// moved by the signed distance along the normal, kept when it lies on the other shape's
 /// surface (its closest_point, within the tolerance). B's first, then A's.
 template <class A, class B>
 void partner_on_the_other_surface(Ladder<A, B>& l) {
-  const MappedSupport<CoreSupport<B>>& to_b = l.setup.support_b;
   const Vec3 on_b = l.ans.point_a + l.ans.signed_distance * l.ans.normal;
-  if (std::abs(l.b.closest_point(to_b.rotation_t * (on_b - to_b.translation)).signed_distance) <= l.setup.tolerance) {
+  if (off_b_surface(l.b, l.setup, on_b) <= l.setup.tolerance) {
     l.ans.point_b = on_b;
     return;
   }
@@ -899,10 +906,7 @@ LocalAnswer run_stages(const A& a, const B& b, PairSetup<A, B>& setup, const Pai
 template <class A, class B>
 bool refined_partners(const A& a, const B& b, PairSetup<A, B>& setup, const Vec3& stage_a, Real sd, const Vec3& n,
                       Vec3& point_a) {
-  const MappedSupport<CoreSupport<B>>& to_b = setup.support_b;
-  const auto off_b = [&](const Vec3& on_a) {
-    return std::abs(b.closest_point(to_b.rotation_t * (on_a + sd * n - to_b.translation)).signed_distance);
-  };
+  const auto off_b = [&](const Vec3& on_a) { return off_b_surface(b, setup, on_a + sd * n); };
   const Real stage_off = off_b(stage_a);
   if (stage_off <= setup.tolerance) {
     point_a = stage_a;

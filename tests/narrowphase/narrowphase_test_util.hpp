@@ -173,6 +173,9 @@ inline Real shape_scale(const Shape& shape) {
   return glm::length(box.max - box.min) * Real(0.5) + max_abs_component(box.max) + max_abs_component(box.min);
 }
 
+/// A point from the 17 digits the sweeps print (named regressions), in the build's Real.
+inline Vec3 printed(double x, double y, double z) { return Vec3(Real(x), Real(y), Real(z)); }
+
 /// World signed distance of `point` from the surface of `shape` placed at `pose` (the
 /// shape layer's closest_point, not the narrow phase).
 inline Real surface_distance(const Shape& shape, const Transform& pose, const Vec3& point) {

@@ -136,9 +136,6 @@ TEST_P(Exactness, NormalIsTheLongDoubleMinimumsWhereThatIsPinned) {
   EXPECT_LE(worst, 1.0) << pinned << " pinned cases; worst (angle over allowed): " << worst_case;
 }
 
-/// A point from the 17 digits the sweeps print.
-Vec3 printed(double x, double y, double z) { return Vec3(Real(x), Real(y), Real(z)); }
-
 /// A pose from the 17 digits the sweeps print (quaternion x, y, z, w).
 Transform printed_pose(const Vec3& p, double x, double y, double z, double w) {
   return {p, glm::normalize(Quat(Real(w), Real(x), Real(y), Real(z)))};
@@ -168,15 +165,17 @@ void expect_self_consistent(const Shape& a, const Transform& pa, const Shape& b,
 // ulps of the size) short of its distance. The rim point and its partner on the segment are
 // now the witnesses (refined_partners, generic_distance.hpp).
 TEST(ExactnessRegression, RefinedAnswerKeepsARimPointAndItsPartnerAsWitnesses) {
-  const Shape a = Segment::create(printed(-0.00052468122906812844, -0.00086736897310202732, 3.3983684055939785e-05),
-                                  printed(-0.00074482518947626049, 0.00041962980436787578, -0.00057578656542589773))
-                      .value();
+  const Shape a =
+      Segment::create(test::printed(-0.00052468122906812844, -0.00086736897310202732, 3.3983684055939785e-05),
+                      test::printed(-0.00074482518947626049, 0.00041962980436787578, -0.00057578656542589773))
+          .value();
   const Shape b = Cone::create(Real(0.0007189703080948749), Real(0.00029365463116045351)).value();
-  const Transform pa = printed_pose(printed(-0.00055369102686789933, -5.3984987231793903e-05, -0.00048381722834388578),
-                                    0.76591409939784794, 0.15294043137193269, 0.56712889852042947, 0.26143762020481193);
+  const Transform pa =
+      printed_pose(test::printed(-0.00055369102686789933, -5.3984987231793903e-05, -0.00048381722834388578),
+                   0.76591409939784794, 0.15294043137193269, 0.56712889852042947, 0.26143762020481193);
   const Transform pb =
-      printed_pose(printed(-0.0008020248549962842, 0.00033094521001502276, 0.0001469197910454233), 0.61980830771997952,
-                   -0.013108268127910917, -0.30457032492326086, 0.72312015057258727);
+      printed_pose(test::printed(-0.0008020248549962842, 0.00033094521001502276, 0.0001469197910454233),
+                   0.61980830771997952, -0.013108268127910917, -0.30457032492326086, 0.72312015057258727);
   expect_self_consistent(a, pa, b, pb);
   expect_self_consistent(b, pb, a, pa);
 }
@@ -189,10 +188,10 @@ TEST(ExactnessRegression, DeepConesKeepTheRefinedDepth) {
   const Shape a = Cone::create(Real(1093.4647750229426), Real(652.03598747240744)).value();
   const Shape b = Cone::create(Real(171.64602149674616), Real(693.56948562004447)).value();
   const Transform pa =
-      printed_pose(printed(-362.27729110703689, -398.72288699567616, 150.07841709691252), 0.1244489149574447,
+      printed_pose(test::printed(-362.27729110703689, -398.72288699567616, 150.07841709691252), 0.1244489149574447,
                    -0.80030936230044447, -0.079103653808287391, -0.58117123477882948);
   const Transform pb =
-      printed_pose(printed(-431.85725937496932, -117.92102042404645, -824.0708197113031), 0.18415627959436856,
+      printed_pose(test::printed(-431.85725937496932, -117.92102042404645, -824.0708197113031), 0.18415627959436856,
                    -0.047826148443078247, 0.97547821539229074, 0.11064074975402725);
   expect_self_consistent(a, pa, b, pb);
   expect_self_consistent(b, pb, a, pa);
@@ -205,15 +204,15 @@ TEST(ExactnessRegression, DeepConesKeepTheRefinedDepth) {
 // along it (138 ulps). It is now moved onto the plane orthogonal to the segment
 // (stationary_normal, core_closest_point.hpp).
 TEST(ExactnessRegression, SegmentCoreNormalIsOrthogonalToTheSegment) {
-  const Shape a = Segment::create(printed(11.494335108122113, 25.048956513214005, 11.035717117311524),
-                                  printed(-9.4585241339208288, -33.593478801088253, -0.32285217871430261))
+  const Shape a = Segment::create(test::printed(11.494335108122113, 25.048956513214005, 11.035717117311524),
+                                  test::printed(-9.4585241339208288, -33.593478801088253, -0.32285217871430261))
                       .value();
-  const Shape b = Box::create(printed(38.180379555738078, 51.242987596585898, 29.870962819278027)).value();
+  const Shape b = Box::create(test::printed(38.180379555738078, 51.242987596585898, 29.870962819278027)).value();
   const Transform pa =
-      printed_pose(printed(12.288262399082278, -2.8604083636077906, -13.020102939699541), 0.66470210080715031,
+      printed_pose(test::printed(12.288262399082278, -2.8604083636077906, -13.020102939699541), 0.66470210080715031,
                    -0.73177570958182248, 0.11359830022423288, 0.098847631406859635);
   const Transform pb =
-      printed_pose(printed(32.739875563881057, 39.242285014734236, -49.906899159015644), 0.50630519009362562,
+      printed_pose(test::printed(32.739875563881057, 39.242285014734236, -49.906899159015644), 0.50630519009362562,
                    -0.86106331937963965, 0.038363869103153515, 0.027445000466577631);
   expect_self_consistent(a, pa, b, pb);
   expect_self_consistent(b, pb, a, pa);

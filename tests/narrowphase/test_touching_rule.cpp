@@ -176,7 +176,7 @@ TEST(TouchingRule, SphereNearBoxIsOneAnswerInEveryQuery) {
 // enclosed_depth computed as 2.9e-12, above the band (1.44e-12), where in long double the
 // origin lies 9.9e-13 outside one face. The depth now subtracts its faces' rounding.
 TEST(TouchingRule, SliverTetrahedronProvesNoOverlap) {
-  const auto v = [](double x, double y, double z) { return Vec3(Real(x), Real(y), Real(z)); };
+  const auto v = test::printed;
   const Shape a = Triangle::create(v(0.52452940948623494, 0.5429927750859973, 0.49020646637683685),
                                    v(-0.27448580653725696, 0.019339924313958035, 0.6909858882518336),
                                    v(-0.21739902626876484, 0.70859045292352296, -0.29665320345181878))
